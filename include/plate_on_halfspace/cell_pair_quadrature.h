@@ -1,0 +1,97 @@
+/**
+ * Integrals of the Boussinesq kernel 1/|x - y| against pairs of shape
+ * functions over pairs of plate cells: the building block of the Galerkin
+ * half-space operator (formulation.md, "Default variant").
+ */
+#ifndef plate_on_halfspace_cell_pair_quadrature_h
+#define plate_on_halfspace_cell_pair_quadrature_h
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <plate_on_halfspace/foundation_space.h>
+
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  /**
+   * For every cell of a FoundationSpace: its foundation nodes and the node
+   * shape functions psi_a = sum_i T_ai phi_i (the Q2 functions phi after the
+   * serendipity and hanging-node constraints), tabulated on Gauss rules of
+   * several orders. integrate_inverse_distance() picks the rule from the
+   * pair's separation:
+   *  - coincident and touching cells (sharing a vertex or part of an edge):
+   *    outer Gauss rule of the singular order on K; for each outer point x
+   *    the inner integral over L uses QSplit(QDuffy) split at x's reference
+   *    point in L (clamped onto L when x lies outside), whose Duffy collapse
+   *    cancels the 1/r singularity on any straight-sided quadrilateral;
+   *  - separated pairs: tensor Gauss rules, 5, 3 or 2 points per direction
+   *    for centre distances below 2.5, below 5 and from 5 cell diameters on.
+   */
+  class CellPairIntegrator
+  {
+  public:
+    CellPairIntegrator(const FoundationSpace &space,
+                       const unsigned int     singular_order);
+
+    /** Foundation nodes of cell @p c (the rows of its node shape functions). */
+    const std::vector<unsigned int> &
+    nodes(const unsigned int c) const
+    {
+      return cell_data[c].nodes;
+    }
+
+    /**
+     * block(a,b) = ∫_{cell k} ∫_{cell l} psi_a(x) psi_b(y) / |x - y| dy dx,
+     * a over the nodes of k, b over those of l.
+     */
+    void
+    integrate_inverse_distance(const unsigned int  k,
+                               const unsigned int  l,
+                               FullMatrix<double> &block) const;
+
+  private:
+    /** Node shape functions of one cell on one Gauss rule. */
+    struct Table
+    {
+      std::vector<Point<2>>            points;  ///< physical
+      std::vector<double>              weights; ///< JxW
+      std::vector<std::vector<double>> values;  ///< [q][a]
+    };
+
+    struct CellData
+    {
+      std::vector<unsigned int> nodes;
+      FullMatrix<double>        node_from_q2; ///< T, n_nodes x 9
+      std::vector<Table>        tables;       ///< one per rule in orders
+      Point<2>                  centre;
+      double                    diameter;
+    };
+
+    /** psi(p) of cell @p c at the reference point @p p. */
+    void
+    node_shape_values(const unsigned int   c,
+                      const Point<2> &     p,
+                      std::vector<double> &values) const;
+
+    bool
+    touching(const unsigned int k, const unsigned int l) const;
+
+    void
+    integrate_regular(const Table &       outer,
+                      const Table &       inner,
+                      FullMatrix<double> &block) const;
+
+    void
+    integrate_singular(const unsigned int  k,
+                       const unsigned int  l,
+                       FullMatrix<double> &block) const;
+
+    const FoundationSpace &space;
+    const unsigned int     singular_order;
+    std::vector<unsigned int> orders; ///< Gauss orders of the tables
+    std::vector<CellData>     cell_data;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

@@ -1,0 +1,85 @@
+/**
+ * Contact between the condensed plate and the half-space (formulation.md,
+ * "Tensionless contact"): bonded contact (one coupled solve) and the
+ * algorithms for tensionless contact, the paper's element exclusion and the
+ * primal-dual active set method (deal.II step-41 is the model).
+ */
+#ifndef plate_on_halfspace_contact_solver_h
+#define plate_on_halfspace_contact_solver_h
+
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/foundation_operator.h>
+#include <plate_on_halfspace/parameters.h>
+
+#include <ostream>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /** The state of the foundation after a contact solve (foundation nodes). */
+  struct ContactState
+  {
+    Vector<double>    w;   ///< plate deflection at the foundation nodes
+    Vector<double>    q;   ///< contact pressure, compression positive
+    Vector<double>    gap; ///< F q - B w: soil surface minus plate
+    std::vector<bool> in_contact;
+    std::vector<bool> cell_in_foundation; ///< element exclusion's cell set
+    unsigned int      iterations = 0;
+    bool              converged  = false;
+    /**
+     * max of (-min q)+, (-min gap)+, max |q gap|, each relative to the
+     * problem's scale (max |q|, max |B w|) (interfaces.md).
+     */
+    double complementarity_violation = 0;
+  };
+
+  /**
+   * Solves  K̄ w + M q = P̄  with the foundation's contact conditions. The
+   * coupled matrix K̄ + S is dense and of the size of the foundation block;
+   * it is factorised by LAPACK (Cholesky when S is symmetric, else LU).
+   */
+  class ContactSolver
+  {
+  public:
+    ContactSolver(const Parameters::Contact &contact,
+                  const bool                 tensionless,
+                  const unsigned int         verbosity,
+                  std::ostream &             log);
+
+    /**
+     * Solve for the plate condensed to @p plate_stiffness and @p plate_load
+     * on @p foundation (built on @p space). @p initial_contact (may be empty)
+     * seeds the contact set, e.g. transferred from the previous cycle.
+     */
+    ContactState
+    solve(const LAPACKFullMatrix<double> &plate_stiffness,
+          const Vector<double> &          plate_load,
+          FoundationOperator &            foundation,
+          const FoundationSpace &         space,
+          const std::vector<bool> &       initial_contact) const;
+
+  private:
+    /** One coupled solve on the foundation's current contact set. */
+    void
+    solve_coupled(const LAPACKFullMatrix<double> &plate_stiffness,
+                  const Vector<double> &          plate_load,
+                  const FoundationOperator &      foundation,
+                  ContactState &                  state) const;
+
+    /** Fill gap and complementarity_violation of @p state. */
+    void
+    evaluate_conditions(const FoundationOperator &foundation,
+                        ContactState &            state) const;
+
+    const Parameters::Contact contact;
+    const bool                tensionless;
+    const unsigned int        verbosity;
+    std::ostream &            log;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

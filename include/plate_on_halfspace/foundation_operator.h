@@ -1,0 +1,149 @@
+/**
+ * The interface behind which the half-space sits (formulation.md,
+ * "Half-space"): build it for a mesh, apply it to pressures, and solve it for
+ * the pressures that produce a given plate deflection on the set of nodes in
+ * contact. The plate, the contact solver and the output only talk to this
+ * interface, so that a compressed (hierarchical) or distributed operator can
+ * replace the dense ones without touching them.
+ *
+ * Both variants share the same algebraic form. With F the flexibility
+ * (galerkin: the symmetric A, weak settlements; collocation: the paper's
+ * nodal G) and B the matching plate operator (galerkin: M, collocation: I),
+ *   settlement of the soil surface       s = F q,
+ *   the same for the plate               b = B w,
+ *   gap (soil surface minus plate)       g = s - b,
+ *   pressures on the contact set C       q_C = F_CC^{-1} b_C,  q = 0 off C,
+ *   nodal forces on the plate            Q = M q   (the paper's E q),
+ *   foundation stiffness                 S = M_{:,C} F_CC^{-1} B_{C,:}.
+ * Units: q force/length^2, w and s length (galerkin s: length^3).
+ */
+#ifndef plate_on_halfspace_foundation_operator_h
+#define plate_on_halfspace_foundation_operator_h
+
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/foundation_space.h>
+#include <plate_on_halfspace/parameters.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /** Abstract half-space operator (see the file documentation). */
+  class FoundationOperator
+  {
+  public:
+    virtual ~FoundationOperator() = default;
+
+    /**
+     * Build the operator on @p space. @p cell_in_foundation (one flag per
+     * cell of the space; empty = all) lists the cells whose area carries
+     * pressure: the paper's element exclusion removes cells here. All nodes
+     * start in contact.
+     */
+    virtual void
+    build(const FoundationSpace &  space,
+          const std::vector<bool> &cell_in_foundation) = 0;
+
+    /**
+     * Restrict to the nodes in contact (one flag per node) and factorise
+     * F_CC. Nodes that no foundation cell touches are never in contact.
+     * Throws if F_CC cannot be factorised.
+     */
+    virtual void
+    set_contact_nodes(const std::vector<bool> &in_contact) = 0;
+
+    /** s = F q (settlement of the soil surface, in the operator's sense). */
+    virtual void
+    apply(const Vector<double> &q, Vector<double> &s) const = 0;
+
+    /** b = B w (the plate deflection, in the same sense as apply()). */
+    virtual void
+    plate_settlement(const Vector<double> &w, Vector<double> &b) const = 0;
+
+    /** q with q_C = F_CC^{-1} (B w)_C and q = 0 off the contact set. */
+    virtual void
+    solve(const Vector<double> &w, Vector<double> &q) const = 0;
+
+    /**
+     * Add the foundation stiffness S (see file doc) to the dense matrix
+     * @p matrix of size n_nodes x n_nodes.
+     */
+    virtual void
+    add_stiffness(LAPACKFullMatrix<double> &matrix) const = 0;
+
+    /** Whether S is symmetric (then the coupled matrix is SPD). */
+    virtual bool
+    is_symmetric() const = 0;
+
+    /** Nodal forces Q = M q on the plate. */
+    void
+    nodal_forces(const Vector<double> &q, Vector<double> &forces) const;
+
+    /** Gap g = F q - B w (>= 0 where the plate is above the soil). */
+    void
+    gap(const Vector<double> &w,
+        const Vector<double> &q,
+        Vector<double> &      g) const;
+
+    /** Contact flags of the nodes. */
+    const std::vector<bool> &
+    contact_nodes() const
+    {
+      return in_contact;
+    }
+
+    /** Nodes that some foundation cell touches. */
+    const std::vector<bool> &
+    supported_nodes() const
+    {
+      return node_supported;
+    }
+
+    /** The mass matrix M (the paper's E). */
+    const SparseMatrix<double> &
+    mass_matrix() const
+    {
+      return mass;
+    }
+
+    /** "dense" or the name of a compressed storage. */
+    virtual std::string
+    storage_name() const = 0;
+
+    /** Bytes held by the operator's matrices and factorisations. */
+    virtual std::size_t
+    memory_consumption() const = 0;
+
+  protected:
+    /** Assemble M over the foundation cells and mark supported nodes. */
+    void
+    build_mass_matrix(const FoundationSpace &  space,
+                      const std::vector<bool> &cell_in_foundation);
+
+    /** Contact set restricted to supported nodes; returns the index list. */
+    std::vector<unsigned int>
+    store_contact_nodes(const std::vector<bool> &requested);
+
+    SparsityPattern      mass_sparsity;
+    SparseMatrix<double> mass;
+    std::vector<bool>    node_supported;
+    std::vector<bool>    in_contact;
+  };
+
+  /**
+   * Make the operator the scene asks for (Discretization/Flexibility and
+   * Foundation operator/Storage).
+   */
+  std::unique_ptr<FoundationOperator>
+  create_foundation_operator(const SceneParameters &parameters);
+} // namespace PlateOnHalfspace
+
+#endif

@@ -1,0 +1,79 @@
+/**
+ * The discrete contact surface shared by the plate and the half-space: the
+ * foundation nodes (the unconstrained w-DOFs of the plate, formulation.md
+ * "Adaptive refinement") and, for every plate cell, how its nine Q2 w-shape
+ * functions expand into foundation nodes once the serendipity and
+ * hanging-node constraints are applied.
+ *
+ * This is the only thing the half-space operators know about the plate, so a
+ * different operator (compressed, distributed) needs nothing else.
+ */
+#ifndef plate_on_halfspace_foundation_space_h
+#define plate_on_halfspace_foundation_space_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/quadrilateral_geometry.h>
+
+#include <array>
+#include <utility>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /**
+   * Values of the nine biquadratic Lagrange shape functions of deal.II's
+   * FE_Q<2>(2) at a reference point, in FE_Q's local numbering (vertices
+   * 0-3, edge midpoints 4-7 on the faces x=0, x=1, y=0, y=1, centre 8).
+   */
+  std::array<double, 9>
+  q2_shape_values(const Point<2> &p);
+
+  /** The foundation nodes and the cell-to-node expansion (see file doc). */
+  struct FoundationSpace
+  {
+    /** One term node * weight of the expansion of a cell shape function. */
+    using Term = std::pair<unsigned int, double>;
+
+    /** One plate cell seen from the foundation. */
+    struct Cell
+    {
+      BilinearQuadrilateral geometry;
+      /** Expansion of the 9 local w-shape functions into foundation nodes. */
+      std::array<std::vector<Term>, 9> expansion;
+    };
+
+    /** Location of each foundation node (x, y). */
+    std::vector<Point<2>> node_locations;
+    /** All active plate cells, in the DoFHandler's active cell order. */
+    std::vector<Cell> cells;
+
+    unsigned int
+    n_nodes() const
+    {
+      return node_locations.size();
+    }
+
+    /**
+     * Assemble the consistent mass matrix M_ij = ∫ φ_i φ_j (the paper's E,
+     * (P11)-(P15)) over the cells with @p cell_in_foundation set (all if
+     * empty), into @p sparsity and @p matrix (3x3 Gauss, exact for
+     * parallelogram cells and for bilinear ones).
+     */
+    void
+    assemble_mass_matrix(const std::vector<bool> &cell_in_foundation,
+                         SparsityPattern &        sparsity,
+                         SparseMatrix<double> &   matrix) const;
+
+    /** Integral of each foundation shape function: m_i = ∫ φ_i. */
+    Vector<double>
+    integrals_of_shape_functions() const;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

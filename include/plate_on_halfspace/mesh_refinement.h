@@ -1,0 +1,34 @@
+/**
+ * Marking cells for the next cycle of the adaptive loop (formulation.md,
+ * "Adaptive refinement"): the Kelly indicator of w and beta, raised on the
+ * plate edge and on the contact boundary, where the contact pressure is
+ * singular or changes sign.
+ */
+#ifndef plate_on_halfspace_mesh_refinement_h
+#define plate_on_halfspace_mesh_refinement_h
+
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/contact_solver.h>
+#include <plate_on_halfspace/mindlin_plate.h>
+#include <plate_on_halfspace/parameters.h>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /**
+   * Set refinement (and coarsening) flags on @p triangulation for the next
+   * cycle. Returns false, and sets no flag, when refining would exceed
+   * Adaptivity/Max cells.
+   */
+  bool
+  mark_cells_for_refinement(const Parameters::Adaptivity &adaptivity,
+                            const MindlinPlate &          plate,
+                            const Vector<double> &        solution,
+                            const ContactState &          contact,
+                            Triangulation<2> &            triangulation);
+} // namespace PlateOnHalfspace
+
+#endif

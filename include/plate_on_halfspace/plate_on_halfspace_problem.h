@@ -1,0 +1,97 @@
+/**
+ * The application: the adaptive loop of formulation.md ("Adaptive
+ * refinement") around the contact iteration, driven by a scene file
+ * (step-41/42 and ASPECT are the models).
+ */
+#ifndef plate_on_halfspace_plate_on_halfspace_problem_h
+#define plate_on_halfspace_plate_on_halfspace_problem_h
+
+#include <deal.II/base/convergence_table.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/contact_solver.h>
+#include <plate_on_halfspace/foundation_operator.h>
+#include <plate_on_halfspace/mindlin_plate.h>
+#include <plate_on_halfspace/parameters.h>
+#include <plate_on_halfspace/results_output.h>
+
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /** A scene solved cycle by cycle; results go to the output directory. */
+  class PlateOnHalfspaceProblem
+  {
+  public:
+    /** @p log receives the per-cycle and per-iteration lines. */
+    PlateOnHalfspaceProblem(const SceneParameters &parameters,
+                            std::ostream &         log);
+
+    /**
+     * Run all cycles and the verification checks. Throws on bad input or a
+     * failed solve (results of completed cycles stay on disk). Returns false
+     * if a verification check failed.
+     */
+    bool
+    run();
+
+    const std::vector<CycleSummary> &
+    summaries() const
+    {
+      return cycle_summaries;
+    }
+    const MindlinPlate &
+    plate() const
+    {
+      return *mindlin_plate;
+    }
+    const Vector<double> &
+    solution() const
+    {
+      return plate_solution;
+    }
+    const ContactState &
+    contact_state() const
+    {
+      return contact;
+    }
+    const FoundationOperator &
+    foundation() const
+    {
+      return *foundation_operator;
+    }
+
+    /** w, q, Mx, My at a point of the plate (last cycle). */
+    PointValues
+    values_at(const Point<2> &x) const;
+
+  private:
+    void
+    solve_cycle(const unsigned int cycle, const std::vector<bool> &seed);
+    /** Refine, set up the plate anew and transfer the contact set; none if
+     *  Adaptivity/Max cells stops the refinement. */
+    std::optional<std::vector<bool>>
+    refine_and_transfer_contact();
+    bool
+    run_checks() const;
+
+    const SceneParameters                parameters;
+    std::ostream &                       log;
+    Triangulation<2>                     triangulation;
+    std::unique_ptr<MindlinPlate>        mindlin_plate;
+    std::unique_ptr<FoundationOperator>  foundation_operator;
+    Vector<double>                       plate_solution;
+    ContactState                         contact;
+    std::vector<CycleSummary>            cycle_summaries;
+    ConvergenceTable                     convergence;
+    std::unique_ptr<ResultsOutput>       output;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

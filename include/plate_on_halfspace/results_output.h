@@ -1,0 +1,113 @@
+/**
+ * Results of a run in the output directory (interfaces.md, "Results"):
+ * summary.json (written atomically after every cycle), profile-NN.csv,
+ * solution-NN.vtu with solution.pvd, and convergence.txt.
+ */
+#ifndef plate_on_halfspace_results_output_h
+#define plate_on_halfspace_results_output_h
+
+#include <deal.II/base/convergence_table.h>
+#include <deal.II/base/point.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/contact_solver.h>
+#include <plate_on_halfspace/mindlin_plate.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /** Values at one point of the plate. */
+  struct PointValues
+  {
+    Point<2> location;
+    double   w = 0, q = 0, mx = 0, my = 0;
+  };
+
+  /** What summary.json reports for one cycle. */
+  struct CycleSummary
+  {
+    unsigned int cycle = 0, n_cells = 0, n_dofs = 0, n_foundation_dofs = 0;
+    unsigned int contact_iterations = 0, contact_nodes = 0;
+    double       contact_area_fraction = 0;
+    double       applied_load = 0, contact_force = 0;
+    double       complementarity_violation = 0;
+    double       max_w = 0, min_w = 0, max_q = 0, min_q = 0;
+    double       max_mx = 0, min_mx = 0, max_my = 0, min_my = 0;
+    double       wall_time_s = 0;
+    std::string  foundation_storage;
+    std::size_t  foundation_memory_bytes = 0;
+    bool         converged = true;
+    std::vector<PointValues> probes;
+  };
+
+  /**
+   * Evaluates a solved cycle (fields, extremes, points) and writes the result
+   * files. Every file is written to a temporary name and renamed, so a
+   * failed run never leaves a half-written file or destroys earlier results.
+   */
+  class ResultsOutput
+  {
+  public:
+    explicit ResultsOutput(const std::string &directory);
+
+    /**
+     * Pressure, gap and contact indicator on the plate's scalar w-space
+     * and the extremes of w, q and the moments (at the nodes and the
+     * 2x2 Gauss points of every cell).
+     */
+    void
+    evaluate(const MindlinPlate &  plate,
+             const Vector<double> &solution,
+             const ContactState &  contact,
+             CycleSummary &        summary) const;
+
+    /** w, q, Mx, My at @p x (q from the FE pressure field). */
+    PointValues
+    point_values(const MindlinPlate &  plate,
+                 const Vector<double> &solution,
+                 const Vector<double> &pressure_field,
+                 const Point<2> &      x) const;
+
+    /** summary.json over all cycles so far. */
+    void
+    write_summary(const std::vector<CycleSummary> &cycles,
+                  const std::string &              symmetry,
+                  const bool                       converged) const;
+
+    /** profile-NN.csv along a line (points off the plate are skipped). */
+    void
+    write_profile(const unsigned int    cycle,
+                  const MindlinPlate &  plate,
+                  const Vector<double> &solution,
+                  const ContactState &  contact,
+                  const Point<2> &      start,
+                  const Point<2> &      end,
+                  const unsigned int    n_points) const;
+
+    /** solution-NN.vtu and solution.pvd. */
+    void
+    write_vtu(const unsigned int    cycle,
+              const MindlinPlate &  plate,
+              const Vector<double> &solution,
+              const ContactState &  contact);
+
+    /** convergence.txt (ConvergenceTable text). */
+    void
+    write_convergence(ConvergenceTable &table) const;
+
+    /** Write @p text to @p name in the directory, atomically. */
+    void
+    write_file(const std::string &name, const std::string &text) const;
+
+  private:
+    std::string                                  directory;
+    std::vector<std::pair<double, std::string>> pvd_records;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

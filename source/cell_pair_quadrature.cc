@@ -1,0 +1,181 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <plate_on_halfspace/cell_pair_quadrature.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace PlateOnHalfspace
+{
+  CellPairIntegrator::CellPairIntegrator(const FoundationSpace &space,
+                                         const unsigned int singular_order)
+    : space(space)
+    , singular_order(singular_order)
+    , orders{2, 3, 5, singular_order}
+    , cell_data(space.cells.size())
+  {
+    for (unsigned int c = 0; c < space.cells.size(); ++c)
+      {
+        const FoundationSpace::Cell &cell = space.cells[c];
+        CellData &                   data = cell_data[c];
+        for (const auto &terms : cell.expansion)
+          for (const auto &t : terms)
+            if (std::find(data.nodes.begin(), data.nodes.end(), t.first) ==
+                data.nodes.end())
+              data.nodes.push_back(t.first);
+        data.node_from_q2.reinit(data.nodes.size(), 9);
+        for (unsigned int i = 0; i < 9; ++i)
+          for (const auto &t : cell.expansion[i])
+            {
+              const unsigned int a =
+                std::find(data.nodes.begin(), data.nodes.end(), t.first) -
+                data.nodes.begin();
+              data.node_from_q2(a, i) += t.second;
+            }
+        data.centre   = cell.geometry.map(Point<2>(0.5, 0.5));
+        data.diameter = cell.geometry.diameter();
+
+        for (const unsigned int order : orders)
+          {
+            const QGauss<2> rule(order);
+            Table           table;
+            for (unsigned int q = 0; q < rule.size(); ++q)
+              {
+                const Point<2> &p = rule.point(q);
+                table.points.push_back(cell.geometry.map(p));
+                table.weights.push_back(rule.weight(q) *
+                                        cell.geometry.jacobian_determinant(p));
+                std::vector<double> values;
+                node_shape_values(c, p, values);
+                table.values.push_back(values);
+              }
+            data.tables.push_back(table);
+          }
+      }
+  }
+
+  void
+  CellPairIntegrator::node_shape_values(const unsigned int   c,
+                                        const Point<2> &     p,
+                                        std::vector<double> &values) const
+  {
+    const auto          phi = q2_shape_values(p);
+    const CellData &    data = cell_data[c];
+    const unsigned int  n    = data.nodes.size();
+    values.assign(n, 0.);
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int i = 0; i < 9; ++i)
+        values[a] += data.node_from_q2(a, i) * phi[i];
+  }
+
+  bool
+  CellPairIntegrator::touching(const unsigned int k,
+                               const unsigned int l) const
+  {
+    // Convex cells that touch have a vertex of one on the closed other one
+    // (also across hanging nodes, where a small cell's vertex lies on a
+    // large cell's edge).
+    const auto &gk = space.cells[k].geometry, &gl = space.cells[l].geometry;
+    for (const Point<2> &v : gk.get_vertices())
+      if (gl.contains(v))
+        return true;
+    for (const Point<2> &v : gl.get_vertices())
+      if (gk.contains(v))
+        return true;
+    return false;
+  }
+
+  void
+  CellPairIntegrator::integrate_regular(const Table &       outer,
+                                        const Table &       inner,
+                                        FullMatrix<double> &block) const
+  {
+    const unsigned int na = outer.values[0].size(),
+                       nb = inner.values[0].size();
+    // t(p, b) = sum_q W_q psi_b(y_q) / |x_p - y_q|, then
+    // block(a, b) = sum_p W_p psi_a(x_p) t(p, b).
+    std::vector<double> t(nb);
+    for (unsigned int p = 0; p < outer.points.size(); ++p)
+      {
+        std::fill(t.begin(), t.end(), 0.);
+        for (unsigned int q = 0; q < inner.points.size(); ++q)
+          {
+            const double kernel =
+              inner.weights[q] / outer.points[p].distance(inner.points[q]);
+            for (unsigned int b = 0; b < nb; ++b)
+              t[b] += kernel * inner.values[q][b];
+          }
+        for (unsigned int a = 0; a < na; ++a)
+          {
+            const double wa = outer.weights[p] * outer.values[p][a];
+            for (unsigned int b = 0; b < nb; ++b)
+              block(a, b) += wa * t[b];
+          }
+      }
+  }
+
+  void
+  CellPairIntegrator::integrate_singular(const unsigned int  k,
+                                         const unsigned int  l,
+                                         FullMatrix<double> &block) const
+  {
+    const BilinearQuadrilateral &inner_cell = space.cells[l].geometry;
+    const Table &outer = cell_data[k].tables.back(); // singular order
+    const QGauss<2> outer_rule(singular_order);
+    const QDuffy    duffy(singular_order, 1.0);
+    const unsigned int  nb = cell_data[l].nodes.size();
+    std::vector<double> t(nb), values;
+    for (unsigned int p = 0; p < outer.points.size(); ++p)
+      {
+        const Point<2> &x = outer.points[p];
+        // The inner singularity sits at x's reference point in L; outside
+        // L (touching pairs) the nearest point of the reference square is
+        // the best place to concentrate the Duffy points.
+        Point<2> split =
+          (k == l) ? outer_rule.point(p) : inner_cell.inverse_map(x);
+        for (unsigned int d = 0; d < 2; ++d)
+          split[d] = std::min(1., std::max(0., split[d]));
+        const QSplit<2> inner(duffy, split);
+        std::fill(t.begin(), t.end(), 0.);
+        for (unsigned int q = 0; q < inner.size(); ++q)
+          {
+            const Point<2> &y_ref = inner.point(q);
+            const double    r     = x.distance(inner_cell.map(y_ref));
+            if (r == 0.)
+              continue; // a point of measure zero
+            const double kernel =
+              inner.weight(q) * inner_cell.jacobian_determinant(y_ref) / r;
+            node_shape_values(l, y_ref, values);
+            for (unsigned int b = 0; b < nb; ++b)
+              t[b] += kernel * values[b];
+          }
+        for (unsigned int a = 0; a < outer.values[p].size(); ++a)
+          {
+            const double wa = outer.weights[p] * outer.values[p][a];
+            for (unsigned int b = 0; b < nb; ++b)
+              block(a, b) += wa * t[b];
+          }
+      }
+  }
+
+  void
+  CellPairIntegrator::integrate_inverse_distance(
+    const unsigned int  k,
+    const unsigned int  l,
+    FullMatrix<double> &block) const
+  {
+    block.reinit(cell_data[k].nodes.size(), cell_data[l].nodes.size());
+    if (k == l || touching(k, l))
+      {
+        integrate_singular(k, l, block);
+        return;
+      }
+    const double separation =
+      cell_data[k].centre.distance(cell_data[l].centre) /
+      std::max(cell_data[k].diameter, cell_data[l].diameter);
+    const unsigned int rule = (separation < 2.5 ? 2 : separation < 5 ? 1 : 0);
+    integrate_regular(cell_data[k].tables[rule],
+                      cell_data[l].tables[rule],
+                      block);
+  }
+} // namespace PlateOnHalfspace

@@ -1,0 +1,300 @@
+#include <deal.II/base/exceptions.h>
+
+#include <plate_on_halfspace/contact_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <numeric>
+#include <set>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    double
+    max_abs(const Vector<double> &v)
+    {
+      return v.size() > 0 ? v.linfty_norm() : 0.;
+    }
+
+    /**
+     * Whether the nodes in contact can carry a plate: at least three of them,
+     * not on one line (formulation.md: fewer than three non-collinear
+     * supporting points make the plate a mechanism).
+     */
+    bool
+    contact_set_supports_plate(const FoundationSpace &  space,
+                               const std::vector<bool> &in_contact)
+    {
+      Point<2>     centre;
+      unsigned int n = 0;
+      for (unsigned int i = 0; i < in_contact.size(); ++i)
+        if (in_contact[i])
+          {
+            centre += space.node_locations[i];
+            ++n;
+          }
+      if (n < 3)
+        return false;
+      centre /= n;
+      double xx = 0, xy = 0, yy = 0, extent = 0;
+      for (unsigned int i = 0; i < in_contact.size(); ++i)
+        if (in_contact[i])
+          {
+            const Tensor<1, 2> d = space.node_locations[i] - centre;
+            xx += d[0] * d[0];
+            xy += d[0] * d[1];
+            yy += d[1] * d[1];
+            extent = std::max(extent, d.norm_square());
+          }
+      // smallest eigenvalue of the 2x2 second-moment matrix
+      const double mean = 0.5 * (xx + yy);
+      const double smallest =
+        mean - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
+      return smallest > 1e-10 * n * extent;
+    }
+  } // namespace
+
+  ContactSolver::ContactSolver(const Parameters::Contact &contact,
+                               const bool                 tensionless,
+                               const unsigned int         verbosity,
+                               std::ostream &             log)
+    : contact(contact)
+    , tensionless(tensionless)
+    , verbosity(verbosity)
+    , log(log)
+  {}
+
+  void
+  ContactSolver::solve_coupled(const LAPACKFullMatrix<double> &plate_stiffness,
+                               const Vector<double> &          plate_load,
+                               const FoundationOperator &      foundation,
+                               ContactState &                  state) const
+  {
+    // (K̄ + S) w = P̄ (P21), S the foundation stiffness on the contact set.
+    LAPACKFullMatrix<double> coupled(plate_stiffness);
+    foundation.add_stiffness(coupled);
+    const std::string mechanism =
+      "The plate is a mechanism: the contact set cannot carry it (fewer than "
+      "three non-collinear supporting nodes, or loads that lift it off).";
+    try
+      {
+        if (foundation.is_symmetric())
+          coupled.compute_cholesky_factorization();
+        else
+          coupled.compute_lu_factorization();
+      }
+    catch (...)
+      {
+        AssertThrow(false, ExcMessage(mechanism));
+      }
+    state.w = plate_load;
+    coupled.solve(state.w);
+    for (const double v : state.w)
+      AssertThrow(std::isfinite(v), ExcMessage(mechanism));
+    foundation.solve(state.w, state.q);
+    state.in_contact = foundation.contact_nodes();
+  }
+
+  void
+  ContactSolver::evaluate_conditions(const FoundationOperator &foundation,
+                                     ContactState &            state) const
+  {
+    foundation.gap(state.w, state.q, state.gap);
+    Vector<double> plate;
+    foundation.plate_settlement(state.w, plate);
+    const double q_scale   = std::max(max_abs(state.q), 1e-300);
+    const double gap_scale = std::max(max_abs(plate), 1e-300);
+    double       tension = 0, penetration = 0, product = 0;
+    const auto & supported = foundation.supported_nodes();
+    for (unsigned int i = 0; i < state.q.size(); ++i)
+      {
+        tension = std::max(tension, -state.q[i] / q_scale);
+        // Only the soil under the plate's foundation area is constrained.
+        if (supported[i])
+          {
+            penetration = std::max(penetration, -state.gap[i] / gap_scale);
+            product     = std::max(product,
+                               std::abs(state.q[i] * state.gap[i]) /
+                                 (q_scale * gap_scale));
+          }
+      }
+    state.complementarity_violation =
+      std::max({tension, penetration, product, 0.});
+  }
+
+  ContactState
+  ContactSolver::solve(const LAPACKFullMatrix<double> &plate_stiffness,
+                       const Vector<double> &          plate_load,
+                       FoundationOperator &            foundation,
+                       const FoundationSpace &         space,
+                       const std::vector<bool> &       initial_contact) const
+  {
+    ContactState state;
+    state.cell_in_foundation.assign(space.cells.size(), true);
+    foundation.build(space, {});
+
+    if (!tensionless)
+      {
+        solve_coupled(plate_stiffness, plate_load, foundation, state);
+        state.iterations = 1;
+        state.converged  = true;
+        evaluate_conditions(foundation, state);
+        return state;
+      }
+
+    // The condensed load keeps the resultant (no moments are applied).
+    AssertThrow(std::accumulate(plate_load.begin(), plate_load.end(), 0.) > 0,
+                ExcMessage("The loads lift the plate off a tensionless "
+                           "foundation: their resultant is not downward."));
+
+    if (contact.method == Parameters::Contact::Method::element_exclusion)
+      {
+        // The paper's iteration: drop every cell with more than half of its
+        // nodal pressures tensile, rebuild, repeat until the displacements
+        // stop changing.
+        double previous_norm = 0;
+        for (state.iterations = 1;
+             state.iterations <= contact.max_iterations;
+             ++state.iterations)
+          {
+            if (state.iterations > 1)
+              foundation.build(space, state.cell_in_foundation);
+            AssertThrow(contact_set_supports_plate(
+                          space, foundation.contact_nodes()),
+                        ExcMessage("The plate is a mechanism: after element "
+                                   "exclusion the remaining foundation "
+                                   "cannot carry it."));
+            solve_coupled(plate_stiffness, plate_load, foundation, state);
+            const double norm   = state.w.l2_norm();
+            const double change = std::abs(norm - previous_norm) /
+                                  std::max(norm, 1e-300);
+            previous_norm = norm;
+
+            unsigned int n_excluded = 0;
+            bool         changed    = false;
+            for (unsigned int c = 0; c < space.cells.size(); ++c)
+              {
+                if (!state.cell_in_foundation[c])
+                  {
+                    ++n_excluded;
+                    continue;
+                  }
+                std::set<unsigned int> nodes;
+                for (const auto &terms : space.cells[c].expansion)
+                  for (const auto &t : terms)
+                    nodes.insert(t.first);
+                unsigned int n_tensile = 0;
+                for (const unsigned int i : nodes)
+                  if (state.q[i] < 0)
+                    ++n_tensile;
+                if (2 * n_tensile > nodes.size())
+                  {
+                    state.cell_in_foundation[c] = false;
+                    changed                     = true;
+                    ++n_excluded;
+                  }
+              }
+            if (verbosity > 0)
+              log << "   contact iteration " << state.iterations
+                  << ": excluded cells " << n_excluded
+                  << ", relative change of |w| " << std::scientific
+                  << std::setprecision(2) << change << std::defaultfloat
+                  << std::endl;
+            if (!changed || change < contact.tolerance)
+              {
+                state.converged = true;
+                break;
+              }
+          }
+        state.iterations = std::min(state.iterations, contact.max_iterations);
+        evaluate_conditions(foundation, state);
+        return state;
+      }
+
+    // Primal-dual active set (step-41): C = {i : q_i + c g_i > 0}; solve the
+    // bonded problem on C; repeat until C does not change. On C the gap is
+    // zero, off C the pressure is zero, so the test reads q_i > 0 on C and
+    // g_i < 0 (penetration) off C; c only balances the units.
+    std::vector<bool> active = foundation.supported_nodes();
+    if (initial_contact.size() == active.size() &&
+        contact_set_supports_plate(space, initial_contact))
+      for (unsigned int i = 0; i < active.size(); ++i)
+        active[i] = active[i] && initial_contact[i];
+
+    std::set<std::vector<bool>> visited;
+    bool                        single_pivots = false;
+    for (state.iterations = 1; state.iterations <= contact.max_iterations;
+         ++state.iterations)
+      {
+        AssertThrow(contact_set_supports_plate(space, active),
+                    ExcMessage("The plate is a mechanism: the nodes left in "
+                               "contact cannot carry it (fewer than three "
+                               "non-collinear supporting nodes)."));
+        foundation.set_contact_nodes(active);
+        solve_coupled(plate_stiffness, plate_load, foundation, state);
+        foundation.gap(state.w, state.q, state.gap);
+
+        Vector<double> plate;
+        foundation.plate_settlement(state.w, plate);
+        const double q_scale   = std::max(max_abs(state.q), 1e-300);
+        const double gap_scale = std::max(max_abs(plate), 1e-300);
+        // Tolerances below which a sign is rounding, not a violation.
+        const double q_tolerance = 1e-12 * q_scale,
+                     g_tolerance = 1e-12 * gap_scale;
+
+        std::vector<bool> next = active;
+        unsigned int      n_changes = 0, first_change = active.size();
+        const auto &      supported = foundation.supported_nodes();
+        for (unsigned int i = 0; i < active.size(); ++i)
+          {
+            if (!supported[i])
+              continue;
+            const bool violated =
+              active[i] ? (state.q[i] < -q_tolerance) :
+                          (state.gap[i] < -g_tolerance);
+            if (violated)
+              {
+                next[i] = !active[i];
+                ++n_changes;
+                first_change = std::min(first_change, i);
+              }
+          }
+        unsigned int n_contact = 0;
+        for (const bool a : active)
+          n_contact += a;
+        if (verbosity > 0)
+          log << "   contact iteration " << state.iterations
+              << ": nodes in contact " << n_contact << ", changes "
+              << n_changes << (single_pivots ? " (single pivots)" : "")
+              << std::endl;
+        if (n_changes == 0)
+          {
+            state.converged = true;
+            break;
+          }
+        visited.insert(active);
+        if (visited.count(next) > 0 && !single_pivots)
+          {
+            // The full step returns to a set seen before: a cycle. Fall
+            // back to Murty's least-index rule, one status change per
+            // iteration, which terminates for the SPD Galerkin problem.
+            single_pivots = true;
+            if (verbosity > 0)
+              log << "   contact iteration " << state.iterations
+                  << ": cycle detected, switching to single pivots"
+                  << std::endl;
+          }
+        if (single_pivots)
+          {
+            next               = active;
+            next[first_change] = !active[first_change];
+          }
+        active = next;
+      }
+    state.iterations = std::min(state.iterations, contact.max_iterations);
+    evaluate_conditions(foundation, state);
+    return state;
+  }
+} // namespace PlateOnHalfspace

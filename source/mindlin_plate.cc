@@ -1,0 +1,506 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/thread_management.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <plate_on_halfspace/mindlin_plate.h>
+
+#include <cmath>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    BilinearQuadrilateral
+    cell_geometry(const typename DoFHandler<2>::active_cell_iterator &cell)
+    {
+      return BilinearQuadrilateral(std::array<Point<2>, 4>{
+        {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}});
+    }
+  } // namespace
+
+  MindlinPlate::MindlinPlate(const Parameters::Plate &         plate,
+                             const Parameters::Discretization &discretization)
+    : plate(plate)
+    , discretization(discretization)
+    , fe(FE_Q<2>(2), 3)
+  {}
+
+  void
+  MindlinPlate::setup(
+    const Triangulation<2> &triangulation,
+    const std::function<void(const DoFHandler<2> &,
+                             AffineConstraints<double> &)> &extra_constraints)
+  {
+    // Keep the DoFHandler attached across refinement cycles, so that a
+    // SolutionTransfer prepared before refinement can interpolate.
+    if (attached_triangulation != &triangulation)
+      dof_handler.reinit(triangulation);
+    attached_triangulation = &triangulation;
+    dof_handler.distribute_dofs(fe);
+
+    constraints.clear();
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    add_centre_constraints();
+    if (extra_constraints)
+      extra_constraints(dof_handler, constraints);
+    constraints.close();
+
+    build_foundation_space();
+
+    DynamicSparsityPattern dsp(dof_handler.n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    sparsity.copy_from(dsp);
+    stiffness.reinit(sparsity);
+    load.reinit(dof_handler.n_dofs());
+    total_load = 0;
+    assemble_stiffness();
+  }
+
+  void
+  MindlinPlate::add_centre_constraints()
+  {
+    // serendipity: every field; heterosis: w only; lagrange: none
+    // (formulation.md, "Plate"). u_centre = 1/2 sum(mid-sides) -
+    // 1/4 sum(corners) removes exactly the xi^2 eta^2 mode of Q2.
+    unsigned int n_constrained_components = 0;
+    switch (discretization.element)
+      {
+        case Parameters::Discretization::Element::serendipity:
+          n_constrained_components = 3;
+          break;
+        case Parameters::Discretization::Element::heterosis:
+          n_constrained_components = 1;
+          break;
+        case Parameters::Discretization::Element::lagrange:
+          n_constrained_components = 0;
+          break;
+      }
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        cell->get_dof_indices(dofs);
+        for (unsigned int c = 0; c < n_constrained_components; ++c)
+          {
+            const auto centre = dofs[fe.component_to_system_index(c, 8)];
+            constraints.add_line(centre);
+            for (unsigned int v = 0; v < 4; ++v)
+              constraints.add_entry(centre,
+                                    dofs[fe.component_to_system_index(c, v)],
+                                    -0.25);
+            for (unsigned int m = 4; m < 8; ++m)
+              constraints.add_entry(centre,
+                                    dofs[fe.component_to_system_index(c, m)],
+                                    0.5);
+          }
+      }
+  }
+
+  void
+  MindlinPlate::build_foundation_space()
+  {
+    std::vector<Point<2>> support_points(dof_handler.n_dofs());
+    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support_points);
+    const IndexSet w_dofs =
+      DoFTools::extract_dofs(dof_handler, fe.component_mask(FEValuesExtractors::Scalar(0)));
+
+    foundation_dofs.clear();
+    foundation_index.assign(dof_handler.n_dofs(), -1);
+    foundation_space = FoundationSpace();
+    for (const auto dof : w_dofs)
+      if (!constraints.is_constrained(dof))
+        {
+          foundation_index[dof] = foundation_dofs.size();
+          foundation_dofs.push_back(dof);
+          foundation_space.node_locations.push_back(support_points[dof]);
+        }
+
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        cell->get_dof_indices(dofs);
+        FoundationSpace::Cell data{cell_geometry(cell), {}};
+        for (unsigned int i = 0; i < 9; ++i)
+          {
+            const auto dof = dofs[fe.component_to_system_index(0, i)];
+            if (foundation_index[dof] >= 0)
+              data.expansion[i].emplace_back(foundation_index[dof], 1.);
+            else
+              {
+                // After close(), a constrained DoF depends on unconstrained
+                // ones only; those of a w-DoF are w-DoFs. A support (w = 0)
+                // has no entries.
+                const auto *entries = constraints.get_constraint_entries(dof);
+                if (entries != nullptr)
+                  for (const auto &entry : *entries)
+                    {
+                      Assert(foundation_index[entry.first] >= 0,
+                             ExcInternalError());
+                      data.expansion[i].emplace_back(
+                        foundation_index[entry.first], entry.second);
+                    }
+              }
+          }
+        foundation_space.cells.push_back(data);
+      }
+  }
+
+  void
+  MindlinPlate::assemble_stiffness()
+  {
+    using SI = Parameters::Discretization::ShearIntegration;
+    const SI          shear = discretization.shear_integration;
+    const QGauss<2>   bending_rule(shear == SI::reduced ? 2 : 3);
+    const QGauss<2>   shear_rule(shear == SI::full ? 3 : 2);
+    FEValues<2>       bending_values(mapping,
+                               fe,
+                               bending_rule,
+                               update_gradients | update_JxW_values);
+    FEValues<2>       shear_values(mapping,
+                             fe,
+                             shear_rule,
+                             update_values | update_gradients |
+                               update_JxW_values);
+    const FEValuesExtractors::Scalar w(0);
+    const FEValuesExtractors::Vector beta(1);
+
+    // (P1): D_b = D [[1,nu,0],[nu,1,0],[0,0,(1-nu)/2]], D_s = k G t.
+    const double D  = plate.flexural_rigidity();
+    const double nu = plate.poissons_ratio;
+    const double Ds = 5. / 6. * plate.youngs_modulus /
+                      (2. * (1. + nu)) * plate.thickness;
+
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    FullMatrix<double>                   local(n, n);
+    std::vector<types::global_dof_index> dofs(n);
+    std::vector<std::array<double, 3>>   kappa(n);
+    std::vector<Tensor<1, 2>>            gamma(n);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        local = 0;
+        bending_values.reinit(cell);
+        for (unsigned int q = 0; q < bending_rule.size(); ++q)
+          {
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const Tensor<2, 2> g = bending_values[beta].gradient(i, q);
+                kappa[i] = {{g[0][0], g[1][1], g[0][1] + g[1][0]}};
+              }
+            const double JxW = bending_values.JxW(q);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                local(i, j) +=
+                  D *
+                  (kappa[i][0] * kappa[j][0] + kappa[i][1] * kappa[j][1] +
+                   nu * (kappa[i][0] * kappa[j][1] + kappa[i][1] * kappa[j][0]) +
+                   0.5 * (1. - nu) * kappa[i][2] * kappa[j][2]) *
+                  JxW;
+          }
+        shear_values.reinit(cell);
+        for (unsigned int q = 0; q < shear_rule.size(); ++q)
+          {
+            // gamma = grad w - beta
+            for (unsigned int i = 0; i < n; ++i)
+              gamma[i] = shear_values[w].gradient(i, q) -
+                         shear_values[beta].value(i, q);
+            const double JxW = shear_values.JxW(q);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                local(i, j) += Ds * (gamma[i] * gamma[j]) * JxW;
+          }
+        cell->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(local, dofs, stiffness);
+      }
+  }
+
+  void
+  MindlinPlate::assemble_loads(const Parameters::Loads &loads,
+                               const double             self_weight_pressure)
+  {
+    load       = 0;
+    total_load = 0;
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    Vector<double>                       local(n);
+    std::vector<types::global_dof_index> dofs(n);
+    const QGauss<2>                      cell_rule(3);
+    std::vector<bool> rectangle_used(loads.rectangular_patches.size(), false);
+    std::vector<bool> disk_used(loads.circular_patches.size(), false);
+
+    const auto add = [&](const Quadrature<2> &rule,
+                         const double         pressure,
+                         const bool           physical_weights,
+                         const BilinearQuadrilateral &geometry) {
+      for (unsigned int q = 0; q < rule.size(); ++q)
+        {
+          const auto   phi = q2_shape_values(rule.point(q));
+          const double weight =
+            physical_weights ?
+              rule.weight(q) :
+              rule.weight(q) * geometry.jacobian_determinant(rule.point(q));
+          for (unsigned int i = 0; i < 9; ++i)
+            local[fe.component_to_system_index(0, i)] +=
+              pressure * phi[i] * weight;
+        }
+    };
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        local                                = 0;
+        const BilinearQuadrilateral geometry = cell_geometry(cell);
+        const double uniform = loads.uniform_pressure + self_weight_pressure;
+        if (uniform != 0)
+          add(cell_rule, uniform, false, geometry);
+        for (unsigned int k = 0; k < loads.rectangular_patches.size(); ++k)
+          {
+            const auto &patch = loads.rectangular_patches[k];
+            const Quadrature<2> rule =
+              quadrature_on_rectangle_part(geometry, patch.lower, patch.upper, 4);
+            if (rule.size() > 0)
+              rectangle_used[k] = true;
+            add(rule, patch.pressure, true, geometry);
+          }
+        for (unsigned int k = 0; k < loads.circular_patches.size(); ++k)
+          {
+            const auto &        patch = loads.circular_patches[k];
+            const Quadrature<2> rule =
+              quadrature_on_disk_part(geometry, patch.centre, patch.radius, 8);
+            if (rule.size() > 0)
+              disk_used[k] = true;
+            add(rule, patch.pressure, true, geometry);
+          }
+        cell->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(local, dofs, load);
+      }
+
+    for (unsigned int k = 0; k < rectangle_used.size(); ++k)
+      AssertThrow(rectangle_used[k],
+                  ExcMessage("Loads/Rectangular patches: patch " +
+                             std::to_string(k + 1) +
+                             " does not overlap the plate."));
+    for (unsigned int k = 0; k < disk_used.size(); ++k)
+      AssertThrow(disk_used[k],
+                  ExcMessage("Loads/Circular patches: patch " +
+                             std::to_string(k + 1) +
+                             " does not overlap the plate."));
+
+    for (const auto &point_load : loads.point_loads)
+      {
+        std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
+          located;
+        try
+          {
+            located = locate(point_load.location);
+          }
+        catch (...)
+          {
+            AssertThrow(false,
+                        ExcMessage("Loads/Point loads: the point (" +
+                                   std::to_string(point_load.location[0]) +
+                                   ", " +
+                                   std::to_string(point_load.location[1]) +
+                                   ") is not on the plate."));
+          }
+        local          = 0;
+        const auto phi = q2_shape_values(located.second);
+        for (unsigned int i = 0; i < 9; ++i)
+          local[fe.component_to_system_index(0, i)] =
+            point_load.force * phi[i];
+        located.first->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(local, dofs, load);
+      }
+
+    // The w-shape functions are a partition of unity, also after the
+    // constraints: the sum of the w-loads is the resultant.
+    for (const auto dof : foundation_dofs)
+      total_load += load[dof];
+  }
+
+  unsigned int
+  MindlinPlate::n_unconstrained_dofs() const
+  {
+    return dof_handler.n_dofs() - constraints.n_constraints();
+  }
+
+  void
+  MindlinPlate::solve_unsupported(Vector<double> &solution) const
+  {
+    SparseDirectUMFPACK solver;
+    solver.initialize(stiffness);
+    solution = load;
+    solver.solve(solution);
+    constraints.distribute(solution);
+  }
+
+  void
+  MindlinPlate::factorise_rest_block()
+  {
+    // K with the foundation rows and columns replaced by the identity: its
+    // inverse applied to a vector with zero foundation entries is K_rr^{-1}.
+    rest_matrix.reinit(sparsity);
+    rest_matrix.copy_from(stiffness);
+    for (unsigned int row = 0; row < dof_handler.n_dofs(); ++row)
+      for (auto entry = rest_matrix.begin(row); entry != rest_matrix.end(row);
+           ++entry)
+        if (foundation_index[row] >= 0 ||
+            foundation_index[entry->column()] >= 0)
+          entry->value() = (row == entry->column() ? 1. : 0.);
+    rest_solver.initialize(rest_matrix);
+  }
+
+  void
+  MindlinPlate::condense(LAPACKFullMatrix<double> &condensed,
+                         Vector<double> &          condensed_load)
+  {
+    factorise_rest_block();
+    const unsigned int nf = foundation_dofs.size();
+    const unsigned int n  = dof_handler.n_dofs();
+    condensed.reinit(nf);
+
+    // Column j of K̄: (K (e_j - K_rr^{-1} K_rj))_f. Columns are independent:
+    // split them over the threads.
+    const auto compute_columns = [&](const unsigned int begin,
+                                     const unsigned int end) {
+      Vector<double> column(n), correction(n), product(n);
+      for (unsigned int j = begin; j < end; ++j)
+        {
+          const auto dof_j = foundation_dofs[j];
+          column           = 0;
+          for (auto entry = stiffness.begin(dof_j);
+               entry != stiffness.end(dof_j);
+               ++entry)
+            if (foundation_index[entry->column()] < 0)
+              column[entry->column()] = entry->value(); // K symmetric
+          rest_solver.vmult(correction, column);
+          correction *= -1.;
+          correction[dof_j] = 1.;
+          stiffness.vmult(product, correction);
+          for (unsigned int i = 0; i < nf; ++i)
+            condensed(i, j) = product[foundation_dofs[i]];
+        }
+    };
+    Threads::TaskGroup<void> tasks;
+    const unsigned int       n_chunks = MultithreadInfo::n_threads();
+    for (unsigned int c = 0; c < n_chunks; ++c)
+      tasks += Threads::new_task([&, c]() {
+        compute_columns(nf * c / n_chunks, nf * (c + 1) / n_chunks);
+      });
+    tasks.join_all();
+
+    // P̄ = P_f - K_fr K_rr^{-1} P_r
+    Vector<double> rest_load(load), rest_solution(n), product(n);
+    for (const auto dof : foundation_dofs)
+      rest_load[dof] = 0;
+    rest_solver.vmult(rest_solution, rest_load);
+    stiffness.vmult(product, rest_solution);
+    condensed_load.reinit(nf);
+    for (unsigned int i = 0; i < nf; ++i)
+      condensed_load[i] = load[foundation_dofs[i]] - product[foundation_dofs[i]];
+  }
+
+  void
+  MindlinPlate::expand(const Vector<double> &foundation_w,
+                       Vector<double> &      solution) const
+  {
+    const unsigned int n = dof_handler.n_dofs();
+    Vector<double>     known(n), rhs(n);
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      known[foundation_dofs[i]] = foundation_w[i];
+    // r = K_rr^{-1} (P_r - K_rf w_f)
+    stiffness.vmult(rhs, known);
+    rhs.sadd(-1., 1., load);
+    for (const auto dof : foundation_dofs)
+      rhs[dof] = 0;
+    solution.reinit(n);
+    rest_solver.vmult(solution, rhs);
+    solution += known;
+    constraints.distribute(solution);
+  }
+
+  Vector<double>
+  MindlinPlate::restrict_to_foundation(const Vector<double> &solution) const
+  {
+    Vector<double> values(foundation_dofs.size());
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      values[i] = solution[foundation_dofs[i]];
+    return values;
+  }
+
+  Vector<double>
+  MindlinPlate::foundation_field_to_solution(const Vector<double> &field) const
+  {
+    Vector<double> values(dof_handler.n_dofs());
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      values[foundation_dofs[i]] = field[i];
+    constraints.distribute(values);
+    // distribute() also set the rotations from their own constraints (all
+    // zero); only component 0 carries the field.
+    return values;
+  }
+
+  std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
+  MindlinPlate::locate(const Point<2> &x) const
+  {
+    typename DoFHandler<2>::active_cell_iterator best;
+    double   best_distance = std::numeric_limits<double>::max();
+    Point<2> best_point;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        const BilinearQuadrilateral geometry = cell_geometry(cell);
+        Point<2>                    p        = geometry.inverse_map(x);
+        for (unsigned int d = 0; d < 2; ++d)
+          p[d] = std::min(1., std::max(0., p[d]));
+        const double distance = geometry.map(p).distance(x);
+        if (distance < best_distance)
+          {
+            best_distance = distance;
+            best          = cell;
+            best_point    = p;
+          }
+        if (distance == 0.)
+          break;
+      }
+    AssertThrow(best_distance <= 1e-10 * (1. + x.norm()),
+                ExcMessage("The point is not on the plate."));
+    return {best, best_point};
+  }
+
+  double
+  MindlinPlate::point_value(const Vector<double> &solution,
+                            const Point<2> &      x,
+                            const unsigned int    component) const
+  {
+    const auto  located = locate(x);
+    FEValues<2> values(mapping,
+                       fe,
+                       Quadrature<2>(std::vector<Point<2>>{located.second}),
+                       update_values);
+    values.reinit(located.first);
+    std::vector<Vector<double>> all(1, Vector<double>(3));
+    values.get_function_values(solution, all);
+    return all[0][component];
+  }
+
+  Moments
+  MindlinPlate::moments(const typename DoFHandler<2>::active_cell_iterator &cell,
+                        const Point<2> &      p,
+                        const Vector<double> &solution) const
+  {
+    FEValues<2> values(mapping,
+                       fe,
+                       Quadrature<2>(std::vector<Point<2>>{p}),
+                       update_gradients);
+    values.reinit(cell);
+    std::vector<Tensor<2, 2>> grad(1);
+    values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
+                                                                 grad);
+    const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio;
+    Moments      m;
+    m.mx  = -D * (grad[0][0][0] + nu * grad[0][1][1]);
+    m.my  = -D * (grad[0][1][1] + nu * grad[0][0][0]);
+    m.mxy = -D * 0.5 * (1. - nu) * (grad[0][0][1] + grad[0][1][0]);
+    return m;
+  }
+} // namespace PlateOnHalfspace

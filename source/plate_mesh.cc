@@ -1,0 +1,61 @@
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/manifold_lib.h>
+
+#include <plate_on_halfspace/plate_mesh.h>
+
+#include <fstream>
+
+namespace PlateOnHalfspace
+{
+  void
+  make_plate_mesh(const Parameters::Plate &         plate,
+                  const Parameters::Discretization &discretization,
+                  Triangulation<2> &                triangulation)
+  {
+    triangulation.clear();
+    switch (plate.shape)
+      {
+        case Parameters::Plate::Shape::rectangle:
+          GridGenerator::subdivided_hyper_rectangle(
+            triangulation,
+            {discretization.subdivisions_x, discretization.subdivisions_y},
+            Point<2>(-plate.length_x / 2, -plate.length_y / 2),
+            Point<2>(plate.length_x / 2, plate.length_y / 2));
+          break;
+        case Parameters::Plate::Shape::disk:
+          // Five cells; refinement moves new boundary vertices onto the
+          // circle (the cells stay straight sided, MappingQ1).
+          GridGenerator::hyper_ball_balanced(triangulation,
+                                             Point<2>(),
+                                             plate.radius);
+          break;
+        case Parameters::Plate::Shape::mesh_file:
+          {
+            std::ifstream file(plate.mesh_file);
+            AssertThrow(file,
+                        ExcMessage("Plate/Mesh file: cannot open <" +
+                                   plate.mesh_file + ">."));
+            GridIn<2> grid_in(triangulation);
+            try
+              {
+                grid_in.read_msh(file);
+              }
+            catch (const std::exception &e)
+              {
+                AssertThrow(false,
+                            ExcMessage("Plate/Mesh file: <" +
+                                       plate.mesh_file +
+                                       "> is not a readable Gmsh mesh of "
+                                       "quadrilaterals: " +
+                                       std::string(e.what())));
+              }
+            AssertThrow(triangulation.n_active_cells() > 0,
+                        ExcMessage("Plate/Mesh file: <" + plate.mesh_file +
+                                   "> holds no quadrilaterals."));
+            break;
+          }
+      }
+    triangulation.refine_global(discretization.initial_refinements);
+  }
+} // namespace PlateOnHalfspace

@@ -1,0 +1,267 @@
+#include <deal.II/base/timer.h>
+#include <deal.II/numerics/solution_transfer.h>
+
+#include <plate_on_halfspace/mesh_refinement.h>
+#include <plate_on_halfspace/plate_mesh.h>
+#include <plate_on_halfspace/plate_on_halfspace_problem.h>
+
+#include <cmath>
+#include <iomanip>
+#include <optional>
+
+namespace PlateOnHalfspace
+{
+  PlateOnHalfspaceProblem::PlateOnHalfspaceProblem(
+    const SceneParameters &parameters,
+    std::ostream &         log)
+    : parameters(parameters)
+    , log(log)
+  {}
+
+  bool
+  PlateOnHalfspaceProblem::run()
+  {
+    output = std::make_unique<ResultsOutput>(parameters.output_directory);
+    make_plate_mesh(parameters.plate, parameters.discretization, triangulation);
+    mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
+                                                   parameters.discretization);
+    foundation_operator = create_foundation_operator(parameters);
+    mindlin_plate->setup(triangulation);
+
+    std::vector<bool> seed;
+    for (unsigned int cycle = 0; cycle < parameters.adaptivity.cycles; ++cycle)
+      {
+        if (cycle > 0)
+          {
+            const auto transferred = refine_and_transfer_contact();
+            if (!transferred)
+              {
+                log << "Adaptivity/Max cells reached: no further cycles."
+                    << std::endl;
+                break;
+              }
+            seed = *transferred;
+          }
+        solve_cycle(cycle, seed);
+      }
+    return run_checks();
+  }
+
+  std::optional<std::vector<bool>>
+  PlateOnHalfspaceProblem::refine_and_transfer_contact()
+  {
+    Vector<double> indicator(contact.in_contact.size());
+    for (unsigned int i = 0; i < indicator.size(); ++i)
+      indicator[i] = contact.in_contact[i] ? 1. : 0.;
+    const Vector<double> old_field =
+      mindlin_plate->foundation_field_to_solution(indicator);
+
+    if (!mark_cells_for_refinement(parameters.adaptivity,
+                                   *mindlin_plate,
+                                   plate_solution,
+                                   contact,
+                                   triangulation))
+      return std::nullopt;
+    SolutionTransfer<2> transfer(mindlin_plate->get_dof_handler());
+    triangulation.prepare_coarsening_and_refinement();
+    transfer.prepare_for_coarsening_and_refinement(old_field);
+    triangulation.execute_coarsening_and_refinement();
+    mindlin_plate->setup(triangulation);
+
+    Vector<double> new_field(mindlin_plate->get_dof_handler().n_dofs());
+    transfer.interpolate(old_field, new_field);
+    const Vector<double> nodal = mindlin_plate->restrict_to_foundation(new_field);
+    std::vector<bool>    seed(nodal.size());
+    for (unsigned int i = 0; i < nodal.size(); ++i)
+      seed[i] = nodal[i] > 0.5;
+    return seed;
+  }
+
+  void
+  PlateOnHalfspaceProblem::solve_cycle(const unsigned int       cycle,
+                                       const std::vector<bool> &seed)
+  {
+    Timer        timer;
+    MindlinPlate &plate = *mindlin_plate;
+    plate.assemble_loads(parameters.loads,
+                         parameters.plate.unit_weight *
+                           parameters.plate.thickness);
+
+    CycleSummary summary;
+    summary.cycle             = cycle;
+    summary.n_cells           = triangulation.n_active_cells();
+    summary.n_dofs            = plate.n_unconstrained_dofs();
+    summary.n_foundation_dofs = plate.get_foundation_dofs().size();
+    summary.applied_load      = plate.applied_load();
+    const unsigned int verbosity = parameters.output.verbosity;
+    if (verbosity > 0)
+      log << "cycle " << cycle << ": " << summary.n_cells << " cells, "
+          << summary.n_dofs << " dofs, " << summary.n_foundation_dofs
+          << " foundation nodes" << std::endl;
+
+    LAPACKFullMatrix<double> plate_stiffness;
+    Vector<double>           plate_load;
+    plate.condense(plate_stiffness, plate_load);
+
+    const ContactSolver solver(parameters.contact,
+                               parameters.foundation.tensionless,
+                               verbosity,
+                               log);
+    contact = solver.solve(plate_stiffness,
+                           plate_load,
+                           *foundation_operator,
+                           plate.get_foundation_space(),
+                           seed);
+    plate.expand(contact.w, plate_solution);
+
+    // Equilibrium: the integral of q is the sum of the nodal forces M q.
+    Vector<double> forces;
+    foundation_operator->nodal_forces(contact.q, forces);
+    summary.contact_force = std::accumulate(forces.begin(), forces.end(), 0.);
+    output->evaluate(plate, plate_solution, contact, summary);
+    summary.foundation_storage      = foundation_operator->storage_name();
+    summary.foundation_memory_bytes = foundation_operator->memory_consumption();
+    for (const Point<2> &x : parameters.output.probe_points)
+      {
+        try
+          {
+            summary.probes.push_back(values_at(x));
+          }
+        catch (...)
+          {
+            AssertThrow(false,
+                        ExcMessage("Output/Probe points: (" +
+                                   std::to_string(x[0]) + ", " +
+                                   std::to_string(x[1]) +
+                                   ") is not on the plate."));
+          }
+      }
+
+    // Default profile: the centre line y = 0 across the plate.
+    Point<2> start = parameters.output.profile_start,
+             end   = parameters.output.profile_end;
+    if (parameters.output.default_profile)
+      {
+        double x_min = 0, x_max = 0;
+        for (const auto &cell : plate.get_foundation_space().cells)
+          for (const Point<2> &v : cell.geometry.get_vertices())
+            {
+              x_min = std::min(x_min, v[0]);
+              x_max = std::max(x_max, v[0]);
+            }
+        start = Point<2>(x_min, 0);
+        end   = Point<2>(x_max, 0);
+      }
+    output->write_profile(cycle,
+                          plate,
+                          plate_solution,
+                          contact,
+                          start,
+                          end,
+                          parameters.output.profile_points);
+    if (parameters.output.vtu)
+      output->write_vtu(cycle, plate, plate_solution, contact);
+    summary.wall_time_s = timer.wall_time();
+
+    if (verbosity > 0)
+      {
+        log << std::scientific << std::setprecision(6)
+            << "   applied load " << summary.applied_load
+            << ", contact force " << summary.contact_force << std::endl
+            << "   w in [" << summary.min_w << ", " << summary.max_w
+            << "], q in [" << summary.min_q << ", " << summary.max_q << "]"
+            << std::endl
+            << "   nodes in contact " << summary.contact_nodes
+            << ", contact area fraction " << std::fixed
+            << std::setprecision(4) << summary.contact_area_fraction
+            << std::defaultfloat << std::endl;
+        if (verbosity > 1)
+          log << "   wall time " << summary.wall_time_s << " s" << std::endl;
+      }
+
+    cycle_summaries.push_back(summary);
+    bool all_converged = true;
+    for (const auto &s : cycle_summaries)
+      all_converged = all_converged && s.converged;
+    output->write_summary(cycle_summaries, "none", all_converged);
+
+    convergence.add_value("cycle", cycle);
+    convergence.add_value("cells", summary.n_cells);
+    convergence.add_value("dofs", summary.n_dofs);
+    convergence.add_value("foundation nodes", summary.n_foundation_dofs);
+    convergence.add_value("contact iterations", summary.contact_iterations);
+    convergence.add_value("max w", summary.max_w);
+    convergence.add_value("max q", summary.max_q);
+    convergence.add_value("max Mx", summary.max_mx);
+    convergence.add_value("contact force", summary.contact_force);
+    convergence.add_value("time [s]", summary.wall_time_s);
+    for (const std::string column :
+         {"max w", "max q", "max Mx", "contact force"})
+      {
+        convergence.set_scientific(column, true);
+        convergence.set_precision(column, 6);
+      }
+    output->write_convergence(convergence);
+
+    AssertThrow(contact.converged,
+                ExcMessage("Contact/Max iterations (" +
+                           std::to_string(parameters.contact.max_iterations) +
+                           ") reached before the contact set settled."));
+  }
+
+  PointValues
+  PlateOnHalfspaceProblem::values_at(const Point<2> &x) const
+  {
+    const Vector<double> pressure =
+      mindlin_plate->foundation_field_to_solution(contact.q);
+    return output->point_values(*mindlin_plate, plate_solution, pressure, x);
+  }
+
+  bool
+  PlateOnHalfspaceProblem::run_checks() const
+  {
+    bool all_passed = true;
+    for (const Parameters::Check &check : parameters.verification.checks)
+      {
+        double      value = 0;
+        std::string label = check.quantity;
+        if (check.at_point)
+          {
+            const PointValues v = values_at(check.location);
+            value               = (check.quantity == "w"  ? v.w :
+                                   check.quantity == "q"  ? v.q :
+                                   check.quantity == "Mx" ? v.mx :
+                                                            v.my);
+            std::ostringstream where;
+            where << "(" << check.location[0] << "," << check.location[1]
+                  << ")";
+            label += where.str();
+          }
+        else
+          {
+            const CycleSummary &s = cycle_summaries.back();
+            value =
+              (check.quantity == "applied_load"  ? s.applied_load :
+               check.quantity == "contact_force" ? s.contact_force :
+               check.quantity == "max_w"         ? s.max_w :
+               check.quantity == "min_w"         ? s.min_w :
+               check.quantity == "max_q"         ? s.max_q :
+               check.quantity == "min_q"         ? s.min_q :
+                                                   s.contact_area_fraction);
+          }
+        const double error =
+          std::abs(value - check.reference) /
+          std::max(std::abs(check.reference), 1e-300);
+        const bool passed = std::isfinite(value) &&
+                            error <= check.relative_tolerance;
+        all_passed = all_passed && passed;
+        log << "check " << label << " = " << std::scientific
+            << std::setprecision(5) << value << ", reference "
+            << check.reference << ", relative error " << std::setprecision(1)
+            << error << (passed ? " <= " : " > ") << check.relative_tolerance
+            << std::defaultfloat << (passed ? ": ok" : ": FAILED")
+            << std::endl;
+      }
+    return all_passed;
+  }
+} // namespace PlateOnHalfspace
