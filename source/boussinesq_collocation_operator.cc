@@ -12,7 +12,7 @@ namespace PlateOnHalfspace
 
   void
   BoussinesqCollocationOperator::build(
-    const FoundationSpace &  space,
+    const FoundationSpace   &space,
     const std::vector<bool> &cell_in_foundation)
   {
     build_mass_matrix(space, cell_in_foundation);
@@ -52,8 +52,7 @@ namespace PlateOnHalfspace
                            y1 = std::min(lo[1], hi[1]),
                            y2 = std::max(lo[1], hi[1]);
               // q_Gk = sum_i N_i(xi_Gk) q_i (P6), expanded to the nodes.
-              const auto phi =
-                q2_shape_values(Point<2>(gauss[kx], gauss[ky]));
+              const auto phi = q2_shape_values(Point<2>(gauss[kx], gauss[ky]));
               std::vector<std::pair<unsigned int, double>> pressure_weights;
               for (unsigned int i = 0; i < 9; ++i)
                 for (const auto &t : cell.expansion[i])
@@ -81,8 +80,7 @@ namespace PlateOnHalfspace
     contact_factor.reinit(m);
     for (unsigned int i = 0; i < m; ++i)
       for (unsigned int j = 0; j < m; ++j)
-        contact_factor(i, j) =
-          flexibility(contact_index[i], contact_index[j]);
+        contact_factor(i, j) = flexibility(contact_index[i], contact_index[j]);
     if (m == 0)
       return;
     try
@@ -100,7 +98,7 @@ namespace PlateOnHalfspace
 
   void
   BoussinesqCollocationOperator::apply(const Vector<double> &q,
-                                       Vector<double> &      s) const
+                                       Vector<double>       &s) const
   {
     s.reinit(q.size());
     flexibility.vmult(s, q);
@@ -108,14 +106,14 @@ namespace PlateOnHalfspace
 
   void
   BoussinesqCollocationOperator::plate_settlement(const Vector<double> &w,
-                                                  Vector<double> &b) const
+                                                  Vector<double>       &b) const
   {
     b = w;
   }
 
   void
   BoussinesqCollocationOperator::solve(const Vector<double> &w,
-                                       Vector<double> &      q) const
+                                       Vector<double>       &q) const
   {
     Vector<double> b_contact(contact_index.size());
     for (unsigned int i = 0; i < contact_index.size(); ++i)
@@ -160,7 +158,7 @@ namespace PlateOnHalfspace
   BoussinesqCollocationOperator::memory_consumption() const
   {
     return flexibility.memory_consumption() +
-           contact_factor.memory_consumption() +
-           mass.memory_consumption() + mass_sparsity.memory_consumption();
+           contact_factor.memory_consumption() + mass.memory_consumption() +
+           mass_sparsity.memory_consumption();
   }
 } // namespace PlateOnHalfspace

@@ -16,7 +16,7 @@ namespace PlateOnHalfspace
   {}
 
   void
-  BoussinesqGalerkinOperator::build(const FoundationSpace &  space,
+  BoussinesqGalerkinOperator::build(const FoundationSpace   &space,
                                     const std::vector<bool> &cell_in_foundation)
   {
     build_mass_matrix(space, cell_in_foundation);
@@ -94,9 +94,9 @@ namespace PlateOnHalfspace
     for (unsigned int i = 0; i < m; ++i)
       for (unsigned int j = 0; j < m; ++j)
         contact_factor(i, j) =
-          (partial_foundation ? system_flexibility :
-                                flexibility)(contact_index[i],
-                                             contact_index[j]);
+          (partial_foundation ?
+             system_flexibility :
+             flexibility)(contact_index[i], contact_index[j]);
     if (m == 0)
       return;
     try
@@ -116,7 +116,7 @@ namespace PlateOnHalfspace
 
   void
   BoussinesqGalerkinOperator::apply(const Vector<double> &q,
-                                    Vector<double> &      s) const
+                                    Vector<double>       &s) const
   {
     s.reinit(q.size());
     flexibility.vmult(s, q);
@@ -124,7 +124,7 @@ namespace PlateOnHalfspace
 
   void
   BoussinesqGalerkinOperator::plate_settlement(const Vector<double> &w,
-                                               Vector<double> &      b) const
+                                               Vector<double>       &b) const
   {
     b.reinit(w.size());
     (partial_foundation ? full_mass : mass).vmult(b, w);
@@ -132,7 +132,7 @@ namespace PlateOnHalfspace
 
   void
   BoussinesqGalerkinOperator::solve(const Vector<double> &w,
-                                    Vector<double> &      q) const
+                                    Vector<double>       &q) const
   {
     // (B w)_C with the system's M (over the foundation cells).
     Vector<double> b(w.size());
@@ -185,7 +185,7 @@ namespace PlateOnHalfspace
     return flexibility.memory_consumption() +
            system_flexibility.memory_consumption() +
            full_mass.memory_consumption() +
-           contact_factor.memory_consumption() +
-           mass.memory_consumption() + mass_sparsity.memory_consumption();
+           contact_factor.memory_consumption() + mass.memory_consumption() +
+           mass_sparsity.memory_consumption();
   }
 } // namespace PlateOnHalfspace

@@ -8,7 +8,7 @@
 namespace PlateOnHalfspace
 {
   CellPairIntegrator::CellPairIntegrator(const FoundationSpace &space,
-                                         const unsigned int singular_order)
+                                         const unsigned int     singular_order)
     : space(space)
     , singular_order(singular_order)
     , orders{2, 3, 5, singular_order}
@@ -17,7 +17,7 @@ namespace PlateOnHalfspace
     for (unsigned int c = 0; c < space.cells.size(); ++c)
       {
         const FoundationSpace::Cell &cell = space.cells[c];
-        CellData &                   data = cell_data[c];
+        CellData                    &data = cell_data[c];
         for (const auto &terms : cell.expansion)
           for (const auto &t : terms)
             if (std::find(data.nodes.begin(), data.nodes.end(), t.first) ==
@@ -56,12 +56,12 @@ namespace PlateOnHalfspace
 
   void
   CellPairIntegrator::node_shape_values(const unsigned int   c,
-                                        const Point<2> &     p,
+                                        const Point<2>      &p,
                                         std::vector<double> &values) const
   {
-    const auto          phi = q2_shape_values(p);
-    const CellData &    data = cell_data[c];
-    const unsigned int  n    = data.nodes.size();
+    const auto         phi  = q2_shape_values(p);
+    const CellData    &data = cell_data[c];
+    const unsigned int n    = data.nodes.size();
     values.assign(n, 0.);
     for (unsigned int a = 0; a < n; ++a)
       for (unsigned int i = 0; i < 9; ++i)
@@ -69,8 +69,7 @@ namespace PlateOnHalfspace
   }
 
   bool
-  CellPairIntegrator::touching(const unsigned int k,
-                               const unsigned int l) const
+  CellPairIntegrator::touching(const unsigned int k, const unsigned int l) const
   {
     // Convex cells that touch have a vertex of one on the closed other one
     // (also across hanging nodes, where a small cell's vertex lies on a
@@ -86,12 +85,11 @@ namespace PlateOnHalfspace
   }
 
   void
-  CellPairIntegrator::integrate_regular(const Table &       outer,
-                                        const Table &       inner,
+  CellPairIntegrator::integrate_regular(const Table        &outer,
+                                        const Table        &inner,
                                         FullMatrix<double> &block) const
   {
-    const unsigned int na = outer.values[0].size(),
-                       nb = inner.values[0].size();
+    const unsigned int na = outer.values[0].size(), nb = inner.values[0].size();
     // t(p, b) = sum_q W_q psi_b(y_q) / |x_p - y_q|, then
     // block(a, b) = sum_p W_p psi_a(x_p) t(p, b).
     std::vector<double> t(nb);
@@ -120,9 +118,9 @@ namespace PlateOnHalfspace
                                          FullMatrix<double> &block) const
   {
     const BilinearQuadrilateral &inner_cell = space.cells[l].geometry;
-    const Table &outer = cell_data[k].tables.back(); // singular order
-    const QGauss<2> outer_rule(singular_order);
-    const QDuffy    duffy(singular_order, 1.0);
+    const Table        &outer = cell_data[k].tables.back(); // singular order
+    const QGauss<2>     outer_rule(singular_order);
+    const QDuffy        duffy(singular_order, 1.0);
     const unsigned int  nb = cell_data[l].nodes.size();
     std::vector<double> t(nb), values;
     for (unsigned int p = 0; p < outer.points.size(); ++p)

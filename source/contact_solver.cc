@@ -24,7 +24,7 @@ namespace PlateOnHalfspace
      * supporting points make the plate a mechanism).
      */
     bool
-    contact_set_supports_plate(const FoundationSpace &  space,
+    contact_set_supports_plate(const FoundationSpace   &space,
                                const std::vector<bool> &in_contact)
     {
       Point<2>     centre;
@@ -59,7 +59,7 @@ namespace PlateOnHalfspace
   ContactSolver::ContactSolver(const Parameters::Contact &contact,
                                const bool                 tensionless,
                                const unsigned int         verbosity,
-                               std::ostream &             log)
+                               std::ostream              &log)
     : contact(contact)
     , tensionless(tensionless)
     , verbosity(verbosity)
@@ -68,9 +68,9 @@ namespace PlateOnHalfspace
 
   void
   ContactSolver::solve_coupled(const LAPACKFullMatrix<double> &plate_stiffness,
-                               const Vector<double> &          plate_load,
-                               const FoundationOperator &      foundation,
-                               ContactState &                  state) const
+                               const Vector<double>           &plate_load,
+                               const FoundationOperator       &foundation,
+                               ContactState                   &state) const
   {
     // (K̄ + S) w = P̄ (P21), S the foundation stiffness on the contact set.
     LAPACKFullMatrix<double> coupled(plate_stiffness);
@@ -99,7 +99,7 @@ namespace PlateOnHalfspace
 
   void
   ContactSolver::evaluate_conditions(const FoundationOperator &foundation,
-                                     ContactState &            state) const
+                                     ContactState             &state) const
   {
     foundation.gap(state.w, state.q, state.gap);
     Vector<double> plate;
@@ -107,7 +107,7 @@ namespace PlateOnHalfspace
     const double q_scale   = std::max(max_abs(state.q), 1e-300);
     const double gap_scale = std::max(max_abs(plate), 1e-300);
     double       tension = 0, penetration = 0, product = 0;
-    const auto & supported = foundation.supported_nodes();
+    const auto  &supported = foundation.supported_nodes();
     for (unsigned int i = 0; i < state.q.size(); ++i)
       {
         tension = std::max(tension, -state.q[i] / q_scale);
@@ -126,10 +126,10 @@ namespace PlateOnHalfspace
 
   ContactState
   ContactSolver::solve(const LAPACKFullMatrix<double> &plate_stiffness,
-                       const Vector<double> &          plate_load,
-                       FoundationOperator &            foundation,
-                       const FoundationSpace &         space,
-                       const std::vector<bool> &       initial_contact) const
+                       const Vector<double>           &plate_load,
+                       FoundationOperator             &foundation,
+                       const FoundationSpace          &space,
+                       const std::vector<bool>        &initial_contact) const
   {
     ContactState state;
     state.cell_in_foundation.assign(space.cells.size(), true);
@@ -155,21 +155,20 @@ namespace PlateOnHalfspace
         // nodal pressures tensile, rebuild, repeat until the displacements
         // stop changing.
         double previous_norm = 0;
-        for (state.iterations = 1;
-             state.iterations <= contact.max_iterations;
+        for (state.iterations = 1; state.iterations <= contact.max_iterations;
              ++state.iterations)
           {
             if (state.iterations > 1)
               foundation.build(space, state.cell_in_foundation);
-            AssertThrow(contact_set_supports_plate(
-                          space, foundation.contact_nodes()),
+            AssertThrow(contact_set_supports_plate(space,
+                                                   foundation.contact_nodes()),
                         ExcMessage("The plate is a mechanism: after element "
                                    "exclusion the remaining foundation "
                                    "cannot carry it."));
             solve_coupled(plate_stiffness, plate_load, foundation, state);
-            const double norm   = state.w.l2_norm();
-            const double change = std::abs(norm - previous_norm) /
-                                  std::max(norm, 1e-300);
+            const double norm = state.w.l2_norm();
+            const double change =
+              std::abs(norm - previous_norm) / std::max(norm, 1e-300);
             previous_norm = norm;
 
             unsigned int n_excluded = 0;
@@ -244,16 +243,15 @@ namespace PlateOnHalfspace
         const double q_tolerance = 1e-12 * q_scale,
                      g_tolerance = 1e-12 * gap_scale;
 
-        std::vector<bool> next = active;
+        std::vector<bool> next      = active;
         unsigned int      n_changes = 0, first_change = active.size();
-        const auto &      supported = foundation.supported_nodes();
+        const auto       &supported = foundation.supported_nodes();
         for (unsigned int i = 0; i < active.size(); ++i)
           {
             if (!supported[i])
               continue;
-            const bool violated =
-              active[i] ? (state.q[i] < -q_tolerance) :
-                          (state.gap[i] < -g_tolerance);
+            const bool violated = active[i] ? (state.q[i] < -q_tolerance) :
+                                              (state.gap[i] < -g_tolerance);
             if (violated)
               {
                 next[i] = !active[i];
@@ -266,9 +264,8 @@ namespace PlateOnHalfspace
           n_contact += a;
         if (verbosity > 0)
           log << "   contact iteration " << state.iterations
-              << ": nodes in contact " << n_contact << ", changes "
-              << n_changes << (single_pivots ? " (single pivots)" : "")
-              << std::endl;
+              << ": nodes in contact " << n_contact << ", changes " << n_changes
+              << (single_pivots ? " (single pivots)" : "") << std::endl;
         if (n_changes == 0)
           {
             state.converged = true;

@@ -7,7 +7,7 @@ namespace PlateOnHalfspace
 {
   void
   FoundationOperator::nodal_forces(const Vector<double> &q,
-                                   Vector<double> &      forces) const
+                                   Vector<double>       &forces) const
   {
     forces.reinit(q.size());
     mass.vmult(forces, q);
@@ -16,7 +16,7 @@ namespace PlateOnHalfspace
   void
   FoundationOperator::gap(const Vector<double> &w,
                           const Vector<double> &q,
-                          Vector<double> &      g) const
+                          Vector<double>       &g) const
   {
     Vector<double> plate(w.size());
     apply(q, g);
@@ -26,7 +26,7 @@ namespace PlateOnHalfspace
 
   void
   FoundationOperator::build_mass_matrix(
-    const FoundationSpace &  space,
+    const FoundationSpace   &space,
     const std::vector<bool> &cell_in_foundation)
   {
     space.assemble_mass_matrix(cell_in_foundation, mass_sparsity, mass);

@@ -1,4 +1,5 @@
 #include <deal.II/base/quadrature_lib.h>
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <plate_on_halfspace/foundation_space.h>
@@ -10,9 +11,8 @@ namespace PlateOnHalfspace
   {
     // 1D Lagrange polynomials on the nodes 0, 1/2, 1.
     const auto lagrange = [](const double s) {
-      return std::array<double, 3>{{(1. - s) * (1. - 2. * s),
-                                    4. * s * (1. - s),
-                                    s * (2. * s - 1.)}};
+      return std::array<double, 3>{
+        {(1. - s) * (1. - 2. * s), 4. * s * (1. - s), s * (2. * s - 1.)}};
     };
     const std::array<double, 3> lx = lagrange(p[0]), ly = lagrange(p[1]);
     // FE_Q<2>(2) numbering: vertices, then the midpoints of the faces x=0,
@@ -31,8 +31,8 @@ namespace PlateOnHalfspace
   void
   FoundationSpace::assemble_mass_matrix(
     const std::vector<bool> &cell_in_foundation,
-    SparsityPattern &        sparsity,
-    SparseMatrix<double> &   matrix) const
+    SparsityPattern         &sparsity,
+    SparseMatrix<double>    &matrix) const
   {
     const auto included = [&](const unsigned int c) {
       return cell_in_foundation.empty() || cell_in_foundation[c];
@@ -57,7 +57,7 @@ namespace PlateOnHalfspace
     for (unsigned int c = 0; c < cells.size(); ++c)
       if (included(c))
         {
-          const Cell &cell = cells[c];
+          const Cell &cell        = cells[c];
           double      local[9][9] = {};
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {

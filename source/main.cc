@@ -35,8 +35,8 @@ namespace
         }
       else
         collapsed += c;
-    while (!collapsed.empty() && (collapsed.back() == ' ' ||
-                                  collapsed.back() == '-'))
+    while (!collapsed.empty() &&
+           (collapsed.back() == ' ' || collapsed.back() == '-'))
       collapsed.pop_back();
     return collapsed;
   }
@@ -62,9 +62,10 @@ main(int argc, char **argv)
         {
           dealii::ParameterHandler prm;
           SceneParameters::declare_parameters(prm);
-          prm.print_parameters(std::cout,
-                               dealii::ParameterHandler::PRM |
-                                 dealii::ParameterHandler::KeepDeclarationOrder);
+          prm.print_parameters(
+            std::cout,
+            dealii::ParameterHandler::PRM |
+              dealii::ParameterHandler::KeepDeclarationOrder);
           return 0;
         }
       if (argument == "--help" || argument == "-h")

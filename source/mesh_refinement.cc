@@ -1,5 +1,7 @@
 #include <deal.II/base/quadrature_lib.h>
+
 #include <deal.II/grid/grid_refinement.h>
+
 #include <deal.II/numerics/error_estimator.h>
 
 #include <plate_on_halfspace/mesh_refinement.h>
@@ -10,10 +12,10 @@ namespace PlateOnHalfspace
 {
   bool
   mark_cells_for_refinement(const Parameters::Adaptivity &adaptivity,
-                            const MindlinPlate &          plate,
-                            const Vector<double> &        solution,
-                            const ContactState &          contact,
-                            Triangulation<2> &            triangulation)
+                            const MindlinPlate           &plate,
+                            const Vector<double>         &solution,
+                            const ContactState           &contact,
+                            Triangulation<2>             &triangulation)
   {
     const unsigned int n_cells = triangulation.n_active_cells();
     if (!adaptivity.adaptive)
@@ -31,11 +33,8 @@ namespace PlateOnHalfspace
       return false;
 
     Vector<float> indicators(n_cells);
-    KellyErrorEstimator<2>::estimate(plate.get_dof_handler(),
-                                     QGauss<1>(3),
-                                     {},
-                                     solution,
-                                     indicators);
+    KellyErrorEstimator<2>::estimate(
+      plate.get_dof_handler(), QGauss<1>(3), {}, solution, indicators);
     // Cells on the plate edge and on the contact boundary (nodes in and out
     // of contact, or pressures of both signs) go first.
     const float            top   = indicators.linfty_norm();
@@ -47,19 +46,18 @@ namespace PlateOnHalfspace
         for (const auto &terms : space.cells[index].expansion)
           for (const auto &t : terms)
             {
-              (contact.in_contact[t.first] ? in : out) = true;
+              (contact.in_contact[t.first] ? in : out)        = true;
               (contact.q[t.first] >= 0 ? positive : negative) = true;
             }
         if (cell->at_boundary() || (in && out) || (positive && negative))
           indicators[index] = std::max(indicators[index], top);
         ++index;
       }
-    GridRefinement::refine_and_coarsen_fixed_number(
-      triangulation,
-      indicators,
-      adaptivity.refine_fraction,
-      adaptivity.coarsen_fraction,
-      adaptivity.max_cells);
+    GridRefinement::refine_and_coarsen_fixed_number(triangulation,
+                                                    indicators,
+                                                    adaptivity.refine_fraction,
+                                                    adaptivity.coarsen_fraction,
+                                                    adaptivity.max_cells);
     return true;
   }
 } // namespace PlateOnHalfspace

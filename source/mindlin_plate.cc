@@ -1,9 +1,12 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/thread_management.h>
+
 #include <deal.II/dofs/dof_tools.h>
+
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <plate_on_halfspace/mindlin_plate.h>
@@ -22,7 +25,7 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
-  MindlinPlate::MindlinPlate(const Parameters::Plate &         plate,
+  MindlinPlate::MindlinPlate(const Parameters::Plate          &plate,
                              const Parameters::Discretization &discretization)
     : plate(plate)
     , discretization(discretization)
@@ -31,7 +34,7 @@ namespace PlateOnHalfspace
 
   void
   MindlinPlate::setup(
-    const Triangulation<2> &triangulation,
+    const Triangulation<2>                                 &triangulation,
     const std::function<void(const DoFHandler<2> &,
                              AffineConstraints<double> &)> &extra_constraints)
   {
@@ -105,7 +108,8 @@ namespace PlateOnHalfspace
     std::vector<Point<2>> support_points(dof_handler.n_dofs());
     DoFTools::map_dofs_to_support_points(mapping, dof_handler, support_points);
     const IndexSet w_dofs =
-      DoFTools::extract_dofs(dof_handler, fe.component_mask(FEValuesExtractors::Scalar(0)));
+      DoFTools::extract_dofs(dof_handler,
+                             fe.component_mask(FEValuesExtractors::Scalar(0)));
 
     foundation_dofs.clear();
     foundation_index.assign(dof_handler.n_dofs(), -1);
@@ -152,14 +156,14 @@ namespace PlateOnHalfspace
   MindlinPlate::assemble_stiffness()
   {
     using SI = Parameters::Discretization::ShearIntegration;
-    const SI          shear = discretization.shear_integration;
-    const QGauss<2>   bending_rule(shear == SI::reduced ? 2 : 3);
-    const QGauss<2>   shear_rule(shear == SI::full ? 3 : 2);
-    FEValues<2>       bending_values(mapping,
+    const SI                         shear = discretization.shear_integration;
+    const QGauss<2>                  bending_rule(shear == SI::reduced ? 2 : 3);
+    const QGauss<2>                  shear_rule(shear == SI::full ? 3 : 2);
+    FEValues<2>                      bending_values(mapping,
                                fe,
                                bending_rule,
                                update_gradients | update_JxW_values);
-    FEValues<2>       shear_values(mapping,
+    FEValues<2>                      shear_values(mapping,
                              fe,
                              shear_rule,
                              update_values | update_gradients |
@@ -170,8 +174,8 @@ namespace PlateOnHalfspace
     // (P1): D_b = D [[1,nu,0],[nu,1,0],[0,0,(1-nu)/2]], D_s = k G t.
     const double D  = plate.flexural_rigidity();
     const double nu = plate.poissons_ratio;
-    const double Ds = 5. / 6. * plate.youngs_modulus /
-                      (2. * (1. + nu)) * plate.thickness;
+    const double Ds =
+      5. / 6. * plate.youngs_modulus / (2. * (1. + nu)) * plate.thickness;
 
     const unsigned int                   n = fe.n_dofs_per_cell();
     FullMatrix<double>                   local(n, n);
@@ -187,7 +191,7 @@ namespace PlateOnHalfspace
             for (unsigned int i = 0; i < n; ++i)
               {
                 const Tensor<2, 2> g = bending_values[beta].gradient(i, q);
-                kappa[i] = {{g[0][0], g[1][1], g[0][1] + g[1][0]}};
+                kappa[i]             = {{g[0][0], g[1][1], g[0][1] + g[1][0]}};
               }
             const double JxW = bending_values.JxW(q);
             for (unsigned int i = 0; i < n; ++i)
@@ -195,7 +199,8 @@ namespace PlateOnHalfspace
                 local(i, j) +=
                   D *
                   (kappa[i][0] * kappa[j][0] + kappa[i][1] * kappa[j][1] +
-                   nu * (kappa[i][0] * kappa[j][1] + kappa[i][1] * kappa[j][0]) +
+                   nu *
+                     (kappa[i][0] * kappa[j][1] + kappa[i][1] * kappa[j][0]) +
                    0.5 * (1. - nu) * kappa[i][2] * kappa[j][2]) *
                   JxW;
           }
@@ -204,8 +209,8 @@ namespace PlateOnHalfspace
           {
             // gamma = grad w - beta
             for (unsigned int i = 0; i < n; ++i)
-              gamma[i] = shear_values[w].gradient(i, q) -
-                         shear_values[beta].value(i, q);
+              gamma[i] =
+                shear_values[w].gradient(i, q) - shear_values[beta].value(i, q);
             const double JxW = shear_values.JxW(q);
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)
@@ -220,8 +225,8 @@ namespace PlateOnHalfspace
   MindlinPlate::assemble_loads(const Parameters::Loads &loads,
                                const double             self_weight_pressure)
   {
-    load       = 0;
-    total_load = 0;
+    load                                   = 0;
+    total_load                             = 0;
     const unsigned int                   n = fe.n_dofs_per_cell();
     Vector<double>                       local(n);
     std::vector<types::global_dof_index> dofs(n);
@@ -229,9 +234,9 @@ namespace PlateOnHalfspace
     std::vector<bool> rectangle_used(loads.rectangular_patches.size(), false);
     std::vector<bool> disk_used(loads.circular_patches.size(), false);
 
-    const auto add = [&](const Quadrature<2> &rule,
-                         const double         pressure,
-                         const bool           physical_weights,
+    const auto add = [&](const Quadrature<2>         &rule,
+                         const double                 pressure,
+                         const bool                   physical_weights,
                          const BilinearQuadrilateral &geometry) {
       for (unsigned int q = 0; q < rule.size(); ++q)
         {
@@ -255,16 +260,18 @@ namespace PlateOnHalfspace
           add(cell_rule, uniform, false, geometry);
         for (unsigned int k = 0; k < loads.rectangular_patches.size(); ++k)
           {
-            const auto &patch = loads.rectangular_patches[k];
-            const Quadrature<2> rule =
-              quadrature_on_rectangle_part(geometry, patch.lower, patch.upper, 4);
+            const auto         &patch = loads.rectangular_patches[k];
+            const Quadrature<2> rule  = quadrature_on_rectangle_part(geometry,
+                                                                    patch.lower,
+                                                                    patch.upper,
+                                                                    4);
             if (rule.size() > 0)
               rectangle_used[k] = true;
             add(rule, patch.pressure, true, geometry);
           }
         for (unsigned int k = 0; k < loads.circular_patches.size(); ++k)
           {
-            const auto &        patch = loads.circular_patches[k];
+            const auto         &patch = loads.circular_patches[k];
             const Quadrature<2> rule =
               quadrature_on_disk_part(geometry, patch.centre, patch.radius, 8);
             if (rule.size() > 0)
@@ -306,8 +313,7 @@ namespace PlateOnHalfspace
         local          = 0;
         const auto phi = q2_shape_values(located.second);
         for (unsigned int i = 0; i < 9; ++i)
-          local[fe.component_to_system_index(0, i)] =
-            point_load.force * phi[i];
+          local[fe.component_to_system_index(0, i)] = point_load.force * phi[i];
         located.first->get_dof_indices(dofs);
         constraints.distribute_local_to_global(local, dofs, load);
       }
@@ -352,7 +358,7 @@ namespace PlateOnHalfspace
 
   void
   MindlinPlate::condense(LAPACKFullMatrix<double> &condensed,
-                         Vector<double> &          condensed_load)
+                         Vector<double>           &condensed_load)
   {
     factorise_rest_block();
     const unsigned int nf = foundation_dofs.size();
@@ -397,12 +403,13 @@ namespace PlateOnHalfspace
     stiffness.vmult(product, rest_solution);
     condensed_load.reinit(nf);
     for (unsigned int i = 0; i < nf; ++i)
-      condensed_load[i] = load[foundation_dofs[i]] - product[foundation_dofs[i]];
+      condensed_load[i] =
+        load[foundation_dofs[i]] - product[foundation_dofs[i]];
   }
 
   void
   MindlinPlate::expand(const Vector<double> &foundation_w,
-                       Vector<double> &      solution) const
+                       Vector<double>       &solution) const
   {
     const unsigned int n = dof_handler.n_dofs();
     Vector<double>     known(n), rhs(n);
@@ -469,7 +476,7 @@ namespace PlateOnHalfspace
 
   double
   MindlinPlate::point_value(const Vector<double> &solution,
-                            const Point<2> &      x,
+                            const Point<2>       &x,
                             const unsigned int    component) const
   {
     const auto  located = locate(x);
@@ -484,9 +491,10 @@ namespace PlateOnHalfspace
   }
 
   Moments
-  MindlinPlate::moments(const typename DoFHandler<2>::active_cell_iterator &cell,
-                        const Point<2> &      p,
-                        const Vector<double> &solution) const
+  MindlinPlate::moments(
+    const typename DoFHandler<2>::active_cell_iterator &cell,
+    const Point<2>                                     &p,
+    const Vector<double>                               &solution) const
   {
     FEValues<2> values(mapping,
                        fe,

@@ -119,17 +119,17 @@ namespace PlateOnHalfspace
     {
       prm.enter_subsection("Plate");
       const std::string s = prm.get("Shape");
-      shape = (s == "rectangle" ? Shape::rectangle :
-               s == "disk"      ? Shape::disk :
-                                  Shape::mesh_file);
-      length_x       = prm.get_double("Length x");
-      length_y       = prm.get_double("Length y");
-      radius         = prm.get_double("Radius");
-      mesh_file      = prm.get("Mesh file");
-      thickness      = prm.get_double("Thickness");
-      youngs_modulus = prm.get_double("Young's modulus");
-      poissons_ratio = prm.get_double("Poisson's ratio");
-      unit_weight    = prm.get_double("Unit weight");
+      shape               = (s == "rectangle" ? Shape::rectangle :
+                             s == "disk"      ? Shape::disk :
+                                                Shape::mesh_file);
+      length_x            = prm.get_double("Length x");
+      length_y            = prm.get_double("Length y");
+      radius              = prm.get_double("Radius");
+      mesh_file           = prm.get("Mesh file");
+      thickness           = prm.get_double("Thickness");
+      youngs_modulus      = prm.get_double("Young's modulus");
+      poissons_ratio      = prm.get_double("Poisson's ratio");
+      unit_weight         = prm.get_double("Unit weight");
       prm.leave_subsection();
 
       if (shape == Shape::rectangle)
@@ -271,15 +271,12 @@ namespace PlateOnHalfspace
                                              "Loads/Circular patches",
                                              "xc,yc,radius,pressure"))
         {
-          require(v[2] > 0,
-                  "Loads/Circular patches: the radius must be > 0.");
+          require(v[2] > 0, "Loads/Circular patches: the radius must be > 0.");
           circular_patches.push_back({Point<2>(v[0], v[1]), v[2], v[3]});
         }
       point_loads.clear();
-      for (const auto &v : parse_number_list(prm.get("Point loads"),
-                                             3,
-                                             "Loads/Point loads",
-                                             "x,y,force"))
+      for (const auto &v : parse_number_list(
+             prm.get("Point loads"), 3, "Loads/Point loads", "x,y,force"))
         point_loads.push_back({Point<2>(v[0], v[1]), v[2]});
       prm.leave_subsection();
     }
@@ -337,20 +334,19 @@ namespace PlateOnHalfspace
     {
       prm.enter_subsection("Discretization");
       const std::string e = prm.get("Element");
-      element = (e == "serendipity" ? Element::serendipity :
-                 e == "heterosis"   ? Element::heterosis :
-                                      Element::lagrange);
+      element             = (e == "serendipity" ? Element::serendipity :
+                             e == "heterosis"   ? Element::heterosis :
+                                                  Element::lagrange);
       const std::string s = prm.get("Shear integration");
-      shear_integration =
-        (s == "reduced"   ? ShearIntegration::reduced :
-         s == "selective" ? ShearIntegration::selective :
-                            ShearIntegration::full);
+      shear_integration   = (s == "reduced"   ? ShearIntegration::reduced :
+                             s == "selective" ? ShearIntegration::selective :
+                                                ShearIntegration::full);
       subdivisions_x      = prm.get_integer("Subdivisions x");
       subdivisions_y      = prm.get_integer("Subdivisions y");
       initial_refinements = prm.get_integer("Initial refinements");
-      flexibility = (prm.get("Flexibility") == "galerkin" ?
-                       Flexibility::galerkin :
-                       Flexibility::collocation);
+      flexibility =
+        (prm.get("Flexibility") == "galerkin" ? Flexibility::galerkin :
+                                                Flexibility::collocation);
       symmetry                  = prm.get("Symmetry");
       singular_quadrature_order = prm.get_integer("Singular quadrature order");
       prm.leave_subsection();
@@ -382,9 +378,8 @@ namespace PlateOnHalfspace
     Contact::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Contact");
-      method         = (prm.get("Method") == "active set" ?
-                          Method::active_set :
-                          Method::element_exclusion);
+      method         = (prm.get("Method") == "active set" ? Method::active_set :
+                                                            Method::element_exclusion);
       max_iterations = prm.get_integer("Max iterations");
       tolerance      = prm.get_double("Tolerance");
       prm.leave_subsection();
@@ -469,10 +464,8 @@ namespace PlateOnHalfspace
     {
       prm.enter_subsection("Output");
       probe_points.clear();
-      for (const auto &v : parse_number_list(prm.get("Probe points"),
-                                             2,
-                                             "Output/Probe points",
-                                             "x,y"))
+      for (const auto &v : parse_number_list(
+             prm.get("Probe points"), 2, "Output/Probe points", "x,y"))
         probe_points.emplace_back(v[0], v[1]);
       const auto profile = parse_number_list(prm.get("Profile"),
                                              5,
@@ -537,28 +530,26 @@ namespace PlateOnHalfspace
           std::string rest;
           for (const std::string &f : fields)
             rest += (rest.empty() ? "" : ",") + f;
-          const auto numbers = parse_number_list(
-            rest,
-            fields.size(),
-            "Verification/Checks",
-            "numbers after the quantity");
-          const auto &v = numbers[0];
+          const auto  numbers = parse_number_list(rest,
+                                                 fields.size(),
+                                                 "Verification/Checks",
+                                                 "numbers after the quantity");
+          const auto &v       = numbers[0];
           Check       check;
           check.quantity = quantity;
           check.at_point = (v.size() == 4);
           if (check.at_point)
             {
-              require(quantity == "w" || quantity == "q" ||
-                        quantity == "Mx" || quantity == "My",
+              require(quantity == "w" || quantity == "q" || quantity == "Mx" ||
+                        quantity == "My",
                       "Verification/Checks: point quantity <" + quantity +
                         "> must be one of w, q, Mx, My.");
               check.location = Point<2>(v[0], v[1]);
             }
           else
-            require(quantity == "applied_load" ||
-                      quantity == "contact_force" || quantity == "max_w" ||
-                      quantity == "min_w" || quantity == "max_q" ||
-                      quantity == "min_q" ||
+            require(quantity == "applied_load" || quantity == "contact_force" ||
+                      quantity == "max_w" || quantity == "min_w" ||
+                      quantity == "max_q" || quantity == "min_q" ||
                       quantity == "contact_area_fraction",
                     "Verification/Checks: summary key <" + quantity +
                       "> is not one of applied_load, contact_force, max_w, "

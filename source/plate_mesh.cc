@@ -9,9 +9,9 @@
 namespace PlateOnHalfspace
 {
   void
-  make_plate_mesh(const Parameters::Plate &         plate,
+  make_plate_mesh(const Parameters::Plate          &plate,
                   const Parameters::Discretization &discretization,
-                  Triangulation<2> &                triangulation)
+                  Triangulation<2>                 &triangulation)
   {
     triangulation.clear();
     switch (plate.shape)
@@ -44,8 +44,7 @@ namespace PlateOnHalfspace
             catch (const std::exception &e)
               {
                 AssertThrow(false,
-                            ExcMessage("Plate/Mesh file: <" +
-                                       plate.mesh_file +
+                            ExcMessage("Plate/Mesh file: <" + plate.mesh_file +
                                        "> is not a readable Gmsh mesh of "
                                        "quadrilaterals: " +
                                        std::string(e.what())));

@@ -1,4 +1,5 @@
 #include <deal.II/base/timer.h>
+
 #include <deal.II/numerics/solution_transfer.h>
 
 #include <plate_on_halfspace/mesh_refinement.h>
@@ -13,7 +14,7 @@ namespace PlateOnHalfspace
 {
   PlateOnHalfspaceProblem::PlateOnHalfspaceProblem(
     const SceneParameters &parameters,
-    std::ostream &         log)
+    std::ostream          &log)
     : parameters(parameters)
     , log(log)
   {}
@@ -23,7 +24,7 @@ namespace PlateOnHalfspace
   {
     output = std::make_unique<ResultsOutput>(parameters.output_directory);
     make_plate_mesh(parameters.plate, parameters.discretization, triangulation);
-    mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
+    mindlin_plate       = std::make_unique<MindlinPlate>(parameters.plate,
                                                    parameters.discretization);
     foundation_operator = create_foundation_operator(parameters);
     mindlin_plate->setup(triangulation);
@@ -70,8 +71,9 @@ namespace PlateOnHalfspace
 
     Vector<double> new_field(mindlin_plate->get_dof_handler().n_dofs());
     transfer.interpolate(old_field, new_field);
-    const Vector<double> nodal = mindlin_plate->restrict_to_foundation(new_field);
-    std::vector<bool>    seed(nodal.size());
+    const Vector<double> nodal =
+      mindlin_plate->restrict_to_foundation(new_field);
+    std::vector<bool> seed(nodal.size());
     for (unsigned int i = 0; i < nodal.size(); ++i)
       seed[i] = nodal[i] > 0.5;
     return seed;
@@ -81,18 +83,18 @@ namespace PlateOnHalfspace
   PlateOnHalfspaceProblem::solve_cycle(const unsigned int       cycle,
                                        const std::vector<bool> &seed)
   {
-    Timer        timer;
+    Timer         timer;
     MindlinPlate &plate = *mindlin_plate;
     plate.assemble_loads(parameters.loads,
                          parameters.plate.unit_weight *
                            parameters.plate.thickness);
 
     CycleSummary summary;
-    summary.cycle             = cycle;
-    summary.n_cells           = triangulation.n_active_cells();
-    summary.n_dofs            = plate.n_unconstrained_dofs();
-    summary.n_foundation_dofs = plate.get_foundation_dofs().size();
-    summary.applied_load      = plate.applied_load();
+    summary.cycle                = cycle;
+    summary.n_cells              = triangulation.n_active_cells();
+    summary.n_dofs               = plate.n_unconstrained_dofs();
+    summary.n_foundation_dofs    = plate.get_foundation_dofs().size();
+    summary.applied_load         = plate.applied_load();
     const unsigned int verbosity = parameters.output.verbosity;
     if (verbosity > 0)
       log << "cycle " << cycle << ": " << summary.n_cells << " cells, "
@@ -165,16 +167,15 @@ namespace PlateOnHalfspace
 
     if (verbosity > 0)
       {
-        log << std::scientific << std::setprecision(6)
-            << "   applied load " << summary.applied_load
-            << ", contact force " << summary.contact_force << std::endl
+        log << std::scientific << std::setprecision(6) << "   applied load "
+            << summary.applied_load << ", contact force "
+            << summary.contact_force << std::endl
             << "   w in [" << summary.min_w << ", " << summary.max_w
             << "], q in [" << summary.min_q << ", " << summary.max_q << "]"
             << std::endl
             << "   nodes in contact " << summary.contact_nodes
-            << ", contact area fraction " << std::fixed
-            << std::setprecision(4) << summary.contact_area_fraction
-            << std::defaultfloat << std::endl;
+            << ", contact area fraction " << std::fixed << std::setprecision(4)
+            << summary.contact_area_fraction << std::defaultfloat << std::endl;
         if (verbosity > 1)
           log << "   wall time " << summary.wall_time_s << " s" << std::endl;
       }
@@ -240,27 +241,24 @@ namespace PlateOnHalfspace
         else
           {
             const CycleSummary &s = cycle_summaries.back();
-            value =
-              (check.quantity == "applied_load"  ? s.applied_load :
-               check.quantity == "contact_force" ? s.contact_force :
-               check.quantity == "max_w"         ? s.max_w :
-               check.quantity == "min_w"         ? s.min_w :
-               check.quantity == "max_q"         ? s.max_q :
-               check.quantity == "min_q"         ? s.min_q :
-                                                   s.contact_area_fraction);
+            value = (check.quantity == "applied_load"  ? s.applied_load :
+                     check.quantity == "contact_force" ? s.contact_force :
+                     check.quantity == "max_w"         ? s.max_w :
+                     check.quantity == "min_w"         ? s.min_w :
+                     check.quantity == "max_q"         ? s.max_q :
+                     check.quantity == "min_q"         ? s.min_q :
+                                                         s.contact_area_fraction);
           }
-        const double error =
-          std::abs(value - check.reference) /
-          std::max(std::abs(check.reference), 1e-300);
-        const bool passed = std::isfinite(value) &&
-                            error <= check.relative_tolerance;
+        const double error = std::abs(value - check.reference) /
+                             std::max(std::abs(check.reference), 1e-300);
+        const bool passed =
+          std::isfinite(value) && error <= check.relative_tolerance;
         all_passed = all_passed && passed;
         log << "check " << label << " = " << std::scientific
             << std::setprecision(5) << value << ", reference "
             << check.reference << ", relative error " << std::setprecision(1)
             << error << (passed ? " <= " : " > ") << check.relative_tolerance
-            << std::defaultfloat << (passed ? ": ok" : ": FAILED")
-            << std::endl;
+            << std::defaultfloat << (passed ? ": ok" : ": FAILED") << std::endl;
       }
     return all_passed;
   }

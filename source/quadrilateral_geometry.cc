@@ -56,7 +56,7 @@ namespace PlateOnHalfspace
     std::vector<Point<2>>
     ccw_polygon(const BilinearQuadrilateral &cell)
     {
-      const auto &          v = cell.get_vertices();
+      const auto           &v       = cell.get_vertices();
       std::vector<Point<2>> polygon = {v[0], v[1], v[3], v[2]};
       if (signed_polygon_area(polygon) < 0)
         std::reverse(polygon.begin(), polygon.end());
@@ -82,9 +82,10 @@ namespace PlateOnHalfspace
                               (p[coordinate] <= value);
       };
       const auto intersection = [&](const Point<2> &a, const Point<2> &b) {
-        const double t = (value - a[coordinate]) / (b[coordinate] - a[coordinate]);
-        Point<2>     p = a + t * (b - a);
-        p[coordinate]  = value;
+        const double t =
+          (value - a[coordinate]) / (b[coordinate] - a[coordinate]);
+        Point<2> p    = a + t * (b - a);
+        p[coordinate] = value;
         return p;
       };
 
@@ -207,8 +208,8 @@ namespace PlateOnHalfspace
           break;
         const Tensor<1, 2> step = invert(J) * (map(p) - x);
 
-        double   factor = 1.;
-        Point<2> trial  = p - step;
+        double   factor         = 1.;
+        Point<2> trial          = p - step;
         double   trial_residual = (map(trial) - x).norm();
         for (unsigned int halving = 0;
              halving < 10 && trial_residual > residual_norm &&
@@ -246,7 +247,7 @@ namespace PlateOnHalfspace
     const double                tolerance = 1e-10 * diameter();
     for (unsigned int i = 0; i < 4; ++i)
       {
-        const Tensor<1, 2> edge = polygon[(i + 1) % 4] - polygon[i];
+        const Tensor<1, 2> edge   = polygon[(i + 1) % 4] - polygon[i];
         const double       length = edge.norm();
         if (length == 0.)
           continue;
@@ -297,11 +298,11 @@ namespace PlateOnHalfspace
 
   Quadrature<2>
   quadrature_on_rectangle_part(const BilinearQuadrilateral &cell,
-                               const Point<2> &             lower,
-                               const Point<2> &             upper,
+                               const Point<2>              &lower,
+                               const Point<2>              &upper,
                                const unsigned int           n_points_1d)
   {
-    std::vector<Point<2>> polygon = ccw_polygon(cell);
+    std::vector<Point<2>> polygon   = ccw_polygon(cell);
     const double          cell_area = signed_polygon_area(polygon);
 
     polygon = clip_polygon(polygon, 0, lower[0], true);
@@ -309,8 +310,7 @@ namespace PlateOnHalfspace
     polygon = clip_polygon(polygon, 1, lower[1], true);
     polygon = clip_polygon(polygon, 1, upper[1], false);
 
-    if (polygon.size() < 3 ||
-        signed_polygon_area(polygon) <= 1e-14 * cell_area)
+    if (polygon.size() < 3 || signed_polygon_area(polygon) <= 1e-14 * cell_area)
       return Quadrature<2>();
 
     // The clipped polygon is convex (intersection of convex sets), so a fan
@@ -324,8 +324,8 @@ namespace PlateOnHalfspace
     weights.reserve((polygon.size() - 2) * triangle_rule.size());
     for (unsigned int i = 1; i + 1 < polygon.size(); ++i)
       {
-        const Tensor<1, 2> e1 = polygon[i] - polygon[0];
-        const Tensor<1, 2> e2 = polygon[i + 1] - polygon[0];
+        const Tensor<1, 2> e1         = polygon[i] - polygon[0];
+        const Tensor<1, 2> e2         = polygon[i + 1] - polygon[0];
         const double       twice_area = cross(e1, e2);
         if (twice_area <= 1e-16 * cell_area)
           continue; // degenerate sliver from coincident clip points
@@ -360,7 +360,7 @@ namespace PlateOnHalfspace
    */
   Quadrature<2>
   quadrature_on_disk_part(const BilinearQuadrilateral &cell,
-                          const Point<2> &             centre,
+                          const Point<2>              &centre,
                           const double                 radius,
                           const unsigned int           n_points_1d)
   {
@@ -385,7 +385,7 @@ namespace PlateOnHalfspace
     std::vector<std::pair<Point<2>, Point<2>>> pieces;
     for (unsigned int i = 0; i < polygon.size(); ++i)
       {
-        const Point<2> &   p = polygon[i];
+        const Point<2>    &p = polygon[i];
         const Tensor<1, 2> e = polygon[(i + 1) % polygon.size()] - p;
         const Tensor<1, 2> f = p - centre;
         const double       a = e * e;
@@ -412,7 +412,7 @@ namespace PlateOnHalfspace
     // (start angle, opening angle) between them.
     std::vector<Point<2>>                  corners;
     std::vector<std::pair<double, double>> arcs;
-    const double                           quarter = 0.5 * numbers::PI;
+    const double                           quarter     = 0.5 * numbers::PI;
     const double                           max_opening = 0.25 * numbers::PI;
     const auto add_arc = [&](const double start, const double opening) {
       const unsigned int n_parts =
@@ -451,7 +451,7 @@ namespace PlateOnHalfspace
               // The boundary leaves the edge at a point on the circle and
               // follows the circle counterclockwise to the next piece.
               const double start_angle = angle_of(end);
-              double opening = angle_of(next) - start_angle;
+              double       opening     = angle_of(next) - start_angle;
               while (opening <= 0.)
                 opening += 2. * numbers::PI;
               add_arc(start_angle, opening);
@@ -476,7 +476,8 @@ namespace PlateOnHalfspace
     // The convex polygon Q: fan of triangles, exact for polynomials.
     if (corners.size() >= 3)
       {
-        const Quadrature<2> triangle_rule = reference_triangle_rule(n_points_1d);
+        const Quadrature<2> triangle_rule =
+          reference_triangle_rule(n_points_1d);
         for (unsigned int i = 1; i + 1 < corners.size(); ++i)
           {
             const Tensor<1, 2> e1         = corners[i] - corners[0];
@@ -512,8 +513,9 @@ namespace PlateOnHalfspace
       {
         const double       half_opening = 0.5 * arc.second;
         const double       h            = radius * std::cos(half_opening);
-        const Tensor<1, 2> n   = unit_vector(arc.first + half_opening);
-        const Tensor<1, 2> tau = unit_vector(arc.first + half_opening + quarter);
+        const Tensor<1, 2> n            = unit_vector(arc.first + half_opening);
+        const Tensor<1, 2> tau =
+          unit_vector(arc.first + half_opening + quarter);
         for (unsigned int i = 0; i < gauss_psi.size(); ++i)
           {
             const double psi = (2. * gauss_psi.point(i)[0] - 1.) * half_opening;

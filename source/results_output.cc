@@ -1,6 +1,8 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/quadrature_lib.h>
+
 #include <deal.II/fe/fe_values.h>
+
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
@@ -82,7 +84,8 @@ namespace PlateOnHalfspace
   ResultsOutput::write_file(const std::string &name,
                             const std::string &text) const
   {
-    const std::filesystem::path target = std::filesystem::path(directory) / name;
+    const std::filesystem::path target =
+      std::filesystem::path(directory) / name;
     const std::filesystem::path temporary =
       std::filesystem::path(directory) / ("." + name + ".tmp");
     {
@@ -97,10 +100,10 @@ namespace PlateOnHalfspace
   }
 
   void
-  ResultsOutput::evaluate(const MindlinPlate &  plate,
+  ResultsOutput::evaluate(const MindlinPlate   &plate,
                           const Vector<double> &solution,
-                          const ContactState &  contact,
-                          CycleSummary &        summary) const
+                          const ContactState   &contact,
+                          CycleSummary         &summary) const
   {
     summary.max_w = *std::max_element(contact.w.begin(), contact.w.end());
     summary.min_w = *std::min_element(contact.w.begin(), contact.w.end());
@@ -109,8 +112,8 @@ namespace PlateOnHalfspace
 
     // Moments at the 2x2 Gauss points, where the quadratic element's
     // derivatives are most accurate (the paper plots Mx there too).
-    const QGauss<2> rule(2);
-    FEValues<2>     values(plate.get_fe(), rule, update_gradients);
+    const QGauss<2>           rule(2);
+    FEValues<2>               values(plate.get_fe(), rule, update_gradients);
     std::vector<Tensor<2, 2>> grad(rule.size());
     const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
     summary.max_mx = summary.max_my = -std::numeric_limits<double>::max();
@@ -151,7 +154,8 @@ namespace PlateOnHalfspace
         for (const unsigned int i : nodes)
           n_in += contact.in_contact[i];
         area += cell_area;
-        contact_area += cell_area * n_in / std::max<std::size_t>(nodes.size(), 1);
+        contact_area +=
+          cell_area * n_in / std::max<std::size_t>(nodes.size(), 1);
       }
     summary.contact_area_fraction = contact_area / area;
     summary.contact_nodes =
@@ -162,26 +166,26 @@ namespace PlateOnHalfspace
   }
 
   PointValues
-  ResultsOutput::point_values(const MindlinPlate &  plate,
+  ResultsOutput::point_values(const MindlinPlate   &plate,
                               const Vector<double> &solution,
                               const Vector<double> &pressure_field,
-                              const Point<2> &      x) const
+                              const Point<2>       &x) const
   {
     PointValues values;
-    values.location = x;
-    values.w        = plate.point_value(solution, x, 0);
-    values.q        = plate.point_value(pressure_field, x, 0);
+    values.location       = x;
+    values.w              = plate.point_value(solution, x, 0);
+    values.q              = plate.point_value(pressure_field, x, 0);
     const auto    located = plate.locate(x);
-    const Moments m       = plate.moments(located.first, located.second, solution);
-    values.mx             = m.mx;
-    values.my             = m.my;
+    const Moments m = plate.moments(located.first, located.second, solution);
+    values.mx       = m.mx;
+    values.my       = m.my;
     return values;
   }
 
   void
   ResultsOutput::write_summary(const std::vector<CycleSummary> &cycles,
-                               const std::string &              symmetry,
-                               const bool converged) const
+                               const std::string               &symmetry,
+                               const bool                       converged) const
   {
     nlohmann::ordered_json summary;
     summary["converged"] = converged;
@@ -227,11 +231,11 @@ namespace PlateOnHalfspace
 
   void
   ResultsOutput::write_profile(const unsigned int    cycle,
-                               const MindlinPlate &  plate,
+                               const MindlinPlate   &plate,
                                const Vector<double> &solution,
-                               const ContactState &  contact,
-                               const Point<2> &      start,
-                               const Point<2> &      end,
+                               const ContactState   &contact,
+                               const Point<2>       &start,
+                               const Point<2>       &end,
                                const unsigned int    n_points) const
   {
     const Vector<double> pressure =
@@ -250,31 +254,29 @@ namespace PlateOnHalfspace
           {
             continue; // off the plate (e.g. across a disk's polygon)
           }
-        csv << x[0] << ',' << x[1] << ',' << values.w << ',' << values.q
-            << ',' << values.mx << ',' << values.my << '\n';
+        csv << x[0] << ',' << x[1] << ',' << values.w << ',' << values.q << ','
+            << values.mx << ',' << values.my << '\n';
       }
     write_file("profile-" + two_digits(cycle) + ".csv", csv.str());
   }
 
   void
   ResultsOutput::write_vtu(const unsigned int    cycle,
-                           const MindlinPlate &  plate,
+                           const MindlinPlate   &plate,
                            const Vector<double> &solution,
-                           const ContactState &  contact)
+                           const ContactState   &contact)
   {
     // q, gap and the contact indicator share the Q2 space of w: pack them
     // into the three components of one vector on the plate's FESystem.
-    const auto &   fe = plate.get_fe();
+    const auto    &fe = plate.get_fe();
     Vector<double> indicator(contact.q.size());
     for (unsigned int i = 0; i < indicator.size(); ++i)
       indicator[i] = contact.in_contact[i] ? 1. : 0.;
-    const Vector<double> fields[3] = {plate.foundation_field_to_solution(
-                                        contact.q),
-                                      plate.foundation_field_to_solution(
-                                        contact.gap),
-                                      plate.foundation_field_to_solution(
-                                        indicator)};
-    Vector<double> packed(solution.size());
+    const Vector<double> fields[3] = {
+      plate.foundation_field_to_solution(contact.q),
+      plate.foundation_field_to_solution(contact.gap),
+      plate.foundation_field_to_solution(indicator)};
+    Vector<double>                       packed(solution.size());
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
       {
@@ -288,9 +290,10 @@ namespace PlateOnHalfspace
     DataOut<2> data_out;
     data_out.attach_dof_handler(plate.get_dof_handler());
     std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      solution_kind = {DataComponentInterpretation::component_is_scalar,
-                       DataComponentInterpretation::component_is_part_of_vector,
-                       DataComponentInterpretation::component_is_part_of_vector};
+      solution_kind = {
+        DataComponentInterpretation::component_is_scalar,
+        DataComponentInterpretation::component_is_part_of_vector,
+        DataComponentInterpretation::component_is_part_of_vector};
     data_out.add_data_vector(solution,
                              std::vector<std::string>{"w", "beta", "beta"},
                              DataOut<2>::type_dof_data,
@@ -302,7 +305,7 @@ namespace PlateOnHalfspace
     data_out.add_data_vector(solution, moments);
     data_out.build_patches(2);
 
-    const std::string name = "solution-" + two_digits(cycle) + ".vtu";
+    const std::string  name = "solution-" + two_digits(cycle) + ".vtu";
     std::ostringstream vtu;
     data_out.write_vtu(vtu);
     write_file(name, vtu.str());

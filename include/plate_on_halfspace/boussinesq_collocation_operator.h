@@ -23,7 +23,7 @@ namespace PlateOnHalfspace
     explicit BoussinesqCollocationOperator(const double alpha);
 
     void
-    build(const FoundationSpace &  space,
+    build(const FoundationSpace   &space,
           const std::vector<bool> &cell_in_foundation) override;
     void
     set_contact_nodes(const std::vector<bool> &in_contact) override;

@@ -29,7 +29,7 @@ namespace PlateOnHalfspace
                                const unsigned int singular_order);
 
     void
-    build(const FoundationSpace &  space,
+    build(const FoundationSpace   &space,
           const std::vector<bool> &cell_in_foundation) override;
     void
     set_contact_nodes(const std::vector<bool> &in_contact) override;
@@ -62,8 +62,8 @@ namespace PlateOnHalfspace
     }
 
   private:
-    const double              alpha;
-    const unsigned int        singular_order;
+    const double       alpha;
+    const unsigned int singular_order;
     /** Settlement of the whole plate from pressures on the foundation cells. */
     LAPACKFullMatrix<double> flexibility;
     /** A over foundation cells only; used when some cells are excluded. */

@@ -71,15 +71,15 @@ namespace PlateOnHalfspace
     /** psi(p) of cell @p c at the reference point @p p. */
     void
     node_shape_values(const unsigned int   c,
-                      const Point<2> &     p,
+                      const Point<2>      &p,
                       std::vector<double> &values) const;
 
     bool
     touching(const unsigned int k, const unsigned int l) const;
 
     void
-    integrate_regular(const Table &       outer,
-                      const Table &       inner,
+    integrate_regular(const Table        &outer,
+                      const Table        &inner,
                       FullMatrix<double> &block) const;
 
     void
@@ -87,8 +87,8 @@ namespace PlateOnHalfspace
                        const unsigned int  l,
                        FullMatrix<double> &block) const;
 
-    const FoundationSpace &space;
-    const unsigned int     singular_order;
+    const FoundationSpace    &space;
+    const unsigned int        singular_order;
     std::vector<unsigned int> orders; ///< Gauss orders of the tables
     std::vector<CellData>     cell_data;
   };

@@ -48,7 +48,7 @@ namespace PlateOnHalfspace
     ContactSolver(const Parameters::Contact &contact,
                   const bool                 tensionless,
                   const unsigned int         verbosity,
-                  std::ostream &             log);
+                  std::ostream              &log);
 
     /**
      * Solve for the plate condensed to @p plate_stiffness and @p plate_load
@@ -57,28 +57,28 @@ namespace PlateOnHalfspace
      */
     ContactState
     solve(const LAPACKFullMatrix<double> &plate_stiffness,
-          const Vector<double> &          plate_load,
-          FoundationOperator &            foundation,
-          const FoundationSpace &         space,
-          const std::vector<bool> &       initial_contact) const;
+          const Vector<double>           &plate_load,
+          FoundationOperator             &foundation,
+          const FoundationSpace          &space,
+          const std::vector<bool>        &initial_contact) const;
 
   private:
     /** One coupled solve on the foundation's current contact set. */
     void
     solve_coupled(const LAPACKFullMatrix<double> &plate_stiffness,
-                  const Vector<double> &          plate_load,
-                  const FoundationOperator &      foundation,
-                  ContactState &                  state) const;
+                  const Vector<double>           &plate_load,
+                  const FoundationOperator       &foundation,
+                  ContactState                   &state) const;
 
     /** Fill gap and complementarity_violation of @p state. */
     void
     evaluate_conditions(const FoundationOperator &foundation,
-                        ContactState &            state) const;
+                        ContactState             &state) const;
 
     const Parameters::Contact contact;
     const bool                tensionless;
     const unsigned int        verbosity;
-    std::ostream &            log;
+    std::ostream             &log;
   };
 } // namespace PlateOnHalfspace
 

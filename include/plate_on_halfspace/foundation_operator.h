@@ -49,7 +49,7 @@ namespace PlateOnHalfspace
      * start in contact.
      */
     virtual void
-    build(const FoundationSpace &  space,
+    build(const FoundationSpace   &space,
           const std::vector<bool> &cell_in_foundation) = 0;
 
     /**
@@ -91,7 +91,7 @@ namespace PlateOnHalfspace
     void
     gap(const Vector<double> &w,
         const Vector<double> &q,
-        Vector<double> &      g) const;
+        Vector<double>       &g) const;
 
     /** Contact flags of the nodes. */
     const std::vector<bool> &
@@ -125,7 +125,7 @@ namespace PlateOnHalfspace
   protected:
     /** Assemble M over the foundation cells and mark supported nodes. */
     void
-    build_mass_matrix(const FoundationSpace &  space,
+    build_mass_matrix(const FoundationSpace   &space,
                       const std::vector<bool> &cell_in_foundation);
 
     /** Contact set restricted to supported nodes; returns the index list. */

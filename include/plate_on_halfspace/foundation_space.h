@@ -12,6 +12,7 @@
 #define plate_on_halfspace_foundation_space_h
 
 #include <deal.II/base/point.h>
+
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
@@ -67,8 +68,8 @@ namespace PlateOnHalfspace
      */
     void
     assemble_mass_matrix(const std::vector<bool> &cell_in_foundation,
-                         SparsityPattern &        sparsity,
-                         SparseMatrix<double> &   matrix) const;
+                         SparsityPattern         &sparsity,
+                         SparseMatrix<double>    &matrix) const;
 
     /** Integral of each foundation shape function: m_i = ∫ φ_i. */
     Vector<double>

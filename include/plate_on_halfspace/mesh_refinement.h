@@ -8,6 +8,7 @@
 #define plate_on_halfspace_mesh_refinement_h
 
 #include <deal.II/grid/tria.h>
+
 #include <deal.II/lac/vector.h>
 
 #include <plate_on_halfspace/contact_solver.h>
@@ -25,10 +26,10 @@ namespace PlateOnHalfspace
    */
   bool
   mark_cells_for_refinement(const Parameters::Adaptivity &adaptivity,
-                            const MindlinPlate &          plate,
-                            const Vector<double> &        solution,
-                            const ContactState &          contact,
-                            Triangulation<2> &            triangulation);
+                            const MindlinPlate           &plate,
+                            const Vector<double>         &solution,
+                            const ContactState           &contact,
+                            Triangulation<2>             &triangulation);
 } // namespace PlateOnHalfspace
 
 #endif

@@ -10,9 +10,12 @@
 #define plate_on_halfspace_mindlin_plate_h
 
 #include <deal.II/dofs/dof_handler.h>
+
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q1.h>
+
 #include <deal.II/grid/tria.h>
+
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/sparse_direct.h>
@@ -43,7 +46,7 @@ namespace PlateOnHalfspace
   class MindlinPlate
   {
   public:
-    MindlinPlate(const Parameters::Plate &         plate,
+    MindlinPlate(const Parameters::Plate          &plate,
                  const Parameters::Discretization &discretization);
 
     /**
@@ -106,8 +109,8 @@ namespace PlateOnHalfspace
     /** Moments at the reference point @p p of @p cell. */
     Moments
     moments(const typename DoFHandler<2>::active_cell_iterator &cell,
-            const Point<2> &                                    p,
-            const Vector<double> &                              solution) const;
+            const Point<2>                                     &p,
+            const Vector<double>                               &solution) const;
 
     /** Cell of the plate containing @p x and the reference point there. */
     std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
@@ -116,7 +119,7 @@ namespace PlateOnHalfspace
     /** Value of component @p component of @p solution at @p x. */
     double
     point_value(const Vector<double> &solution,
-                const Point<2> &      x,
+                const Point<2>       &x,
                 const unsigned int    component = 0) const;
 
     const DoFHandler<2> &
@@ -185,7 +188,7 @@ namespace PlateOnHalfspace
     FESystem<2>               fe;
     MappingQ1<2>              mapping;
     DoFHandler<2>             dof_handler;
-    const Triangulation<2> *  attached_triangulation = nullptr;
+    const Triangulation<2>   *attached_triangulation = nullptr;
     AffineConstraints<double> constraints;
     SparsityPattern           sparsity;
     SparseMatrix<double>      stiffness;
@@ -193,8 +196,8 @@ namespace PlateOnHalfspace
     double                    total_load = 0;
 
     std::vector<types::global_dof_index> foundation_dofs;
-    std::vector<int>      foundation_index; ///< per DoF, -1 if none
-    FoundationSpace       foundation_space;
+    std::vector<int> foundation_index; ///< per DoF, -1 if none
+    FoundationSpace  foundation_space;
 
     /** K with the foundation rows/columns replaced by the identity. */
     SparseMatrix<double> rest_matrix;

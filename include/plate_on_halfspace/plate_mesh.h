@@ -20,9 +20,9 @@ namespace PlateOnHalfspace
    * quadrilaterals.
    */
   void
-  make_plate_mesh(const Parameters::Plate &         plate,
+  make_plate_mesh(const Parameters::Plate          &plate,
                   const Parameters::Discretization &discretization,
-                  Triangulation<2> &                triangulation);
+                  Triangulation<2>                 &triangulation);
 } // namespace PlateOnHalfspace
 
 #endif

@@ -7,7 +7,9 @@
 #define plate_on_halfspace_plate_on_halfspace_problem_h
 
 #include <deal.II/base/convergence_table.h>
+
 #include <deal.II/grid/tria.h>
+
 #include <deal.II/lac/vector.h>
 
 #include <plate_on_halfspace/contact_solver.h>
@@ -31,7 +33,7 @@ namespace PlateOnHalfspace
   public:
     /** @p log receives the per-cycle and per-iteration lines. */
     PlateOnHalfspaceProblem(const SceneParameters &parameters,
-                            std::ostream &         log);
+                            std::ostream          &log);
 
     /**
      * Run all cycles and the verification checks. Throws on bad input or a
@@ -81,16 +83,16 @@ namespace PlateOnHalfspace
     bool
     run_checks() const;
 
-    const SceneParameters                parameters;
-    std::ostream &                       log;
-    Triangulation<2>                     triangulation;
-    std::unique_ptr<MindlinPlate>        mindlin_plate;
-    std::unique_ptr<FoundationOperator>  foundation_operator;
-    Vector<double>                       plate_solution;
-    ContactState                         contact;
-    std::vector<CycleSummary>            cycle_summaries;
-    ConvergenceTable                     convergence;
-    std::unique_ptr<ResultsOutput>       output;
+    const SceneParameters               parameters;
+    std::ostream                       &log;
+    Triangulation<2>                    triangulation;
+    std::unique_ptr<MindlinPlate>       mindlin_plate;
+    std::unique_ptr<FoundationOperator> foundation_operator;
+    Vector<double>                      plate_solution;
+    ContactState                        contact;
+    std::vector<CycleSummary>           cycle_summaries;
+    ConvergenceTable                    convergence;
+    std::unique_ptr<ResultsOutput>      output;
   };
 } // namespace PlateOnHalfspace
 

@@ -52,11 +52,13 @@ namespace PlateOnHalfspace
     Point<2>
     inverse_map(const Point<2> &x) const;
 
-    /** Whether the physical point lies in the closed cell (tolerance relative to the cell size). */
+    /** Whether the physical point lies in the closed cell (tolerance relative
+     * to the cell size). */
     bool
     contains(const Point<2> &x) const;
 
-    /** Whether the cell is an axis-aligned rectangle (to a relative tolerance). */
+    /** Whether the cell is an axis-aligned rectangle (to a relative tolerance).
+     */
     bool
     is_axis_aligned_rectangle(const double relative_tolerance = 1e-10) const;
 
@@ -92,8 +94,8 @@ namespace PlateOnHalfspace
    */
   Quadrature<2>
   quadrature_on_rectangle_part(const BilinearQuadrilateral &cell,
-                               const Point<2> &             lower,
-                               const Point<2> &             upper,
+                               const Point<2>              &lower,
+                               const Point<2>              &upper,
                                const unsigned int           n_points_1d);
 
   /**
@@ -109,7 +111,7 @@ namespace PlateOnHalfspace
    */
   Quadrature<2>
   quadrature_on_disk_part(const BilinearQuadrilateral &cell,
-                          const Point<2> &             centre,
+                          const Point<2>              &centre,
                           const double                 radius,
                           const unsigned int           n_points_1d);
 } // namespace PlateOnHalfspace

@@ -8,6 +8,7 @@
 
 #include <deal.II/base/convergence_table.h>
 #include <deal.II/base/point.h>
+
 #include <deal.II/lac/vector.h>
 
 #include <plate_on_halfspace/contact_solver.h>
@@ -41,7 +42,7 @@ namespace PlateOnHalfspace
     double       wall_time_s = 0;
     std::string  foundation_storage;
     std::size_t  foundation_memory_bytes = 0;
-    bool         converged = true;
+    bool         converged               = true;
     std::vector<PointValues> probes;
   };
 
@@ -61,40 +62,40 @@ namespace PlateOnHalfspace
      * 2x2 Gauss points of every cell).
      */
     void
-    evaluate(const MindlinPlate &  plate,
+    evaluate(const MindlinPlate   &plate,
              const Vector<double> &solution,
-             const ContactState &  contact,
-             CycleSummary &        summary) const;
+             const ContactState   &contact,
+             CycleSummary         &summary) const;
 
     /** w, q, Mx, My at @p x (q from the FE pressure field). */
     PointValues
-    point_values(const MindlinPlate &  plate,
+    point_values(const MindlinPlate   &plate,
                  const Vector<double> &solution,
                  const Vector<double> &pressure_field,
-                 const Point<2> &      x) const;
+                 const Point<2>       &x) const;
 
     /** summary.json over all cycles so far. */
     void
     write_summary(const std::vector<CycleSummary> &cycles,
-                  const std::string &              symmetry,
+                  const std::string               &symmetry,
                   const bool                       converged) const;
 
     /** profile-NN.csv along a line (points off the plate are skipped). */
     void
     write_profile(const unsigned int    cycle,
-                  const MindlinPlate &  plate,
+                  const MindlinPlate   &plate,
                   const Vector<double> &solution,
-                  const ContactState &  contact,
-                  const Point<2> &      start,
-                  const Point<2> &      end,
+                  const ContactState   &contact,
+                  const Point<2>       &start,
+                  const Point<2>       &end,
                   const unsigned int    n_points) const;
 
     /** solution-NN.vtu and solution.pvd. */
     void
     write_vtu(const unsigned int    cycle,
-              const MindlinPlate &  plate,
+              const MindlinPlate   &plate,
               const Vector<double> &solution,
-              const ContactState &  contact);
+              const ContactState   &contact);
 
     /** convergence.txt (ConvergenceTable text). */
     void
@@ -105,7 +106,7 @@ namespace PlateOnHalfspace
     write_file(const std::string &name, const std::string &text) const;
 
   private:
-    std::string                                  directory;
+    std::string                                 directory;
     std::vector<std::pair<double, std::string>> pvd_records;
   };
 } // namespace PlateOnHalfspace

@@ -35,9 +35,9 @@ namespace
   double
   numerical_integral(const Point<2> &x, const Point<2> &lo, const Point<2> &hi)
   {
-    const double    size[2] = {hi[0] - lo[0], hi[1] - lo[1]};
-    const double    diameter = lo.distance(hi);
-    const auto      integrate = [&](const Quadrature<2> &quadrature) {
+    const double size[2]   = {hi[0] - lo[0], hi[1] - lo[1]};
+    const double diameter  = lo.distance(hi);
+    const auto   integrate = [&](const Quadrature<2> &quadrature) {
       double sum = 0;
       for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
@@ -64,8 +64,8 @@ namespace
                  numerical_integral(x, lower, hi);
         }
 
-    const bool at_corner = (x[0] == lo[0] || x[0] == hi[0]) &&
-                           (x[1] == lo[1] || x[1] == hi[1]);
+    const bool at_corner =
+      (x[0] == lo[0] || x[0] == hi[0]) && (x[1] == lo[1] || x[1] == hi[1]);
     const unsigned int longer = (size[0] >= size[1] ? 0 : 1);
     if (at_corner && size[longer] <= 2. * size[1 - longer])
       return integrate(QSplit<2>(QDuffy(40, 1.0),
@@ -89,8 +89,8 @@ namespace
                     relative_tolerance * std::abs(reference);
     std::ostringstream tolerance;
     tolerance << relative_tolerance;
-    deallog << name << ": computed " << computed << " reference "
-            << reference << " (rel. tol. " << tolerance.str() << ") "
+    deallog << name << ": computed " << computed << " reference " << reference
+            << " (rel. tol. " << tolerance.str() << ") "
             << (ok ? "ok" : "FAILED") << std::endl;
     AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
   }

@@ -26,18 +26,23 @@ namespace
   const double pi = numbers::PI;
 
   BilinearQuadrilateral
-  rectangle_cell(const double x0, const double x1, const double y0, const double y1)
+  rectangle_cell(const double x0,
+                 const double x1,
+                 const double y0,
+                 const double y1)
   {
-    return BilinearQuadrilateral(std::array<Point<2>, 4>{
-      {Point<2>(x0, y0), Point<2>(x1, y0), Point<2>(x0, y1), Point<2>(x1, y1)}});
+    return BilinearQuadrilateral(std::array<Point<2>, 4>{{Point<2>(x0, y0),
+                                                          Point<2>(x1, y0),
+                                                          Point<2>(x0, y1),
+                                                          Point<2>(x1, y1)}});
   }
 
 
 
   /** Sum of w f(x) over the rule, f evaluated at the physical point. */
   double
-  integrate(const BilinearQuadrilateral &        cell,
-            const Quadrature<2> &                quadrature,
+  integrate(const BilinearQuadrilateral           &cell,
+            const Quadrature<2>                   &quadrature,
             const std::function<double(Point<2>)> &f)
   {
     double sum = 0;
@@ -57,8 +62,8 @@ namespace
     const bool ok = std::abs(computed - reference) <= absolute_tolerance;
     std::ostringstream tolerance;
     tolerance << absolute_tolerance;
-    deallog << name << ": computed " << computed << " reference "
-            << reference << " (abs. tol. " << tolerance.str() << ") "
+    deallog << name << ": computed " << computed << " reference " << reference
+            << " (abs. tol. " << tolerance.str() << ") "
             << (ok ? "ok" : "FAILED") << std::endl;
     AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
   }
@@ -105,7 +110,7 @@ namespace
                   const double                 ry0,
                   const double                 ry1)
   {
-    const auto &                v = cell.get_vertices();
+    const auto                 &v       = cell.get_vertices();
     const std::vector<Point<2>> polygon = {v[0], v[1], v[3], v[2]};
 
     std::vector<double> heights = {ry0, ry1};
@@ -115,7 +120,8 @@ namespace
         heights.push_back(p[1]);
         for (const double x : {rx0, rx1})
           if ((p[0] - x) * (q[0] - x) < 0)
-            heights.push_back(p[1] + (x - p[0]) / (q[0] - p[0]) * (q[1] - p[1]));
+            heights.push_back(p[1] +
+                              (x - p[0]) / (q[0] - p[0]) * (q[1] - p[1]));
       }
     std::sort(heights.begin(), heights.end());
 
@@ -126,9 +132,10 @@ namespace
           const Point<2> &p = polygon[i], &q = polygon[(i + 1) % 4];
           if ((p[1] - y) * (q[1] - y) <= 0 && p[1] != q[1])
             {
-              const double x = p[0] + (y - p[1]) / (q[1] - p[1]) * (q[0] - p[0]);
-              xl             = std::min(xl, x);
-              xr             = std::max(xr, x);
+              const double x =
+                p[0] + (y - p[1]) / (q[1] - p[1]) * (q[0] - p[0]);
+              xl = std::min(xl, x);
+              xr = std::max(xr, x);
             }
         }
       return std::make_pair(std::max(xl, rx0), std::min(xr, rx1));
@@ -144,9 +151,9 @@ namespace
           continue;
         for (unsigned int q = 0; q < gauss.size(); ++q)
           {
-            const double y  = a + (b - a) * gauss.point(q)[0];
-            const double w  = gauss.weight(q) * (b - a);
-            const auto   s  = slice(y);
+            const double y = a + (b - a) * gauss.point(q)[0];
+            const double w = gauss.weight(q) * (b - a);
+            const auto   s = slice(y);
             if (!(s.second > s.first))
               continue;
             const double xl = s.first, xr = s.second;
@@ -185,8 +192,8 @@ main()
     deallog << "(a) cell [0,2]x[1,2.5] inside the rectangle [-1,5]x[0,3]"
             << std::endl;
     const auto cell = rectangle_cell(0, 2, 1, 2.5);
-    const auto q3   = quadrature_on_rectangle_part(
-      cell, Point<2>(-1, 0), Point<2>(5, 3), 3);
+    const auto q3 =
+      quadrature_on_rectangle_part(cell, Point<2>(-1, 0), Point<2>(5, 3), 3);
     check_rule("n=3", q3);
     check("area", integrate(cell, q3, one), 3., 1e-13);
     // int x^2 = 8/3, int y^2 = 4.875, int x = 2, int y = 2.625
@@ -208,8 +215,8 @@ main()
       }
     check("s^2 t^2 in reference coordinates (n=3)", sum, 3. / 9, 1e-13);
     // higher n: QGaussSimplex(4) and the collapsed Gauss rule beyond
-    const auto q4 = quadrature_on_rectangle_part(
-      cell, Point<2>(-1, 0), Point<2>(5, 3), 4);
+    const auto q4 =
+      quadrature_on_rectangle_part(cell, Point<2>(-1, 0), Point<2>(5, 3), 4);
     check("x^3 y^4 (n=4, degree 7)",
           integrate(cell,
                     q4,
@@ -218,8 +225,8 @@ main()
                     }),
           4. * (std::pow(2.5, 5) - 1) / 5,
           1e-11);
-    const auto q5 = quadrature_on_rectangle_part(
-      cell, Point<2>(-1, 0), Point<2>(5, 3), 5);
+    const auto q5 =
+      quadrature_on_rectangle_part(cell, Point<2>(-1, 0), Point<2>(5, 3), 5);
     check_rule("n=5", q5);
     check("x^4 y^5 (n=5, degree 9)",
           integrate(cell,
@@ -237,13 +244,13 @@ main()
     deallog << "(b) cell [1,3]x[-1,0.5] and rectangles" << std::endl;
     const auto cell = rectangle_cell(1, 3, -1, 0.5);
     const std::vector<std::array<double, 4>> rectangles = {
-      {{0.25, 2.2, -3, 0}},   // overlap [1,2.2]x[-1,0]
+      {{0.25, 2.2, -3, 0}},     // overlap [1,2.2]x[-1,0]
       {{1.5, 2.5, -0.5, 0.25}}, // inside the cell
-      {{2.9, 10, 0.4, 7}},    // corner [2.9,3]x[0.4,0.5]
-      {{-5, 5, -5, 5}},       // the whole cell
-      {{1.2, 1.7, -7, 7}},    // a strip across the cell
-      {{3, 4, 0, 1}},         // touches the edge x = 3 only
-      {{4, 5, 0, 1}}};        // no overlap
+      {{2.9, 10, 0.4, 7}},      // corner [2.9,3]x[0.4,0.5]
+      {{-5, 5, -5, 5}},         // the whole cell
+      {{1.2, 1.7, -7, 7}},      // a strip across the cell
+      {{3, 4, 0, 1}},           // touches the edge x = 3 only
+      {{4, 5, 0, 1}}};          // no overlap
     for (const auto &r : rectangles)
       {
         std::ostringstream name;
@@ -278,8 +285,11 @@ main()
   // (c) A skewed (non-parallelogram) cell.
   {
     deallog << "(c) skewed cell (0,0) (2,0.2) (0.3,1.5) (2.4,1.9)" << std::endl;
-    const BilinearQuadrilateral cell(std::array<Point<2>, 4>{
-      {Point<2>(0, 0), Point<2>(2, 0.2), Point<2>(0.3, 1.5), Point<2>(2.4, 1.9)}});
+    const BilinearQuadrilateral cell(
+      std::array<Point<2>, 4>{{Point<2>(0, 0),
+                               Point<2>(2, 0.2),
+                               Point<2>(0.3, 1.5),
+                               Point<2>(2.4, 1.9)}});
 
     // inverse_map and contains
     double max_error = 0;
@@ -287,8 +297,8 @@ main()
       for (const double t : {0., 0.29, 0.5, 0.91, 1.})
         {
           const Point<2> p(s, t);
-          max_error = std::max(max_error,
-                               cell.inverse_map(cell.map(p)).distance(p));
+          max_error =
+            std::max(max_error, cell.inverse_map(cell.map(p)).distance(p));
         }
     check_true("inverse_map(map(p)) = p to 1e-13", max_error <= 1e-13);
     check_true("contains: interior point", cell.contains(Point<2>(1.2, 0.9)));
@@ -304,16 +314,16 @@ main()
     check("diameter", cell.diameter(), std::sqrt(2.4 * 2.4 + 1.9 * 1.9), 1e-15);
 
     const std::vector<std::array<double, 4>> rectangles = {
-      {{0.1, 2.2, 0.1, 1.7}},  // cuts all four edges
-      {{-1, 1, -1, 0.7}},      // around vertex 0
-      {{1.9, 5, 0.05, 5}},     // around vertices 1 and 3
-      {{-5, 5, -5, 5}}};       // the whole cell
+      {{0.1, 2.2, 0.1, 1.7}}, // cuts all four edges
+      {{-1, 1, -1, 0.7}},     // around vertex 0
+      {{1.9, 5, 0.05, 5}},    // around vertices 1 and 3
+      {{-5, 5, -5, 5}}};      // the whole cell
     for (const auto &r : rectangles)
       {
         std::ostringstream name;
         name << "[" << r[0] << "," << r[1] << "]x[" << r[2] << "," << r[3]
              << "]";
-        const auto exact = slice_integrals(cell, r[0], r[1], r[2], r[3]);
+        const auto exact      = slice_integrals(cell, r[0], r[1], r[2], r[3]);
         const auto quadrature = quadrature_on_rectangle_part(
           cell, Point<2>(r[0], r[2]), Point<2>(r[1], r[3]), 3);
         check_rule(name.str(), quadrature);
@@ -350,9 +360,9 @@ main()
     const unsigned int n    = 10;
     const auto         unit = rectangle_cell(0, 1, 0, 1);
 
-    const auto check_disk = [&](const std::string &          name,
+    const auto check_disk = [&](const std::string           &name,
                                 const BilinearQuadrilateral &cell,
-                                const Point<2> &             centre,
+                                const Point<2>              &centre,
                                 const double                 R,
                                 const double                 exact_area) {
       const auto quadrature = quadrature_on_disk_part(cell, centre, R, n);
@@ -362,14 +372,17 @@ main()
           return quadrature;
         }
       check_rule(name, quadrature);
-      check(name + ", area", integrate(cell, quadrature, one), exact_area, 1e-13);
+      check(name + ", area",
+            integrate(cell, quadrature, one),
+            exact_area,
+            1e-13);
       return quadrature;
     };
 
     {
       const auto cell = rectangle_cell(0, 2, 0, 1.5);
-      const auto q =
-        check_disk("disk inside the cell", cell, Point<2>(0.9, 0.8), 0.3, pi * 0.09);
+      const auto q    = check_disk(
+        "disk inside the cell", cell, Point<2>(0.9, 0.8), 0.3, pi * 0.09);
       check("disk inside the cell, int x",
             integrate(cell, q, x),
             pi * 0.09 * 0.9,
@@ -421,10 +434,14 @@ main()
     {
       const auto q = check_disk(
         "disk containing the whole cell", unit, Point<2>(0.5, 0.5), 1, 1);
-      check("disk containing the whole cell, int x", integrate(unit, q, x), 0.5, 1e-14);
+      check("disk containing the whole cell, int x",
+            integrate(unit, q, x),
+            0.5,
+            1e-14);
     }
     check_disk("disk far away", unit, Point<2>(3, 3), 1, 0);
-    check_disk("disk touching the cell from outside", unit, Point<2>(2, 0.5), 1, 0);
+    check_disk(
+      "disk touching the cell from outside", unit, Point<2>(2, 0.5), 1, 0);
 
     // 2x2 meshes of [0,2]^2, the second with a displaced interior vertex and
     // edge midpoints (non-parallelogram cells): the parts add up to the disk.
@@ -450,18 +467,18 @@ main()
             for (unsigned int i = 0; i < 2; ++i)
               for (unsigned int j = 0; j < 2; ++j)
                 {
-                  const BilinearQuadrilateral cell(std::array<Point<2>, 4>{
-                                                    {grid[i][j],
-                                                     grid[i + 1][j],
-                                                     grid[i][j + 1],
-                                                     grid[i + 1][j + 1]}});
-                  const auto                  q =
+                  const BilinearQuadrilateral cell(
+                    std::array<Point<2>, 4>{{grid[i][j],
+                                             grid[i + 1][j],
+                                             grid[i][j + 1],
+                                             grid[i + 1][j + 1]}});
+                  const auto q =
                     quadrature_on_disk_part(cell, disk.first, disk.second, n);
                   check_rule(mesh + " cell " + std::to_string(2 * j + i), q);
                   area += integrate(cell, q, one);
                   moment += integrate(cell, q, x);
                 }
-            const double R = disk.second;
+            const double       R = disk.second;
             std::ostringstream name;
             name << mesh << ", disk at (" << disk.first << ") R=" << R;
             check(name.str() + ", sum of areas", area, pi * R * R, 1e-12);
