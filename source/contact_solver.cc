@@ -133,7 +133,6 @@ namespace PlateOnHalfspace
   {
     ContactState state;
     state.cell_in_foundation.assign(space.cells.size(), true);
-    foundation.build(space, {});
 
     if (!tensionless)
       {

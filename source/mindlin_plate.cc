@@ -1,6 +1,5 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/quadrature_lib.h>
-#include <deal.II/base/thread_management.h>
 
 #include <deal.II/dofs/dof_tools.h>
 
@@ -341,65 +340,71 @@ namespace PlateOnHalfspace
   }
 
   void
-  MindlinPlate::factorise_rest_block()
-  {
-    // K with the foundation rows and columns replaced by the identity: its
-    // inverse applied to a vector with zero foundation entries is K_rr^{-1}.
-    rest_matrix.reinit(sparsity);
-    rest_matrix.copy_from(stiffness);
-    for (unsigned int row = 0; row < dof_handler.n_dofs(); ++row)
-      for (auto entry = rest_matrix.begin(row); entry != rest_matrix.end(row);
-           ++entry)
-        if (foundation_index[row] >= 0 ||
-            foundation_index[entry->column()] >= 0)
-          entry->value() = (row == entry->column() ? 1. : 0.);
-    rest_solver.initialize(rest_matrix);
-  }
-
-  void
   MindlinPlate::condense(LAPACKFullMatrix<double> &condensed,
-                         Vector<double>           &condensed_load)
+                         Vector<double> &          condensed_load)
   {
-    factorise_rest_block();
-    const unsigned int nf = foundation_dofs.size();
-    const unsigned int n  = dof_handler.n_dofs();
-    condensed.reinit(nf);
+    // r: every unconstrained DoF that is not a foundation node (rotations,
+    // and w-DoFs a test may have supported).
+    rest_dofs.clear();
+    for (types::global_dof_index i = 0; i < dof_handler.n_dofs(); ++i)
+      if (foundation_index[i] < 0 && !constraints.is_constrained(i))
+        rest_dofs.push_back(i);
+    std::vector<int> rest_position(dof_handler.n_dofs(), -1);
+    for (unsigned int c = 0; c < rest_dofs.size(); ++c)
+      rest_position[rest_dofs[c]] = c;
+    rest_factor.factorize(stiffness, rest_dofs);
 
-    // Column j of K̄: (K (e_j - K_rr^{-1} K_rj))_f. Columns are independent:
-    // split them over the threads.
-    const auto compute_columns = [&](const unsigned int begin,
-                                     const unsigned int end) {
-      Vector<double> column(n), correction(n), product(n);
-      for (unsigned int j = begin; j < end; ++j)
-        {
-          const auto dof_j = foundation_dofs[j];
-          column           = 0;
-          for (auto entry = stiffness.begin(dof_j);
-               entry != stiffness.end(dof_j);
+    const unsigned int nf = foundation_dofs.size(), nr = rest_dofs.size();
+    condensed.reinit(nf);
+    condensed = 0.;
+    // K_ff
+    for (unsigned int i = 0; i < nf; ++i)
+      for (auto entry = stiffness.begin(foundation_dofs[i]);
+           entry != stiffness.end(foundation_dofs[i]);
+           ++entry)
+        if (foundation_index[entry->column()] >= 0)
+          condensed(i, foundation_index[entry->column()]) = entry->value();
+
+    // - K_fr K_rr^{-1} K_rf, a block of columns at a time (K symmetric: row
+    // f_j of K holds column j of K_rf).
+    const unsigned int  block_size = 256;
+    std::vector<double> block;
+    for (unsigned int first = 0; first < nf; first += block_size)
+      {
+        const unsigned int k = std::min(block_size, nf - first);
+        block.assign(std::size_t(nr) * k, 0.);
+        for (unsigned int jj = 0; jj < k; ++jj)
+          {
+            const auto dof = foundation_dofs[first + jj];
+            for (auto entry = stiffness.begin(dof); entry != stiffness.end(dof);
+                 ++entry)
+              if (rest_position[entry->column()] >= 0)
+                block[rest_position[entry->column()] + std::size_t(jj) * nr] =
+                  entry->value();
+          }
+        rest_factor.solve(block, k);
+        for (unsigned int i = 0; i < nf; ++i)
+          for (auto entry = stiffness.begin(foundation_dofs[i]);
+               entry != stiffness.end(foundation_dofs[i]);
                ++entry)
-            if (foundation_index[entry->column()] < 0)
-              column[entry->column()] = entry->value(); // K symmetric
-          rest_solver.vmult(correction, column);
-          correction *= -1.;
-          correction[dof_j] = 1.;
-          stiffness.vmult(product, correction);
-          for (unsigned int i = 0; i < nf; ++i)
-            condensed(i, j) = product[foundation_dofs[i]];
-        }
-    };
-    Threads::TaskGroup<void> tasks;
-    const unsigned int       n_chunks = MultithreadInfo::n_threads();
-    for (unsigned int c = 0; c < n_chunks; ++c)
-      tasks += Threads::new_task([&, c]() {
-        compute_columns(nf * c / n_chunks, nf * (c + 1) / n_chunks);
-      });
-    tasks.join_all();
+            if (rest_position[entry->column()] >= 0)
+              {
+                const double  v = entry->value();
+                const double *x = block.data() + rest_position[entry->column()];
+                for (unsigned int jj = 0; jj < k; ++jj)
+                  condensed(i, first + jj) -= v * x[std::size_t(jj) * nr];
+              }
+      }
 
     // P̄ = P_f - K_fr K_rr^{-1} P_r
-    Vector<double> rest_load(load), rest_solution(n), product(n);
-    for (const auto dof : foundation_dofs)
-      rest_load[dof] = 0;
-    rest_solver.vmult(rest_solution, rest_load);
+    std::vector<double> rest_load(nr);
+    for (unsigned int c = 0; c < nr; ++c)
+      rest_load[c] = load[rest_dofs[c]];
+    rest_factor.solve(rest_load, 1);
+    Vector<double> rest_solution(dof_handler.n_dofs()),
+      product(dof_handler.n_dofs());
+    for (unsigned int c = 0; c < nr; ++c)
+      rest_solution[rest_dofs[c]] = rest_load[c];
     stiffness.vmult(product, rest_solution);
     condensed_load.reinit(nf);
     for (unsigned int i = 0; i < nf; ++i)
@@ -409,7 +414,7 @@ namespace PlateOnHalfspace
 
   void
   MindlinPlate::expand(const Vector<double> &foundation_w,
-                       Vector<double>       &solution) const
+                       Vector<double> &      solution) const
   {
     const unsigned int n = dof_handler.n_dofs();
     Vector<double>     known(n), rhs(n);
@@ -418,11 +423,13 @@ namespace PlateOnHalfspace
     // r = K_rr^{-1} (P_r - K_rf w_f)
     stiffness.vmult(rhs, known);
     rhs.sadd(-1., 1., load);
-    for (const auto dof : foundation_dofs)
-      rhs[dof] = 0;
-    solution.reinit(n);
-    rest_solver.vmult(solution, rhs);
-    solution += known;
+    std::vector<double> rest(rest_dofs.size());
+    for (unsigned int c = 0; c < rest_dofs.size(); ++c)
+      rest[c] = rhs[rest_dofs[c]];
+    rest_factor.solve(rest, 1);
+    solution = known;
+    for (unsigned int c = 0; c < rest_dofs.size(); ++c)
+      solution[rest_dofs[c]] = rest[c];
     constraints.distribute(solution);
   }
 

@@ -17,6 +17,7 @@ namespace PlateOnHalfspace
     std::ostream          &log)
     : parameters(parameters)
     , log(log)
+    , timer_output(log, TimerOutput::never, TimerOutput::wall_times)
   {}
 
   bool
@@ -27,7 +28,10 @@ namespace PlateOnHalfspace
     mindlin_plate       = std::make_unique<MindlinPlate>(parameters.plate,
                                                    parameters.discretization);
     foundation_operator = create_foundation_operator(parameters);
-    mindlin_plate->setup(triangulation);
+    {
+      TimerOutput::Scope scope(timer_output, "plate setup");
+      mindlin_plate->setup(triangulation);
+    }
 
     std::vector<bool> seed;
     for (unsigned int cycle = 0; cycle < parameters.adaptivity.cycles; ++cycle)
@@ -45,6 +49,8 @@ namespace PlateOnHalfspace
           }
         solve_cycle(cycle, seed);
       }
+    if (parameters.output.verbosity > 1)
+      timer_output.print_summary();
     return run_checks();
   }
 
@@ -67,7 +73,10 @@ namespace PlateOnHalfspace
     triangulation.prepare_coarsening_and_refinement();
     transfer.prepare_for_coarsening_and_refinement(old_field);
     triangulation.execute_coarsening_and_refinement();
-    mindlin_plate->setup(triangulation);
+    {
+      TimerOutput::Scope scope(timer_output, "plate setup");
+      mindlin_plate->setup(triangulation);
+    }
 
     Vector<double> new_field(mindlin_plate->get_dof_handler().n_dofs());
     transfer.interpolate(old_field, new_field);
@@ -103,18 +112,29 @@ namespace PlateOnHalfspace
 
     LAPACKFullMatrix<double> plate_stiffness;
     Vector<double>           plate_load;
-    plate.condense(plate_stiffness, plate_load);
+    {
+      TimerOutput::Scope scope(timer_output, "condense plate");
+      plate.condense(plate_stiffness, plate_load);
+    }
+    {
+      TimerOutput::Scope scope(timer_output, "build half-space operator");
+      foundation_operator->build(plate.get_foundation_space(), {});
+    }
 
     const ContactSolver solver(parameters.contact,
                                parameters.foundation.tensionless,
                                verbosity,
                                log);
-    contact = solver.solve(plate_stiffness,
-                           plate_load,
-                           *foundation_operator,
-                           plate.get_foundation_space(),
-                           seed);
-    plate.expand(contact.w, plate_solution);
+    {
+      TimerOutput::Scope scope(timer_output, "contact solve");
+      contact = solver.solve(plate_stiffness,
+                             plate_load,
+                             *foundation_operator,
+                             plate.get_foundation_space(),
+                             seed);
+      plate.expand(contact.w, plate_solution);
+    }
+    TimerOutput::Scope output_scope(timer_output, "output");
 
     // Equilibrium: the integral of q is the sum of the nodal forces M q.
     Vector<double> forces;

@@ -52,8 +52,9 @@ namespace PlateOnHalfspace
 
     /**
      * Solve for the plate condensed to @p plate_stiffness and @p plate_load
-     * on @p foundation (built on @p space). @p initial_contact (may be empty)
-     * seeds the contact set, e.g. transferred from the previous cycle.
+     * on @p foundation, which must have been built on @p space with every
+     * cell in the foundation. @p initial_contact (may be empty) seeds the
+     * contact set, e.g. transferred from the previous cycle.
      */
     ContactState
     solve(const LAPACKFullMatrix<double> &plate_stiffness,

@@ -25,6 +25,7 @@
 
 #include <plate_on_halfspace/foundation_space.h>
 #include <plate_on_halfspace/parameters.h>
+#include <plate_on_halfspace/sparse_cholesky.h>
 
 #include <functional>
 #include <vector>
@@ -86,7 +87,7 @@ namespace PlateOnHalfspace
      * with f the foundation nodes (unconstrained w-DOFs) and r all other
      * unconstrained DOFs. Only this Schur complement, of the size of the
      * foundation block, is dense; K itself stays sparse and K_rr is
-     * factorised by UMFPACK.
+     * factorised by CHOLMOD (sparse_cholesky.h).
      */
     void
     condense(LAPACKFullMatrix<double> &stiffness, Vector<double> &load);
@@ -179,8 +180,6 @@ namespace PlateOnHalfspace
     build_foundation_space();
     void
     assemble_stiffness();
-    void
-    factorise_rest_block();
 
     const Parameters::Plate          plate;
     const Parameters::Discretization discretization;
@@ -199,9 +198,10 @@ namespace PlateOnHalfspace
     std::vector<int> foundation_index; ///< per DoF, -1 if none
     FoundationSpace  foundation_space;
 
-    /** K with the foundation rows/columns replaced by the identity. */
-    SparseMatrix<double> rest_matrix;
-    SparseDirectUMFPACK  rest_solver;
+    /** The unconstrained DoFs that are not foundation nodes, and the
+     *  Cholesky factor of K_rr. */
+    std::vector<types::global_dof_index> rest_dofs;
+    SparseCholesky                       rest_factor;
   };
 } // namespace PlateOnHalfspace
 

@@ -7,6 +7,7 @@
 #define plate_on_halfspace_plate_on_halfspace_problem_h
 
 #include <deal.II/base/convergence_table.h>
+#include <deal.II/base/timer.h>
 
 #include <deal.II/grid/tria.h>
 
@@ -93,6 +94,8 @@ namespace PlateOnHalfspace
     std::vector<CycleSummary>           cycle_summaries;
     ConvergenceTable                    convergence;
     std::unique_ptr<ResultsOutput>      output;
+    /** Wall times per phase, printed with Output/Verbosity = 2. */
+    TimerOutput timer_output;
   };
 } // namespace PlateOnHalfspace
 
