@@ -58,4 +58,38 @@ namespace PlateOnHalfspace
     return corner_term(X2, Y2) - corner_term(X1, Y2) - corner_term(X2, Y1) +
            corner_term(X1, Y1);
   }
+
+  double
+  integral_of_inverse_distance_over_polygon(
+    const Point<2> &             x,
+    const std::vector<Point<2>> &vertices)
+  {
+    const unsigned int n = vertices.size();
+    double             signed_area = 0, size = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Point<2> &a = vertices[i], &b = vertices[(i + 1) % n];
+        signed_area += a[0] * b[1] - b[0] * a[1];
+        size = std::max(size, a.distance(b));
+      }
+    const double orientation = (signed_area >= 0 ? 1. : -1.);
+    double       integral    = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Point<2> &   a = vertices[i], &b = vertices[(i + 1) % n];
+        const double       length = a.distance(b);
+        if (length == 0.)
+          continue;
+        const Tensor<1, 2> t = (b - a) / length;
+        // outward normal of a counter-clockwise polygon
+        const Tensor<1, 2> normal({t[1], -t[0]});
+        const double       h = orientation * ((a - x) * normal);
+        if (std::abs(h) <= 1e-14 * size)
+          continue; // x on the edge's line: no contribution
+        const double ta = (a - x) * t, tb = (b - x) * t;
+        integral += h * (std::asinh(tb / std::abs(h)) -
+                         std::asinh(ta / std::abs(h)));
+      }
+    return integral;
+  }
 } // namespace PlateOnHalfspace

@@ -1,5 +1,6 @@
 #include <deal.II/base/quadrature_lib.h>
 
+#include <plate_on_halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/cell_pair_quadrature.h>
 
 #include <algorithm>
@@ -7,11 +8,37 @@
 
 namespace PlateOnHalfspace
 {
+  namespace
+  {
+    /**
+     * Outer rule of the singular pairs: Gauss points pulled towards the
+     * cell's edges by s = t^2 (3 - 2t) in each direction. The inner
+     * integral, as a function of the outer point, has logarithmically
+     * singular derivatives on the edges of the inner cell, which for these
+     * pairs lie on the outer cell's boundary; the grading smooths that out.
+     */
+    Quadrature<2>
+    graded_rule(const unsigned int n)
+    {
+      const QGauss<1>       gauss(n);
+      std::vector<Point<1>> points;
+      std::vector<double>   weights;
+      for (unsigned int q = 0; q < n; ++q)
+        {
+          const double t = gauss.point(q)[0];
+          points.emplace_back(t * t * (3. - 2. * t));
+          weights.push_back(gauss.weight(q) * 6. * t * (1. - t));
+        }
+      const Quadrature<1> graded(points, weights);
+      return Quadrature<2>(graded, graded);
+    }
+  } // namespace
+
   CellPairIntegrator::CellPairIntegrator(const FoundationSpace &space,
                                          const unsigned int     singular_order)
     : space(space)
     , singular_order(singular_order)
-    , orders{2, 3, 5, singular_order}
+    , orders{2, 3, 5, 0}
     , cell_data(space.cells.size())
   {
     for (unsigned int c = 0; c < space.cells.size(); ++c)
@@ -37,7 +64,9 @@ namespace PlateOnHalfspace
 
         for (const unsigned int order : orders)
           {
-            const QGauss<2> rule(order);
+            const Quadrature<2> rule = (order == 0) ?
+                                         graded_rule(singular_order) :
+                                         Quadrature<2>(QGauss<2>(order));
             Table           table;
             for (unsigned int q = 0; q < rule.size(); ++q)
               {
@@ -119,10 +148,12 @@ namespace PlateOnHalfspace
   {
     const BilinearQuadrilateral &inner_cell = space.cells[l].geometry;
     const Table        &outer = cell_data[k].tables.back(); // singular order
-    const QGauss<2>     outer_rule(singular_order);
+    const Quadrature<2> outer_rule = graded_rule(singular_order);
     const QDuffy        duffy(singular_order, 1.0);
     const unsigned int  nb = cell_data[l].nodes.size();
     std::vector<double> t(nb), values;
+    const auto &        v = inner_cell.get_vertices();
+    const std::vector<Point<2>> polygon = {v[0], v[1], v[3], v[2]};
     for (unsigned int p = 0; p < outer.points.size(); ++p)
       {
         const Point<2> &x = outer.points[p];
@@ -133,8 +164,17 @@ namespace PlateOnHalfspace
           (k == l) ? outer_rule.point(p) : inner_cell.inverse_map(x);
         for (unsigned int d = 0; d < 2; ++d)
           split[d] = std::min(1., std::max(0., split[d]));
+        // Singularity subtraction: psi_b(y) = (psi_b(y) - psi_b(split)) +
+        // psi_b(split). The first part over r is bounded and the Duffy rule
+        // integrates it accurately; the second is psi_b(split) times the
+        // exact integral of 1/r over the polygon L.
         const QSplit<2> inner(duffy, split);
-        std::fill(t.begin(), t.end(), 0.);
+        std::vector<double> at_split;
+        node_shape_values(l, split, at_split);
+        const double polygon_integral =
+          integral_of_inverse_distance_over_polygon(x, polygon);
+        for (unsigned int b = 0; b < nb; ++b)
+          t[b] = at_split[b] * polygon_integral;
         for (unsigned int q = 0; q < inner.size(); ++q)
           {
             const Point<2> &y_ref = inner.point(q);
@@ -145,7 +185,7 @@ namespace PlateOnHalfspace
               inner.weight(q) * inner_cell.jacobian_determinant(y_ref) / r;
             node_shape_values(l, y_ref, values);
             for (unsigned int b = 0; b < nb; ++b)
-              t[b] += kernel * values[b];
+              t[b] += kernel * (values[b] - at_split[b]);
           }
         for (unsigned int a = 0; a < outer.values[p].size(); ++a)
           {

@@ -14,33 +14,6 @@
 #include <iostream>
 #include <string>
 
-namespace
-{
-  /** The "Additional information" of a deal.II exception, else what(). */
-  std::string
-  short_message(const std::exception &e)
-  {
-    const std::string text   = e.what();
-    const std::string marker = "Additional information:";
-    const auto        at     = text.find(marker);
-    std::string       message =
-      (at == std::string::npos ? text : text.substr(at + marker.size()));
-    // collapse the indentation and line breaks deal.II adds
-    std::string collapsed;
-    for (const char c : message)
-      if (c == '\n' || c == '\t' || c == ' ')
-        {
-          if (!collapsed.empty() && collapsed.back() != ' ')
-            collapsed += ' ';
-        }
-      else
-        collapsed += c;
-    while (!collapsed.empty() &&
-           (collapsed.back() == ' ' || collapsed.back() == '-'))
-      collapsed.pop_back();
-    return collapsed;
-  }
-} // namespace
 
 int
 main(int argc, char **argv)
@@ -86,7 +59,7 @@ main(int argc, char **argv)
   catch (const std::exception &e)
     {
       std::cout.flush();
-      std::cerr << "Error: " << short_message(e) << std::endl;
+      std::cerr << "Error: " << short_error_message(e) << std::endl;
       return 1;
     }
   return 0;

@@ -322,8 +322,8 @@ namespace PlateOnHalfspace
                         "Mirror planes to exploit. This version always "
                         "computes the whole plate (auto = none).");
       prm.declare_entry("Singular quadrature order",
-                        "6",
-                        Patterns::Integer(2, 30),
+                        "8",
+                        Patterns::Integer(4, 30),
                         "galerkin: Gauss points per direction of the Duffy "
                         "rules for coincident and touching cell pairs.");
       prm.leave_subsection();

@@ -282,4 +282,28 @@ namespace PlateOnHalfspace
       }
     return all_passed;
   }
+
+  std::string
+  short_error_message(const std::exception &error)
+  {
+    const std::string text   = error.what();
+    const std::string marker = "Additional information:";
+    const auto        at     = text.find(marker);
+    const std::string message =
+      (at == std::string::npos ? text : text.substr(at + marker.size()));
+    // collapse the indentation and line breaks deal.II adds
+    std::string collapsed;
+    for (const char c : message)
+      if (c == '\n' || c == '\t' || c == ' ')
+        {
+          if (!collapsed.empty() && collapsed.back() != ' ')
+            collapsed += ' ';
+        }
+      else
+        collapsed += c;
+    while (!collapsed.empty() &&
+           (collapsed.back() == ' ' || collapsed.back() == '-'))
+      collapsed.pop_back();
+    return collapsed;
+  }
 } // namespace PlateOnHalfspace

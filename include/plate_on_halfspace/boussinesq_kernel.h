@@ -8,6 +8,8 @@
 
 #include <deal.II/base/point.h>
 
+#include <vector>
+
 namespace PlateOnHalfspace
 {
   using namespace dealii;
@@ -36,6 +38,21 @@ namespace PlateOnHalfspace
                                               const double    x2,
                                               const double    y1,
                                               const double    y2);
+
+  /**
+   * Exact integral of 1/|x - y| over the straight-sided polygon with the
+   * given vertices (either orientation, convex or not, x anywhere in the
+   * plane). In polar coordinates about x the integral is the integral of
+   * the polygon's radial extent over the angle, which for the edge from a to
+   * b at signed distance h from x (positive when x is on the inner side) is
+   * h (asinh(t_b/h) - asinh(t_a/h)), t the tangential coordinates of a and b
+   * from the foot of the perpendicular through x. The rectangle formula
+   * above is the special case of an axis-aligned rectangle.
+   */
+  double
+  integral_of_inverse_distance_over_polygon(
+    const Point<2> &             x,
+    const std::vector<Point<2>> &vertices);
 } // namespace PlateOnHalfspace
 
 #endif

@@ -89,7 +89,8 @@ namespace PlateOnHalfspace
 
     const FoundationSpace    &space;
     const unsigned int        singular_order;
-    std::vector<unsigned int> orders; ///< Gauss orders of the tables
+    /** Gauss orders of the tables; 0: the graded singular-pair rule. */
+    std::vector<unsigned int> orders;
     std::vector<CellData>     cell_data;
   };
 } // namespace PlateOnHalfspace

@@ -97,6 +97,14 @@ namespace PlateOnHalfspace
     /** Wall times per phase, printed with Output/Verbosity = 2. */
     TimerOutput timer_output;
   };
+
+  /**
+   * The message of an error for the user: the "Additional information" of
+   * a deal.II exception (the text of ExcMessage, naming the parameter or
+   * the physical reason), else what(), on one line.
+   */
+  std::string
+  short_error_message(const std::exception &error);
 } // namespace PlateOnHalfspace
 
 #endif
