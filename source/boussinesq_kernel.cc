@@ -61,10 +61,10 @@ namespace PlateOnHalfspace
 
   double
   integral_of_inverse_distance_over_polygon(
-    const Point<2> &             x,
+    const Point<2>              &x,
     const std::vector<Point<2>> &vertices)
   {
-    const unsigned int n = vertices.size();
+    const unsigned int n           = vertices.size();
     double             signed_area = 0, size = 0;
     for (unsigned int i = 0; i < n; ++i)
       {
@@ -76,8 +76,8 @@ namespace PlateOnHalfspace
     double       integral    = 0;
     for (unsigned int i = 0; i < n; ++i)
       {
-        const Point<2> &   a = vertices[i], &b = vertices[(i + 1) % n];
-        const double       length = a.distance(b);
+        const Point<2> &a = vertices[i], &b = vertices[(i + 1) % n];
+        const double    length = a.distance(b);
         if (length == 0.)
           continue;
         const Tensor<1, 2> t = (b - a) / length;
@@ -87,8 +87,8 @@ namespace PlateOnHalfspace
         if (std::abs(h) <= 1e-14 * size)
           continue; // x on the edge's line: no contribution
         const double ta = (a - x) * t, tb = (b - x) * t;
-        integral += h * (std::asinh(tb / std::abs(h)) -
-                         std::asinh(ta / std::abs(h)));
+        integral +=
+          h * (std::asinh(tb / std::abs(h)) - std::asinh(ta / std::abs(h)));
       }
     return integral;
   }

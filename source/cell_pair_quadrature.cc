@@ -67,7 +67,7 @@ namespace PlateOnHalfspace
             const Quadrature<2> rule = (order == 0) ?
                                          graded_rule(singular_order) :
                                          Quadrature<2>(QGauss<2>(order));
-            Table           table;
+            Table               table;
             for (unsigned int q = 0; q < rule.size(); ++q)
               {
                 const Point<2> &p = rule.point(q);
@@ -152,7 +152,7 @@ namespace PlateOnHalfspace
     const QDuffy        duffy(singular_order, 1.0);
     const unsigned int  nb = cell_data[l].nodes.size();
     std::vector<double> t(nb), values;
-    const auto &        v = inner_cell.get_vertices();
+    const auto         &v               = inner_cell.get_vertices();
     const std::vector<Point<2>> polygon = {v[0], v[1], v[3], v[2]};
     for (unsigned int p = 0; p < outer.points.size(); ++p)
       {
@@ -168,7 +168,7 @@ namespace PlateOnHalfspace
         // psi_b(split). The first part over r is bounded and the Duffy rule
         // integrates it accurately; the second is psi_b(split) times the
         // exact integral of 1/r over the polygon L.
-        const QSplit<2> inner(duffy, split);
+        const QSplit<2>     inner(duffy, split);
         std::vector<double> at_split;
         node_shape_values(l, split, at_split);
         const double polygon_integral =

@@ -341,7 +341,7 @@ namespace PlateOnHalfspace
 
   void
   MindlinPlate::condense(LAPACKFullMatrix<double> &condensed,
-                         Vector<double> &          condensed_load)
+                         Vector<double>           &condensed_load)
   {
     // r: every unconstrained DoF that is not a foundation node (rotations,
     // and w-DoFs a test may have supported).
@@ -414,7 +414,7 @@ namespace PlateOnHalfspace
 
   void
   MindlinPlate::expand(const Vector<double> &foundation_w,
-                       Vector<double> &      solution) const
+                       Vector<double>       &solution) const
   {
     const unsigned int n = dof_handler.n_dofs();
     Vector<double>     known(n), rhs(n);

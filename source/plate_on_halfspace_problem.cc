@@ -289,8 +289,9 @@ namespace PlateOnHalfspace
     const std::string text   = error.what();
     const std::string marker = "Additional information:";
     const auto        at     = text.find(marker);
-    const std::string message =
+    std::string       message =
       (at == std::string::npos ? text : text.substr(at + marker.size()));
+    message = message.substr(0, message.find("Stacktrace:"));
     // collapse the indentation and line breaks deal.II adds
     std::string collapsed;
     for (const char c : message)

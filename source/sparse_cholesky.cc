@@ -37,7 +37,7 @@ namespace PlateOnHalfspace
   }
 
   void
-  SparseCholesky::factorize(const SparseMatrix<double> &               matrix,
+  SparseCholesky::factorize(const SparseMatrix<double>                 &matrix,
                             const std::vector<types::global_dof_index> &rows)
   {
     if (data->factor != nullptr)
@@ -67,13 +67,18 @@ namespace PlateOnHalfspace
         std::sort(columns[j].begin(), columns[j].end());
         nnz += columns[j].size();
       }
-    cholmod_sparse *a = cholmod_allocate_sparse(
-      n, n, nnz, /*sorted*/ 1, /*packed*/ 1, /*stype*/ 1, CHOLMOD_REAL,
-      &data->common);
-    int *   p = static_cast<int *>(a->p);
-    int *   r = static_cast<int *>(a->i);
-    double *x = static_cast<double *>(a->x);
-    p[0]      = 0;
+    cholmod_sparse *a = cholmod_allocate_sparse(n,
+                                                n,
+                                                nnz,
+                                                /*sorted*/ 1,
+                                                /*packed*/ 1,
+                                                /*stype*/ 1,
+                                                CHOLMOD_REAL,
+                                                &data->common);
+    int            *p = static_cast<int *>(a->p);
+    int            *r = static_cast<int *>(a->i);
+    double         *x = static_cast<double *>(a->x);
+    p[0]              = 0;
     for (unsigned int j = 0; j < n; ++j)
       {
         int k = p[j];

@@ -51,7 +51,7 @@ namespace PlateOnHalfspace
    */
   double
   integral_of_inverse_distance_over_polygon(
-    const Point<2> &             x,
+    const Point<2>              &x,
     const std::vector<Point<2>> &vertices);
 } // namespace PlateOnHalfspace
 

@@ -87,8 +87,8 @@ namespace PlateOnHalfspace
                        const unsigned int  l,
                        FullMatrix<double> &block) const;
 
-    const FoundationSpace    &space;
-    const unsigned int        singular_order;
+    const FoundationSpace &space;
+    const unsigned int     singular_order;
     /** Gauss orders of the tables; 0: the graded singular-pair rule. */
     std::vector<unsigned int> orders;
     std::vector<CellData>     cell_data;

@@ -20,7 +20,8 @@ namespace PlateOnHalfspace
 {
   using namespace dealii;
 
-  /** Cholesky factor of the principal submatrix A(rows, rows) of an SPD matrix. */
+  /** Cholesky factor of the principal submatrix A(rows, rows) of an SPD matrix.
+   */
   class SparseCholesky
   {
   public:
@@ -36,7 +37,7 @@ namespace PlateOnHalfspace
      * is not positive definite.
      */
     void
-    factorize(const SparseMatrix<double> &               matrix,
+    factorize(const SparseMatrix<double>                 &matrix,
               const std::vector<types::global_dof_index> &rows);
 
     /** Size of the factorised submatrix. */

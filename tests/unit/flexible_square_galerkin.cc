@@ -12,6 +12,7 @@
 //    projection's pointwise error need not be monotone at the centre).
 
 #include <deal.II/base/quadrature_lib.h>
+
 #include <deal.II/fe/fe_values.h>
 
 #include <plate_on_halfspace/boussinesq_kernel.h>
@@ -28,17 +29,17 @@ int
 main()
 {
   initlog();
-  const double scale = 100. * 4. * (1. - 0.09) / 5e4; // q B (1-nu0^2)/E0
+  const double scale        = 100. * 4. * (1. - 0.09) / 5e4; // q B (1-nu0^2)/E0
   const double centre_exact = 4. * std::log(1. + std::sqrt(2.)) / M_PI;
   const double mean_exact =
-    (4. * std::log(1. + std::sqrt(2.)) - 4. * (std::sqrt(2.) - 1.) / 3.) /
-    M_PI;
+    (4. * std::log(1. + std::sqrt(2.)) - 4. * (std::sqrt(2.) - 1.) / 3.) / M_PI;
 
   double previous_l2 = 1e300;
   for (const unsigned int n : {2u, 4u, 8u, 16u})
     {
       std::ostringstream prm;
-      prm << "include " << SOURCE_DIR << "/../../parameters/flexible-square.prm\n"
+      prm << "include " << SOURCE_DIR
+          << "/../../parameters/flexible-square.prm\n"
           << "set Output directory = results\n"
           << "subsection Discretization\n set Flexibility = galerkin\n"
           << " set Subdivisions x = " << n << "\n set Subdivisions y = " << n
@@ -50,8 +51,8 @@ main()
       PlateOnHalfspaceProblem problem(parameters, log);
       problem.run();
 
-      const double centre = problem.values_at(Point<2>(0, 0)).w / scale;
-      const double corner = problem.values_at(Point<2>(2, 2)).w / scale;
+      const double   centre = problem.values_at(Point<2>(0, 0)).w / scale;
+      const double   corner = problem.values_at(Point<2>(2, 2)).w / scale;
       Vector<double> mw(problem.contact_state().w.size());
       problem.foundation().mass_matrix().vmult(mw, problem.contact_state().w);
       double mean = 0;
@@ -60,9 +61,9 @@ main()
       mean /= 16. * scale;
 
       // relative L2 error of w against u = alpha q ∫ 1/r over the square
-      const QGauss<2>   rule(4);
-      const auto       &plate = problem.plate();
-      FEValues<2>       fe_values(plate.get_fe(),
+      const QGauss<2>     rule(4);
+      const auto         &plate = problem.plate();
+      FEValues<2>         fe_values(plate.get_fe(),
                             rule,
                             update_values | update_quadrature_points |
                               update_JxW_values);
@@ -75,10 +76,10 @@ main()
             problem.solution(), w);
           for (unsigned int q = 0; q < rule.size(); ++q)
             {
-              const double u =
-                100. * boussinesq_flexibility_constant(5e4, 0.3) *
-                integral_of_inverse_distance_over_rectangle(
-                  fe_values.quadrature_point(q), -2, 2, -2, 2);
+              const double u = 100. *
+                               boussinesq_flexibility_constant(5e4, 0.3) *
+                               integral_of_inverse_distance_over_rectangle(
+                                 fe_values.quadrature_point(q), -2, 2, -2, 2);
               error2 += (w[q] - u) * (w[q] - u) * fe_values.JxW(q);
               norm2 += u * u * fe_values.JxW(q);
             }

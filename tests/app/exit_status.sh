@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The executable's contract (interfaces.md, "Commands"): exit 0 on success,
+# non-zero with a one-line "Error: ..." on stderr for bad input, and a failed
+# run never destroys the results of an earlier one.
+# usage: exit_status.sh PROGRAM SCENE_DIRECTORY
+set -u
+program=$1
+scenes=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+passed=0
+failed=0
+expect() { # description, expected status (0 or nonzero), command...
+  local what=$1 want=$2
+  shift 2
+  "$@" >stdout 2>stderr
+  local status=$?
+  if { [ "$want" = 0 ] && [ $status -eq 0 ]; } ||
+     { [ "$want" = nonzero ] && [ $status -ne 0 ] && grep -q "^Error: " stderr &&
+       [ "$(wc -l <stderr)" -le 2 ]; }; then
+    echo "ok: $what (status $status)"
+    passed=$((passed + 1))
+  else
+    echo "FAILED: $what (status $status)"; cat stderr
+    failed=$((failed + 1))
+  fi
+}
+
+expect "--print-parameters" 0 "$program" --print-parameters
+printf 'set Output directory = run\ninclude %s/flexible-square.prm\nset Output directory = run\n' "$scenes" >good.prm
+expect "shipped scene" 0 "$program" good.prm
+cp run/summary.json before.json
+expect "missing file" nonzero "$program" no-such.prm
+printf 'subsection Plate\n  set Thickness = -1\nend\n' >bad.prm
+expect "bad value" nonzero "$program" bad.prm
+grep -q "Thickness" stderr && echo "ok: message names the entry" && passed=$((passed + 1)) ||
+  { echo "FAILED: message does not name Thickness"; failed=$((failed + 1)); }
+cat good.prm >offplate.prm
+printf 'subsection Loads\n  set Point loads = 100,0,1\nend\n' >>offplate.prm
+expect "point load off the plate, same output directory" nonzero "$program" offplate.prm
+if cmp -s before.json run/summary.json && ! ls run/.*.tmp >/dev/null 2>&1; then
+  echo "ok: earlier summary.json intact, no temporary file left"
+  passed=$((passed + 1))
+else
+  echo "FAILED: earlier results changed"; failed=$((failed + 1))
+fi
+if grep -qi "nan" run/summary.json run/profile-00.csv; then
+  echo "FAILED: NaN in results"; failed=$((failed + 1))
+else
+  echo "ok: no NaN in results"; passed=$((passed + 1))
+fi
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
