@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 # reference BLAS makes every dense factorisation ~20x slower), numdiff (the
 # deal.II test macros need it), nlohmann-json (summary.json), gnuplot (plots).
 packages="cmake make g++ perl libdeal.ii-dev libopenblas0-pthread numdiff
-          nlohmann-json3-dev gnuplot-nox"
+          nlohmann-json3-dev gnuplot-nox python3"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" \
