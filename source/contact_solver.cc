@@ -107,10 +107,13 @@ namespace PlateOnHalfspace
     const double q_scale   = std::max(max_abs(state.q), 1e-300);
     const double gap_scale = std::max(max_abs(plate), 1e-300);
     double       tension = 0, penetration = 0, product = 0;
-    const auto  &supported = foundation.supported_nodes();
+    state.tensile_nodes   = 0;
+    const auto &supported = foundation.supported_nodes();
     for (unsigned int i = 0; i < state.q.size(); ++i)
       {
         tension = std::max(tension, -state.q[i] / q_scale);
+        if (state.q[i] < 0)
+          ++state.tensile_nodes;
         // Only the soil under the plate's foundation area is constrained.
         if (supported[i])
           {
@@ -122,6 +125,7 @@ namespace PlateOnHalfspace
       }
     state.complementarity_violation =
       std::max({tension, penetration, product, 0.});
+    state.max_penetration = std::max(penetration, 0.);
   }
 
   ContactState

@@ -181,6 +181,8 @@ namespace PlateOnHalfspace
                           start,
                           end,
                           parameters.output.profile_points);
+    output->write_nodes_and_gauss_profile(
+      cycle, plate, plate_solution, contact, start, end);
     if (parameters.output.vtu)
       output->write_vtu(cycle, plate, plate_solution, contact);
     summary.wall_time_s = timer.wall_time();
@@ -196,6 +198,14 @@ namespace PlateOnHalfspace
             << "   nodes in contact " << summary.contact_nodes
             << ", contact area fraction " << std::fixed << std::setprecision(4)
             << summary.contact_area_fraction << std::defaultfloat << std::endl;
+        if (parameters.foundation.tensionless)
+          log << "   complementarity violation " << std::scientific
+              << std::setprecision(1)
+              << std::max(summary.complementarity_violation, 1e-16)
+              << ", tensile nodes " << summary.tensile_nodes
+              << ", largest penetration "
+              << std::max(summary.max_penetration, 1e-16) << std::defaultfloat
+              << std::endl;
         if (verbosity > 1)
           log << "   wall time " << summary.wall_time_s << " s" << std::endl;
       }

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -161,6 +162,8 @@ namespace PlateOnHalfspace
     summary.contact_nodes =
       std::count(contact.in_contact.begin(), contact.in_contact.end(), true);
     summary.complementarity_violation = contact.complementarity_violation;
+    summary.tensile_nodes             = contact.tensile_nodes;
+    summary.max_penetration           = contact.max_penetration;
     summary.contact_iterations        = contact.iterations;
     summary.converged                 = contact.converged;
   }
@@ -204,6 +207,8 @@ namespace PlateOnHalfspace
         j["applied_load"]              = c.applied_load;
         j["contact_force"]             = c.contact_force;
         j["complementarity_violation"] = c.complementarity_violation;
+        j["tensile_nodes"]             = c.tensile_nodes;
+        j["max_penetration"]           = c.max_penetration;
         j["max_w"]                     = c.max_w;
         j["min_w"]                     = c.min_w;
         j["max_q"]                     = c.max_q;
@@ -258,6 +263,68 @@ namespace PlateOnHalfspace
             << values.mx << ',' << values.my << '\n';
       }
     write_file("profile-" + two_digits(cycle) + ".csv", csv.str());
+  }
+
+  void
+  ResultsOutput::write_nodes_and_gauss_profile(const unsigned int    cycle,
+                                               const MindlinPlate   &plate,
+                                               const Vector<double> &solution,
+                                               const ContactState   &contact,
+                                               const Point<2>       &start,
+                                               const Point<2>       &end) const
+  {
+    const FoundationSpace &space = plate.get_foundation_space();
+    std::ostringstream     nodes;
+    nodes << "x,y,w,q,gap,contact\n" << std::setprecision(10);
+    for (unsigned int i = 0; i < space.n_nodes(); ++i)
+      nodes << space.node_locations[i][0] << ',' << space.node_locations[i][1]
+            << ',' << contact.w[i] << ',' << contact.q[i] << ','
+            << contact.gap[i] << ',' << (contact.in_contact[i] ? 1 : 0) << '\n';
+    write_file("nodes-" + two_digits(cycle) + ".csv", nodes.str());
+
+    // Gauss points of the cells the line crosses or borders, keeping those
+    // nearest to the line in each cell.
+    const Tensor<1, 2> direction = (end - start) / end.distance(start);
+    const auto         distance  = [&](const Point<2> &x) {
+      const Tensor<1, 2> d = x - start;
+      return std::abs(d[0] * direction[1] - d[1] * direction[0]);
+    };
+    const QGauss<2>           rule(2);
+    FEValues<2>               values(plate.get_fe(),
+                       rule,
+                       update_gradients | update_quadrature_points);
+    std::vector<Tensor<2, 2>> grad(rule.size());
+    const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
+    std::vector<std::array<double, 4>> rows;
+    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+      {
+        values.reinit(cell);
+        double nearest = std::numeric_limits<double>::max();
+        for (unsigned int q = 0; q < rule.size(); ++q)
+          nearest = std::min(nearest, distance(values.quadrature_point(q)));
+        if (nearest > cell->diameter() / 2)
+          continue;
+        values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
+                                                                     grad);
+        for (unsigned int q = 0; q < rule.size(); ++q)
+          if (distance(values.quadrature_point(q)) <= nearest * (1 + 1e-8))
+            {
+              const Point<2> &x = values.quadrature_point(q);
+              rows.push_back({{x[0],
+                               x[1],
+                               -D * (grad[q][0][0] + nu * grad[q][1][1]),
+                               -D * (grad[q][1][1] + nu * grad[q][0][0])}});
+            }
+      }
+    std::sort(rows.begin(), rows.end(), [&](const auto &a, const auto &b) {
+      return (Point<2>(a[0], a[1]) - start) * direction <
+             (Point<2>(b[0], b[1]) - start) * direction;
+    });
+    std::ostringstream csv;
+    csv << "x,y,Mx,My\n" << std::setprecision(10);
+    for (const auto &r : rows)
+      csv << r[0] << ',' << r[1] << ',' << r[2] << ',' << r[3] << '\n';
+    write_file("gauss-profile-" + two_digits(cycle) + ".csv", csv.str());
   }
 
   void

@@ -35,6 +35,10 @@ namespace PlateOnHalfspace
      * problem's scale (max |q|, max |B w|) (interfaces.md).
      */
     double complementarity_violation = 0;
+    /** Nodes in contact with a tensile pressure (q < 0). */
+    unsigned int tensile_nodes = 0;
+    /** Largest penetration -gap, relative to max |B w| (0 if none). */
+    double max_penetration = 0;
   };
 
   /**

@@ -37,6 +37,8 @@ namespace PlateOnHalfspace
     double       contact_area_fraction = 0;
     double       applied_load = 0, contact_force = 0;
     double       complementarity_violation = 0;
+    unsigned int tensile_nodes             = 0;
+    double       max_penetration           = 0;
     double       max_w = 0, min_w = 0, max_q = 0, min_q = 0;
     double       max_mx = 0, min_mx = 0, max_my = 0, min_my = 0;
     double       wall_time_s = 0;
@@ -89,6 +91,19 @@ namespace PlateOnHalfspace
                   const Point<2>       &start,
                   const Point<2>       &end,
                   const unsigned int    n_points) const;
+
+    /**
+     * nodes-NN.csv: x,y,w,q,gap,contact at every foundation node (the
+     * contact map), and gauss-profile-NN.csv: x,y,Mx,My at the 2x2 Gauss
+     * points nearest the profile line (the paper plots Mx there).
+     */
+    void
+    write_nodes_and_gauss_profile(const unsigned int    cycle,
+                                  const MindlinPlate   &plate,
+                                  const Vector<double> &solution,
+                                  const ContactState   &contact,
+                                  const Point<2>       &start,
+                                  const Point<2>       &end) const;
 
     /** solution-NN.vtu and solution.pvd. */
     void
