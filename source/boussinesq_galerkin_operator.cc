@@ -53,16 +53,6 @@ namespace PlateOnHalfspace
           // block(i,j) = ∫_K ∫_L psi_i(x) psi_j(y) / |x - y| over the node
           // shape functions psi of the two cells.
           integrator.integrate_inverse_distance(a, b, block);
-          if (a == b)
-            {
-              // The outer-Gauss / inner-Duffy rule is not symmetric in the
-              // two shape functions: keep the symmetric part, so that A is
-              // exactly symmetric (its Cholesky factor reads one triangle).
-              FullMatrix<double> transpose;
-              transpose.copy_transposed(block);
-              block.add(1., transpose);
-              block *= 0.5;
-            }
           const auto &nodes_a = integrator.nodes(a);
           const auto &nodes_b = integrator.nodes(b);
           for (unsigned int i = 0; i < nodes_a.size(); ++i)

@@ -205,13 +205,31 @@ namespace PlateOnHalfspace
     block.reinit(cell_data[k].nodes.size(), cell_data[l].nodes.size());
     if (k == l || touching(k, l))
       {
+        // The rule is not symmetric in the roles of the two cells (outer
+        // Gauss on one, inner Duffy on the other): average both orders, so
+        // that A is exactly symmetric (its Cholesky factor reads one
+        // triangle), the block does not depend on which cell comes first,
+        // and a mirror-symmetric mesh gives a mirror-symmetric A.
         integrate_singular(k, l, block);
+        FullMatrix<double> swapped(cell_data[l].nodes.size(),
+                                   cell_data[k].nodes.size());
+        if (k == l)
+          swapped = block;
+        else
+          integrate_singular(l, k, swapped);
+        for (unsigned int a = 0; a < block.m(); ++a)
+          for (unsigned int b = 0; b < block.n(); ++b)
+            block(a, b) = 0.5 * (block(a, b) + swapped(b, a));
         return;
       }
     const double separation =
       cell_data[k].centre.distance(cell_data[l].centre) /
       std::max(cell_data[k].diameter, cell_data[l].diameter);
-    const unsigned int rule = (separation < 2.5 ? 2 : separation < 5 ? 1 : 0);
+    // Round away the last digits: on a uniform mesh many pairs sit exactly
+    // on a threshold, and rounding must not send a pair and its mirror
+    // image to different rules.
+    const double       rounded = std::round(separation * 1e6) * 1e-6;
+    const unsigned int rule    = (rounded < 2.5 ? 2 : rounded < 5 ? 1 : 0);
     integrate_regular(cell_data[k].tables[rule],
                       cell_data[l].tables[rule],
                       block);

@@ -1,0 +1,83 @@
+// A near-rigid disk (parameters/rigid-disk.prm, relative stiffness
+// K = 3.8e3) on a tensionless half-space under an eccentric point load.
+// A rigid circular punch stays in full contact iff the eccentricity is at
+// most a/3 (references.md, exact): at e = 0.30 a every node stays in
+// contact and the tensionless answer equals the bonded one (to 1e-10); at
+// e = 0.40 a part of the plate lifts off, the far side first. Both answers
+// satisfy the discrete contact conditions to 1e-8 and equilibrium to 1e-8.
+
+#include <plate_on_halfspace/plate_on_halfspace_problem.h>
+
+#include <sstream>
+
+#include "../tests.h"
+
+using namespace PlateOnHalfspace;
+
+std::unique_ptr<PlateOnHalfspaceProblem>
+solve(const double eccentricity, const std::string &contact)
+{
+  std::ostringstream prm;
+  prm << "include " << SOURCE_DIR << "/../../parameters/rigid-disk.prm\n"
+      << "set Output directory = results\n"
+      << "subsection Foundation\n set Contact = " << contact << "\nend\n"
+      << "subsection Loads\n set Point loads = " << eccentricity
+      << ",0,1000\nend\n"
+      << "subsection Adaptivity\n set Cycles = 1\nend\n"
+      << "subsection Verification\n set Checks =\nend\n"
+      << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n";
+  SceneParameters parameters;
+  parameters.read_from_string(prm.str());
+  static std::ostringstream log; // the problem keeps a reference
+  auto problem = std::make_unique<PlateOnHalfspaceProblem>(parameters, log);
+  problem->run();
+  return problem;
+}
+
+int
+main()
+{
+  initlog();
+  for (const double e : {0.30, 0.40})
+    {
+      const auto          tensionless = solve(e, "tensionless");
+      const auto         &s           = tensionless->summaries().back();
+      const ContactState &c           = tensionless->contact_state();
+      unsigned int        lifted_near = 0, lifted_far = 0;
+      const auto         &nodes = tensionless->plate().get_foundation_space();
+      for (unsigned int i = 0; i < c.in_contact.size(); ++i)
+        if (!c.in_contact[i])
+          (nodes.node_locations[i][0] > 0 ? lifted_near : lifted_far) += 1;
+      deallog << "e = " << e << " a: nodes in contact " << s.contact_nodes
+              << " of " << s.n_foundation_dofs << " (lifted on the load side "
+              << lifted_near << ", on the far side " << lifted_far
+              << "), iterations " << s.contact_iterations << std::endl;
+      const double equilibrium =
+        std::abs(s.contact_force - s.applied_load) / s.applied_load;
+      deallog << "  equilibrium " << (equilibrium < 1e-8 ? "ok" : "FAILED")
+              << ", complementarity violation <= 1e-8 "
+              << (s.complementarity_violation <= 1e-8 ? "ok" : "FAILED")
+              << std::endl;
+      AssertThrow(equilibrium < 1e-8 && s.complementarity_violation <= 1e-8,
+                  ExcMessage("contact conditions"));
+      if (e < 1. / 3.)
+        {
+          AssertThrow(s.contact_nodes == s.n_foundation_dofs,
+                      ExcMessage("lift-off below a/3"));
+          const auto     bonded     = solve(e, "bonded");
+          Vector<double> difference = bonded->solution();
+          difference -= tensionless->solution();
+          const double relative =
+            difference.linfty_norm() / bonded->solution().linfty_norm();
+          deallog << "  full contact: ok; tensionless = bonded to 1e-10: "
+                  << (relative < 1e-10 ? "ok" : "FAILED") << std::endl;
+          AssertThrow(relative < 1e-10, ExcMessage("bonded differs"));
+        }
+      else
+        {
+          AssertThrow(lifted_far > 0 && lifted_near == 0,
+                      ExcMessage("no lift-off above a/3"));
+          deallog << "  lift-off on the far side only: ok" << std::endl;
+        }
+    }
+}
