@@ -23,5 +23,6 @@ for example in example1 example2; do
     "$program" "$directory/scene.prm" | grep -E "contact iteration|area|violation|check" | tail -4
   done
   gnuplot -e "example='$example'" scripts/paper_figures.gp
+  python3 scripts/compare_variants.py "output/$example"
 done
 echo "figures: output/example1/*.png output/example2/*.png"

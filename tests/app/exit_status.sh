@@ -50,5 +50,9 @@ if grep -qi "nan" run/summary.json run/profile-00.csv; then
 else
   echo "ok: no NaN in results"; passed=$((passed + 1))
 fi
+printf 'include %s/rigid-disk.prm\nset Output directory = up\nsubsection Foundation\n  set Contact = tensionless\nend\nsubsection Loads\n  set Point loads = 0,0,-1000\nend\n' "$scenes" >upward.prm
+expect "upward-only load on a tensionless foundation" nonzero "$program" upward.prm
+grep -q "lift the plate" stderr && echo "ok: the mechanism guard names the reason" && passed=$((passed + 1)) ||
+  { echo "FAILED: no mechanism message"; failed=$((failed + 1)); }
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
