@@ -22,9 +22,8 @@ set yrange [*:*] noreverse
 set output dir.'/Mx-centre-line.png'
 set title example.': Mx at the Gauss points nearest y = 0 (y > 0 row)'
 set ylabel 'Mx [kNm/m] (sagging > 0)'
-plot for [i=1:3] dir.'/'.word(variants,i).'/gauss-profile-00.csv' skip 1 \
-     using 1:($2 > 0 ? $3 : 1/0) with linespoints lw 2 pt 7 ps 0.6 \
-     title word(titles,i)
+plot for [i=1:3] '< awk -F, "NR > 1 && \$2 > 0" '.dir.'/'.word(variants,i).'/gauss-profile-00.csv' \
+     using 1:3 with linespoints lw 2 pt 7 ps 0.6 title word(titles,i)
 
 set output dir.'/q-centre-line.png'
 set title example.': contact pressure along y = 0'
