@@ -75,25 +75,12 @@ namespace PlateOnHalfspace
   BoussinesqCollocationOperator::set_contact_nodes(
     const std::vector<bool> &requested)
   {
-    contact_index        = store_contact_nodes(requested);
-    const unsigned int m = contact_index.size();
-    contact_factor.reinit(m);
-    for (unsigned int i = 0; i < m; ++i)
-      for (unsigned int j = 0; j < m; ++j)
-        contact_factor(i, j) = flexibility(contact_index[i], contact_index[j]);
-    if (m == 0)
-      return;
-    try
-      {
-        // G is unsymmetric and not guaranteed definite: LU (P16).
-        contact_factor.compute_lu_factorization();
-      }
-    catch (...)
-      {
-        AssertThrow(false,
-                    ExcMessage("The collocation flexibility matrix G of the "
-                               "contact set is singular."));
-      }
+    // G is unsymmetric and not guaranteed definite: LU (P16).
+    factorise_contact_block(requested,
+                            flexibility,
+                            false,
+                            "The collocation flexibility matrix G of the "
+                            "contact set is singular.");
   }
 
   void
@@ -115,43 +102,20 @@ namespace PlateOnHalfspace
   BoussinesqCollocationOperator::solve(const Vector<double> &w,
                                        Vector<double>       &q) const
   {
-    Vector<double> b_contact(contact_index.size());
-    for (unsigned int i = 0; i < contact_index.size(); ++i)
-      b_contact[i] = w[contact_index[i]];
-    if (!contact_index.empty())
-      contact_factor.solve(b_contact);
-    q.reinit(w.size());
-    for (unsigned int i = 0; i < contact_index.size(); ++i)
-      q[contact_index[i]] = b_contact[i];
+    solve_contact_block(w, q); // B = I
   }
 
   void
   BoussinesqCollocationOperator::add_stiffness(
     LAPACKFullMatrix<double> &matrix) const
   {
-    const unsigned int n = mass.m(), m = contact_index.size();
-    if (m == 0)
-      return;
-    // K_G = E G^{-1} (P17), restricted to the contact set:
-    // X = G_CC^{-1} P_C (P_C picks the contact rows of w), S = E_{:,C} X.
-    LAPACKFullMatrix<double> x(m, n);
-    x = 0.;
-    std::vector<int> position(n, -1);
-    for (unsigned int i = 0; i < m; ++i)
-      {
-        position[contact_index[i]] = i;
-        x(i, contact_index[i])     = 1.;
-      }
-    contact_factor.solve(x);
-    for (unsigned int r = 0; r < n; ++r)
-      for (auto entry = mass.begin(r); entry != mass.end(r); ++entry)
-        if (position[entry->column()] >= 0)
-          {
-            const unsigned int k = position[entry->column()];
-            const double       v = entry->value();
-            for (unsigned int c = 0; c < n; ++c)
-              matrix(r, c) += v * x(k, c);
-          }
+    // K_G = E G^{-1} (P17) restricted to the contact set: the contact rows
+    // of B = I.
+    LAPACKFullMatrix<double> rows(contact_index.size(), mass.m());
+    rows = 0.;
+    for (unsigned int i = 0; i < contact_index.size(); ++i)
+      rows(i, contact_index[i]) = 1.;
+    add_mass_times_contact_inverse(rows, matrix);
   }
 
   std::size_t

@@ -78,30 +78,13 @@ namespace PlateOnHalfspace
   BoussinesqGalerkinOperator::set_contact_nodes(
     const std::vector<bool> &requested)
   {
-    contact_index        = store_contact_nodes(requested);
-    const unsigned int m = contact_index.size();
-    contact_factor.reinit(m);
-    for (unsigned int i = 0; i < m; ++i)
-      for (unsigned int j = 0; j < m; ++j)
-        contact_factor(i, j) =
-          (partial_foundation ?
-             system_flexibility :
-             flexibility)(contact_index[i], contact_index[j]);
-    if (m == 0)
-      return;
-    try
-      {
-        contact_factor.compute_cholesky_factorization();
-      }
-    catch (...)
-      {
-        AssertThrow(false,
-                    ExcMessage("The Galerkin half-space matrix A of the "
-                               "contact set is not positive definite; the "
-                               "singular quadrature is too coarse for this "
-                               "mesh (raise Discretization/Singular "
-                               "quadrature order)."));
-      }
+    factorise_contact_block(
+      requested,
+      partial_foundation ? system_flexibility : flexibility,
+      true,
+      "The Galerkin half-space matrix A of the contact set is not positive "
+      "definite; the singular quadrature is too coarse for this mesh (raise "
+      "Discretization/Singular quadrature order).");
   }
 
   void
@@ -127,46 +110,23 @@ namespace PlateOnHalfspace
     // (B w)_C with the system's M (over the foundation cells).
     Vector<double> b(w.size());
     mass.vmult(b, w);
-    Vector<double> b_contact(contact_index.size());
-    for (unsigned int i = 0; i < contact_index.size(); ++i)
-      b_contact[i] = b[contact_index[i]];
-    if (!contact_index.empty())
-      contact_factor.solve(b_contact);
-    q.reinit(w.size());
-    for (unsigned int i = 0; i < contact_index.size(); ++i)
-      q[contact_index[i]] = b_contact[i];
+    solve_contact_block(b, q);
   }
 
   void
   BoussinesqGalerkinOperator::add_stiffness(
     LAPACKFullMatrix<double> &matrix) const
   {
-    const unsigned int n = mass.m(), m = contact_index.size();
-    if (m == 0)
-      return;
-    // X = A_CC^{-1} M_{C,:}, then S = M_{:,C} X (formulation.md: the
-    // foundation stiffness M A^{-1} M restricted to the contact set).
-    LAPACKFullMatrix<double> x(m, n);
-    x = 0.;
-    std::vector<int> position(n, -1);
-    for (unsigned int i = 0; i < m; ++i)
-      {
-        position[contact_index[i]] = i;
-        for (auto entry = mass.begin(contact_index[i]);
-             entry != mass.end(contact_index[i]);
-             ++entry)
-          x(i, entry->column()) = entry->value();
-      }
-    contact_factor.solve(x);
-    for (unsigned int r = 0; r < n; ++r)
-      for (auto entry = mass.begin(r); entry != mass.end(r); ++entry)
-        if (position[entry->column()] >= 0)
-          {
-            const unsigned int k = position[entry->column()];
-            const double       v = entry->value();
-            for (unsigned int c = 0; c < n; ++c)
-              matrix(r, c) += v * x(k, c);
-          }
+    // S = M_{:,C} A_CC^{-1} M_{C,:} (formulation.md: the foundation
+    // stiffness M A^{-1} M restricted to the contact set).
+    LAPACKFullMatrix<double> rows(contact_index.size(), mass.m());
+    rows = 0.;
+    for (unsigned int i = 0; i < contact_index.size(); ++i)
+      for (auto entry = mass.begin(contact_index[i]);
+           entry != mass.end(contact_index[i]);
+           ++entry)
+        rows(i, entry->column()) = entry->value();
+    add_mass_times_contact_inverse(rows, matrix);
   }
 
   std::size_t

@@ -39,18 +39,76 @@ namespace PlateOnHalfspace
     in_contact = node_supported;
   }
 
-  std::vector<unsigned int>
-  FoundationOperator::store_contact_nodes(const std::vector<bool> &requested)
+  void
+  FoundationOperator::factorise_contact_block(
+    const std::vector<bool>        &requested,
+    const LAPACKFullMatrix<double> &flexibility,
+    const bool                      symmetric,
+    const std::string              &failure)
   {
     AssertDimension(requested.size(), node_supported.size());
-    std::vector<unsigned int> index;
+    contact_index.clear();
     for (unsigned int i = 0; i < requested.size(); ++i)
       {
         in_contact[i] = requested[i] && node_supported[i];
         if (in_contact[i])
-          index.push_back(i);
+          contact_index.push_back(i);
       }
-    return index;
+    const unsigned int m = contact_index.size();
+    contact_factor.reinit(m);
+    for (unsigned int i = 0; i < m; ++i)
+      for (unsigned int j = 0; j < m; ++j)
+        contact_factor(i, j) = flexibility(contact_index[i], contact_index[j]);
+    if (m == 0)
+      return;
+    try
+      {
+        if (symmetric)
+          contact_factor.compute_cholesky_factorization();
+        else
+          contact_factor.compute_lu_factorization();
+      }
+    catch (...)
+      {
+        AssertThrow(false, ExcMessage(failure));
+      }
+  }
+
+  void
+  FoundationOperator::solve_contact_block(const Vector<double> &b,
+                                          Vector<double>       &q) const
+  {
+    Vector<double> b_contact(contact_index.size());
+    for (unsigned int i = 0; i < contact_index.size(); ++i)
+      b_contact[i] = b[contact_index[i]];
+    if (!contact_index.empty())
+      contact_factor.solve(b_contact);
+    q.reinit(b.size());
+    for (unsigned int i = 0; i < contact_index.size(); ++i)
+      q[contact_index[i]] = b_contact[i];
+  }
+
+  void
+  FoundationOperator::add_mass_times_contact_inverse(
+    LAPACKFullMatrix<double> &rows,
+    LAPACKFullMatrix<double> &matrix) const
+  {
+    const unsigned int n = mass.m();
+    if (contact_index.empty())
+      return;
+    contact_factor.solve(rows);
+    std::vector<int> position(n, -1);
+    for (unsigned int i = 0; i < contact_index.size(); ++i)
+      position[contact_index[i]] = i;
+    for (unsigned int r = 0; r < n; ++r)
+      for (auto entry = mass.begin(r); entry != mass.end(r); ++entry)
+        if (position[entry->column()] >= 0)
+          {
+            const unsigned int k = position[entry->column()];
+            const double       v = entry->value();
+            for (unsigned int c = 0; c < n; ++c)
+              matrix(r, c) += v * rows(k, c);
+          }
   }
 
   std::unique_ptr<FoundationOperator>

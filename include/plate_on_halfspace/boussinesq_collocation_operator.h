@@ -56,10 +56,8 @@ namespace PlateOnHalfspace
     }
 
   private:
-    const double              alpha;
-    LAPACKFullMatrix<double>  flexibility;
-    LAPACKFullMatrix<double>  contact_factor; ///< LU of G_CC
-    std::vector<unsigned int> contact_index;
+    const double             alpha;
+    LAPACKFullMatrix<double> flexibility;
   };
 } // namespace PlateOnHalfspace
 

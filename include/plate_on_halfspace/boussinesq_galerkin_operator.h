@@ -69,11 +69,9 @@ namespace PlateOnHalfspace
     /** A over foundation cells only; used when some cells are excluded. */
     LAPACKFullMatrix<double> system_flexibility;
     /** M over all cells (the plate's weak settlement when cells are out). */
-    SparsityPattern           full_mass_sparsity;
-    SparseMatrix<double>      full_mass;
-    bool                      partial_foundation = false;
-    LAPACKFullMatrix<double>  contact_factor; ///< Cholesky of A_CC
-    std::vector<unsigned int> contact_index;
+    SparsityPattern      full_mass_sparsity;
+    SparseMatrix<double> full_mass;
+    bool                 partial_foundation = false;
   };
 } // namespace PlateOnHalfspace
 

@@ -128,14 +128,35 @@ namespace PlateOnHalfspace
     build_mass_matrix(const FoundationSpace   &space,
                       const std::vector<bool> &cell_in_foundation);
 
-    /** Contact set restricted to supported nodes; returns the index list. */
-    std::vector<unsigned int>
-    store_contact_nodes(const std::vector<bool> &requested);
+    /**
+     * Store the contact set (restricted to supported nodes) and factorise
+     * F_CC of the dense @p flexibility: Cholesky if @p symmetric, else LU.
+     * Throws ExcMessage(@p failure) if the factorisation fails.
+     */
+    void
+    factorise_contact_block(const std::vector<bool>        &requested,
+                            const LAPACKFullMatrix<double> &flexibility,
+                            const bool                      symmetric,
+                            const std::string              &failure);
 
-    SparsityPattern      mass_sparsity;
-    SparseMatrix<double> mass;
-    std::vector<bool>    node_supported;
-    std::vector<bool>    in_contact;
+    /** q_C = F_CC^{-1} b_C and q = 0 off the contact set. */
+    void
+    solve_contact_block(const Vector<double> &b, Vector<double> &q) const;
+
+    /**
+     * matrix += M_{:,C} F_CC^{-1} @p rows, where @p rows (|C| x n, the
+     * contact rows of B) is overwritten.
+     */
+    void
+    add_mass_times_contact_inverse(LAPACKFullMatrix<double> &rows,
+                                   LAPACKFullMatrix<double> &matrix) const;
+
+    SparsityPattern           mass_sparsity;
+    SparseMatrix<double>      mass;
+    std::vector<bool>         node_supported;
+    std::vector<bool>         in_contact;
+    std::vector<unsigned int> contact_index;  ///< the nodes of C
+    LAPACKFullMatrix<double>  contact_factor; ///< factor of F_CC
   };
 
   /**

@@ -44,74 +44,17 @@
 
 #include "../tests.h"
 
-using namespace PlateOnHalfspace;
+#include "../test_tools.h"
 
-/** Element and shear integration by name, bypassing the parameter checks. */
-void
-set_variant(Parameters::Discretization &d,
-            const std::string          &element,
-            const std::string          &integration)
-{
-  using D   = Parameters::Discretization;
-  d.element = (element == "serendipity" ? D::Element::serendipity :
-               element == "heterosis"   ? D::Element::heterosis :
-                                          D::Element::lagrange);
-  d.shear_integration =
-    (integration == "reduced"   ? D::ShearIntegration::reduced :
-     integration == "selective" ? D::ShearIntegration::selective :
-                                  D::ShearIntegration::full);
-}
+using namespace PlateOnHalfspace;
+using namespace TestTools;
+
 
 namespace
 {
   const double pi = numbers::PI;
 
-  SceneParameters
-  parameters(const std::string &element,
-             const std::string &integration,
-             const double       thickness,
-             const std::string &loads)
-  {
-    const double       t = thickness;
-    std::ostringstream text;
-    text << std::setprecision(17) << "subsection Plate\n"
-         << "  set Thickness = " << t << "\n"
-         << "  set Young's modulus = " << 10.92 / (t * t * t) << "\n"
-         << "  set Poisson's ratio = 0.3\n"
-         << "end\n"
-         << "subsection Discretization\n"
-         << "end\n"
-         << "subsection Loads\n"
-         << loads << "end\n";
-    SceneParameters parameters;
-    parameters.read_from_string(text.str());
-    // Set the variant directly: the parameter file refuses the unstable
-    // combinations (reduced with heterosis or lagrange) this test examines.
-    set_variant(parameters.discretization, element, integration);
-    return parameters;
-  }
 
-  void
-  hard_simple_support(const DoFHandler<2>       &dof_handler,
-                      AffineConstraints<double> &constraints)
-  {
-    const Functions::ZeroFunction<2> zero(3);
-    VectorTools::interpolate_boundary_values(
-      dof_handler,
-      {{0, &zero}, {1, &zero}, {2, &zero}, {3, &zero}},
-      constraints,
-      ComponentMask(std::vector<bool>{true, false, false}));
-    VectorTools::interpolate_boundary_values(
-      dof_handler,
-      {{2, &zero}, {3, &zero}},
-      constraints,
-      ComponentMask(std::vector<bool>{false, true, false}));
-    VectorTools::interpolate_boundary_values(
-      dof_handler,
-      {{0, &zero}, {1, &zero}},
-      constraints,
-      ComponentMask(std::vector<bool>{false, false, true}));
-  }
 
   struct Series
   {
@@ -140,37 +83,6 @@ namespace
     s.mx *= 16. / std::pow(pi, 4);
     s.w_point *= 4. / std::pow(pi, 4);
     return s;
-  }
-
-  void
-  check(const std::string &name,
-        const double       computed,
-        const double       reference,
-        const double       relative_tolerance)
-  {
-    const bool ok = std::abs(computed - reference) <=
-                    relative_tolerance * std::abs(reference);
-    std::ostringstream tolerance;
-    tolerance << relative_tolerance;
-    deallog << name << ": computed " << computed << " reference " << reference
-            << " (rel. tol. " << tolerance.str() << ") "
-            << (ok ? "ok" : "FAILED") << std::endl;
-    AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
-  }
-
-
-
-  void
-  check_greater(const std::string &name,
-                const double       computed,
-                const double       bound)
-  {
-    const bool         ok = (computed > bound);
-    std::ostringstream b;
-    b << bound;
-    deallog << name << ": computed " << computed << " above " << b.str() << " "
-            << (ok ? "ok" : "FAILED") << std::endl;
-    AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
   }
 
 
@@ -257,8 +169,8 @@ main()
       for (const auto &element : elements)
         for (const auto &integration : integrations)
           {
-            const SceneParameters p =
-              parameters(element, integration, t, "set Uniform pressure = 1\n");
+            const SceneParameters p = unit_rigidity_plate(
+              element, integration, t, "set Uniform pressure = 1\n");
             std::vector<unsigned int> meshes = {4, 8, 16};
             if (element == "serendipity" && integration == "reduced")
               meshes.push_back(32);
@@ -308,14 +220,14 @@ main()
           for (const auto &element : elements)
             {
               const double reduced =
-                solve(parameters(
+                solve(unit_rigidity_plate(
                         element, "reduced", t, "set Uniform pressure = 1\n"),
                       4)
                   .w;
               const double full =
-                solve(
-                  parameters(element, "full", t, "set Uniform pressure = 1\n"),
-                  4)
+                solve(unit_rigidity_plate(
+                        element, "full", t, "set Uniform pressure = 1\n"),
+                      4)
                   .w;
               check_greater("locking: error of full / error of reduced, " +
                               element + ", " + slenderness + ", 4x4",
@@ -333,10 +245,10 @@ main()
             for (const auto &integration : integrations)
               check("point load, w centre / (P a^2/D), " + element + " " +
                       integration + ", " + slenderness + ", 16x16",
-                    solve(parameters(element,
-                                     integration,
-                                     t,
-                                     "set Point loads = 0,0,1\n"),
+                    solve(unit_rigidity_plate(element,
+                                              integration,
+                                              t,
+                                              "set Point loads = 0,0,1\n"),
                           16)
                       .w,
                     series.w_point,

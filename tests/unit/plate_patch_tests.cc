@@ -52,47 +52,15 @@
 
 #include "../tests.h"
 
-using namespace PlateOnHalfspace;
+#include "../test_tools.h"
 
-/** Element and shear integration by name, bypassing the parameter checks. */
-void
-set_variant(Parameters::Discretization &d,
-            const std::string          &element,
-            const std::string          &integration)
-{
-  using D   = Parameters::Discretization;
-  d.element = (element == "serendipity" ? D::Element::serendipity :
-               element == "heterosis"   ? D::Element::heterosis :
-                                          D::Element::lagrange);
-  d.shear_integration =
-    (integration == "reduced"   ? D::ShearIntegration::reduced :
-     integration == "selective" ? D::ShearIntegration::selective :
-                                  D::ShearIntegration::full);
-}
+using namespace PlateOnHalfspace;
+using namespace TestTools;
+
 
 namespace
 {
   const double nu = 0.3;
-
-  SceneParameters
-  parameters(const std::string &element, const std::string &integration)
-  {
-    const double       t = 0.1;
-    std::ostringstream text;
-    text << std::setprecision(17) << "subsection Plate\n"
-         << "  set Thickness = " << t << "\n"
-         << "  set Young's modulus = " << 10.92 / (t * t * t) << "\n"
-         << "  set Poisson's ratio = " << nu << "\n"
-         << "end\n"
-         << "subsection Discretization\n"
-         << "end\n";
-    SceneParameters parameters;
-    parameters.read_from_string(text.str());
-    // Set the variant directly: the parameter file refuses the unstable
-    // combinations (reduced with heterosis or lagrange) this test examines.
-    set_variant(parameters.discretization, element, integration);
-    return parameters;
-  }
 
 
 
@@ -249,18 +217,6 @@ namespace
 
 
 
-  void
-  check_greater(const std::string &name,
-                const double       computed,
-                const double       bound)
-  {
-    const bool         ok = (computed > bound);
-    std::ostringstream b;
-    b << bound;
-    deallog << name << ": computed " << computed << " above " << b.str() << " "
-            << (ok ? "ok" : "FAILED") << std::endl;
-    AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
-  }
 } // namespace
 
 
@@ -326,7 +282,8 @@ main()
     for (const std::string integration : {"reduced", "selective", "full"})
       for (const bool distorted : {false, true})
         {
-          const SceneParameters   p = parameters(element, integration);
+          const SceneParameters p =
+            unit_rigidity_plate(element, integration, 0.1);
           const Triangulation<2> &mesh =
             (distorted ? distorted_cells : square_cells);
           const std::string name = element + " " + integration + ", " +

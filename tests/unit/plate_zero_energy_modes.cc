@@ -59,46 +59,15 @@
 
 #include "../tests.h"
 
-using namespace PlateOnHalfspace;
+#include "../test_tools.h"
 
-/** Element and shear integration by name, bypassing the parameter checks. */
-void
-set_variant(Parameters::Discretization &d,
-            const std::string          &element,
-            const std::string          &integration)
-{
-  using D   = Parameters::Discretization;
-  d.element = (element == "serendipity" ? D::Element::serendipity :
-               element == "heterosis"   ? D::Element::heterosis :
-                                          D::Element::lagrange);
-  d.shear_integration =
-    (integration == "reduced"   ? D::ShearIntegration::reduced :
-     integration == "selective" ? D::ShearIntegration::selective :
-                                  D::ShearIntegration::full);
-}
+using namespace PlateOnHalfspace;
+using namespace TestTools;
+
 
 namespace
 {
   /** Plate of thickness 0.1, D = 1, nu = 0.3, with the given variant. */
-  SceneParameters
-  parameters(const std::string &element, const std::string &integration)
-  {
-    const double       t = 0.1;
-    std::ostringstream text;
-    text << std::setprecision(17) << "subsection Plate\n"
-         << "  set Thickness = " << t << "\n"
-         << "  set Young's modulus = " << 10.92 / (t * t * t) << "\n"
-         << "  set Poisson's ratio = 0.3\n"
-         << "end\n"
-         << "subsection Discretization\n"
-         << "end\n";
-    SceneParameters parameters;
-    parameters.read_from_string(text.str());
-    // Set the variant directly: the parameter file refuses the unstable
-    // combinations (reduced with heterosis or lagrange) this test examines.
-    set_variant(parameters.discretization, element, integration);
-    return parameters;
-  }
 
 
 
@@ -206,21 +175,6 @@ namespace
 
 
 
-  void
-  check_greater(const std::string &name,
-                const double       computed,
-                const double       bound)
-  {
-    const bool         ok = (computed > bound);
-    std::ostringstream b;
-    b << bound;
-    deallog << name << ": computed " << computed << " above " << b.str() << " "
-            << (ok ? "ok" : "FAILED") << std::endl;
-    AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
-  }
-
-
-
   enum class Support
   {
     free,
@@ -228,29 +182,6 @@ namespace
     hard_simple_support
   };
 
-  /** w = 0 on the boundary, beta_y = 0 on x = const (boundary ids 0, 1),
-   * beta_x = 0 on y = const (ids 2, 3): the support of the Navier test. */
-  void
-  hard_simple_support(const DoFHandler<2>       &dof_handler,
-                      AffineConstraints<double> &constraints)
-  {
-    const Functions::ZeroFunction<2> zero(3);
-    VectorTools::interpolate_boundary_values(
-      dof_handler,
-      {{0, &zero}, {1, &zero}, {2, &zero}, {3, &zero}},
-      constraints,
-      ComponentMask(std::vector<bool>{true, false, false}));
-    VectorTools::interpolate_boundary_values(
-      dof_handler,
-      {{2, &zero}, {3, &zero}},
-      constraints,
-      ComponentMask(std::vector<bool>{false, true, false}));
-    VectorTools::interpolate_boundary_values(
-      dof_handler,
-      {{0, &zero}, {1, &zero}},
-      constraints,
-      ComponentMask(std::vector<bool>{false, false, true}));
-  }
 
   struct Case
   {
@@ -337,8 +268,9 @@ main()
     for (unsigned int s = 0; s < 3; ++s)
       for (unsigned int m = 0; m < cases.size(); ++m)
         {
-          const SceneParameters p = parameters(elements[e], integrations[s]);
-          MindlinPlate          plate(p.plate, p.discretization);
+          const SceneParameters p =
+            unit_rigidity_plate(elements[e], integrations[s], 0.1);
+          MindlinPlate plate(p.plate, p.discretization);
           if (cases[m].support == Support::hard_simple_support)
             plate.setup(*cases[m].mesh, hard_simple_support);
           else

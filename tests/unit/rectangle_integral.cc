@@ -79,21 +79,6 @@ namespace
 
 
 
-  void
-  check(const std::string &name,
-        const double       computed,
-        const double       reference,
-        const double       relative_tolerance)
-  {
-    const bool ok = std::abs(computed - reference) <=
-                    relative_tolerance * std::abs(reference);
-    std::ostringstream tolerance;
-    tolerance << relative_tolerance;
-    deallog << name << ": computed " << computed << " reference " << reference
-            << " (rel. tol. " << tolerance.str() << ") "
-            << (ok ? "ok" : "FAILED") << std::endl;
-    AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
-  }
 } // namespace
 
 

@@ -54,10 +54,10 @@ namespace
 
 
   void
-  check(const std::string &name,
-        const double       computed,
-        const double       reference,
-        const double       absolute_tolerance)
+  check_absolute(const std::string &name,
+                 const double       computed,
+                 const double       reference,
+                 const double       absolute_tolerance)
   {
     const bool ok = std::abs(computed - reference) <= absolute_tolerance;
     std::ostringstream tolerance;
@@ -195,16 +195,17 @@ main()
     const auto q3 =
       quadrature_on_rectangle_part(cell, Point<2>(-1, 0), Point<2>(5, 3), 3);
     check_rule("n=3", q3);
-    check("area", integrate(cell, q3, one), 3., 1e-13);
+    check_absolute("area", integrate(cell, q3, one), 3., 1e-13);
     // int x^2 = 8/3, int y^2 = 4.875, int x = 2, int y = 2.625
-    check("x^2 y^2 + x y + 1 (n=3)",
-          integrate(cell,
-                    q3,
-                    [](const Point<2> &p) {
-                      return p[0] * p[0] * p[1] * p[1] + p[0] * p[1] + 1;
-                    }),
-          8. / 3 * 4.875 + 2 * 2.625 + 3,
-          1e-12);
+    check_absolute("x^2 y^2 + x y + 1 (n=3)",
+                   integrate(cell,
+                             q3,
+                             [](const Point<2> &p) {
+                               return p[0] * p[0] * p[1] * p[1] + p[0] * p[1] +
+                                      1;
+                             }),
+                   8. / 3 * 4.875 + 2 * 2.625 + 3,
+                   1e-12);
     // the same biquadratic through the reference coordinates, as shape
     // functions are evaluated: s = x/2, t = (y-1)/1.5
     double sum = 0;
@@ -213,29 +214,32 @@ main()
         const Point<2> &p = q3.point(q);
         sum += q3.weight(q) * p[0] * p[0] * p[1] * p[1];
       }
-    check("s^2 t^2 in reference coordinates (n=3)", sum, 3. / 9, 1e-13);
+    check_absolute("s^2 t^2 in reference coordinates (n=3)",
+                   sum,
+                   3. / 9,
+                   1e-13);
     // higher n: QGaussSimplex(4) and the collapsed Gauss rule beyond
     const auto q4 =
       quadrature_on_rectangle_part(cell, Point<2>(-1, 0), Point<2>(5, 3), 4);
-    check("x^3 y^4 (n=4, degree 7)",
-          integrate(cell,
-                    q4,
-                    [](const Point<2> &p) {
-                      return std::pow(p[0], 3) * std::pow(p[1], 4);
-                    }),
-          4. * (std::pow(2.5, 5) - 1) / 5,
-          1e-11);
+    check_absolute("x^3 y^4 (n=4, degree 7)",
+                   integrate(cell,
+                             q4,
+                             [](const Point<2> &p) {
+                               return std::pow(p[0], 3) * std::pow(p[1], 4);
+                             }),
+                   4. * (std::pow(2.5, 5) - 1) / 5,
+                   1e-11);
     const auto q5 =
       quadrature_on_rectangle_part(cell, Point<2>(-1, 0), Point<2>(5, 3), 5);
     check_rule("n=5", q5);
-    check("x^4 y^5 (n=5, degree 9)",
-          integrate(cell,
-                    q5,
-                    [](const Point<2> &p) {
-                      return std::pow(p[0], 4) * std::pow(p[1], 5);
-                    }),
-          32. / 5 * (std::pow(2.5, 6) - 1) / 6,
-          1e-10);
+    check_absolute("x^4 y^5 (n=5, degree 9)",
+                   integrate(cell,
+                             q5,
+                             [](const Point<2> &p) {
+                               return std::pow(p[0], 4) * std::pow(p[1], 5);
+                             }),
+                   32. / 5 * (std::pow(2.5, 6) - 1) / 6,
+                   1e-10);
   }
 
   // (b) Partial overlaps of an axis-aligned cell with rectangles: area and
@@ -267,18 +271,18 @@ main()
             continue;
           }
         check_rule(name.str(), quadrature);
-        check(name.str() + " area",
-              integrate(cell, quadrature, one),
-              (b - a) * (d - c),
-              1e-13);
-        check(name.str() + " int x",
-              integrate(cell, quadrature, x),
-              (b * b - a * a) / 2 * (d - c),
-              1e-13);
-        check(name.str() + " int y",
-              integrate(cell, quadrature, y),
-              (b - a) * (d * d - c * c) / 2,
-              1e-13);
+        check_absolute(name.str() + " area",
+                       integrate(cell, quadrature, one),
+                       (b - a) * (d - c),
+                       1e-13);
+        check_absolute(name.str() + " int x",
+                       integrate(cell, quadrature, x),
+                       (b * b - a * a) / 2 * (d - c),
+                       1e-13);
+        check_absolute(name.str() + " int y",
+                       integrate(cell, quadrature, y),
+                       (b - a) * (d * d - c * c) / 2,
+                       1e-13);
       }
   }
 
@@ -311,7 +315,10 @@ main()
                !cell.is_axis_aligned_rectangle());
     check_true("axis-aligned rectangle",
                rectangle_cell(1, 3, -1, 0.5).is_axis_aligned_rectangle());
-    check("diameter", cell.diameter(), std::sqrt(2.4 * 2.4 + 1.9 * 1.9), 1e-15);
+    check_absolute("diameter",
+                   cell.diameter(),
+                   std::sqrt(2.4 * 2.4 + 1.9 * 1.9),
+                   1e-15);
 
     const std::vector<std::array<double, 4>> rectangles = {
       {{0.1, 2.2, 0.1, 1.7}}, // cuts all four edges
@@ -327,31 +334,33 @@ main()
         const auto quadrature = quadrature_on_rectangle_part(
           cell, Point<2>(r[0], r[2]), Point<2>(r[1], r[3]), 3);
         check_rule(name.str(), quadrature);
-        check(name.str() + " area",
-              integrate(cell, quadrature, one),
-              exact[0],
-              1e-13);
-        check(name.str() + " int x",
-              integrate(cell, quadrature, x),
-              exact[1],
-              1e-13);
-        check(name.str() + " int y",
-              integrate(cell, quadrature, y),
-              exact[2],
-              1e-13);
-        check(name.str() + " int x^2 y",
-              integrate(cell,
-                        quadrature,
-                        [](const Point<2> &p) { return p[0] * p[0] * p[1]; }),
-              exact[3],
-              1e-12);
+        check_absolute(name.str() + " area",
+                       integrate(cell, quadrature, one),
+                       exact[0],
+                       1e-13);
+        check_absolute(name.str() + " int x",
+                       integrate(cell, quadrature, x),
+                       exact[1],
+                       1e-13);
+        check_absolute(name.str() + " int y",
+                       integrate(cell, quadrature, y),
+                       exact[2],
+                       1e-13);
+        check_absolute(name.str() + " int x^2 y",
+                       integrate(cell,
+                                 quadrature,
+                                 [](const Point<2> &p) {
+                                   return p[0] * p[0] * p[1];
+                                 }),
+                       exact[3],
+                       1e-12);
       }
     // the whole cell by the shoelace formula: polygon v0 v1 v3 v2
-    check("whole cell area by shoelace",
-          slice_integrals(cell, -5, 5, -5, 5)[0],
-          0.5 * ((0 * 0.2 - 2 * 0) + (2 * 1.9 - 2.4 * 0.2) +
-                 (2.4 * 1.5 - 0.3 * 1.9) + (0.3 * 0 - 0 * 1.5)),
-          1e-14);
+    check_absolute("whole cell area by shoelace",
+                   slice_integrals(cell, -5, 5, -5, 5)[0],
+                   0.5 * ((0 * 0.2 - 2 * 0) + (2 * 1.9 - 2.4 * 0.2) +
+                          (2.4 * 1.5 - 0.3 * 1.9) + (0.3 * 0 - 0 * 1.5)),
+                   1e-14);
   }
 
   // (d) Disk parts.
@@ -372,10 +381,10 @@ main()
           return quadrature;
         }
       check_rule(name, quadrature);
-      check(name + ", area",
-            integrate(cell, quadrature, one),
-            exact_area,
-            1e-13);
+      check_absolute(name + ", area",
+                     integrate(cell, quadrature, one),
+                     exact_area,
+                     1e-13);
       return quadrature;
     };
 
@@ -383,18 +392,18 @@ main()
       const auto cell = rectangle_cell(0, 2, 0, 1.5);
       const auto q    = check_disk(
         "disk inside the cell", cell, Point<2>(0.9, 0.8), 0.3, pi * 0.09);
-      check("disk inside the cell, int x",
-            integrate(cell, q, x),
-            pi * 0.09 * 0.9,
-            1e-13);
-      check("disk inside the cell, int (x-0.9)^2",
-            integrate(cell,
-                      q,
-                      [](const Point<2> &p) {
-                        return (p[0] - 0.9) * (p[0] - 0.9);
-                      }),
-            pi * std::pow(0.3, 4) / 4,
-            1e-14);
+      check_absolute("disk inside the cell, int x",
+                     integrate(cell, q, x),
+                     pi * 0.09 * 0.9,
+                     1e-13);
+      check_absolute("disk inside the cell, int (x-0.9)^2",
+                     integrate(cell,
+                               q,
+                               [](const Point<2> &p) {
+                                 return (p[0] - 0.9) * (p[0] - 0.9);
+                               }),
+                     pi * std::pow(0.3, 4) / 4,
+                     1e-14);
     }
     check_disk("disk inside, touching all four edges",
                unit,
@@ -405,10 +414,12 @@ main()
     {
       const auto q = check_disk(
         "centre at vertex 0", unit, Point<2>(0, 0), 0.7, pi * 0.49 / 4);
-      check("centre at vertex 0, int x^2 = pi R^4/16",
-            integrate(unit, q, [](const Point<2> &p) { return p[0] * p[0]; }),
-            pi * std::pow(0.7, 4) / 16,
-            1e-14);
+      check_absolute("centre at vertex 0, int x^2 = pi R^4/16",
+                     integrate(unit,
+                               q,
+                               [](const Point<2> &p) { return p[0] * p[0]; }),
+                     pi * std::pow(0.7, 4) / 16,
+                     1e-14);
     }
     check_disk("centre on an edge", unit, Point<2>(0.5, 0), 0.3, pi * 0.09 / 2);
     check_disk("centre outside, segment",
@@ -434,10 +445,10 @@ main()
     {
       const auto q = check_disk(
         "disk containing the whole cell", unit, Point<2>(0.5, 0.5), 1, 1);
-      check("disk containing the whole cell, int x",
-            integrate(unit, q, x),
-            0.5,
-            1e-14);
+      check_absolute("disk containing the whole cell, int x",
+                     integrate(unit, q, x),
+                     0.5,
+                     1e-14);
     }
     check_disk("disk far away", unit, Point<2>(3, 3), 1, 0);
     check_disk(
@@ -481,11 +492,14 @@ main()
             const double       R = disk.second;
             std::ostringstream name;
             name << mesh << ", disk at (" << disk.first << ") R=" << R;
-            check(name.str() + ", sum of areas", area, pi * R * R, 1e-12);
-            check(name.str() + ", sum of int x",
-                  moment,
-                  pi * R * R * disk.first[0],
-                  1e-12);
+            check_absolute(name.str() + ", sum of areas",
+                           area,
+                           pi * R * R,
+                           1e-12);
+            check_absolute(name.str() + ", sum of int x",
+                           moment,
+                           pi * R * R * disk.first[0],
+                           1e-12);
           }
       }
   }

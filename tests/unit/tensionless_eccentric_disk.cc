@@ -12,26 +12,22 @@
 
 #include "../tests.h"
 
-using namespace PlateOnHalfspace;
+#include "../test_tools.h"
 
+using namespace PlateOnHalfspace;
+using namespace TestTools;
+
+
+/** parameters/rigid-disk.prm on one mesh, load at (e, 0). */
 std::unique_ptr<PlateOnHalfspaceProblem>
 solve(const double eccentricity, const std::string &contact)
 {
-  std::ostringstream prm;
-  prm << "include " << SOURCE_DIR << "/../../parameters/rigid-disk.prm\n"
-      << "set Output directory = results\n"
-      << "subsection Foundation\n set Contact = " << contact << "\nend\n"
-      << "subsection Loads\n set Point loads = " << eccentricity
-      << ",0,1000\nend\n"
-      << "subsection Adaptivity\n set Cycles = 1\nend\n"
-      << "subsection Verification\n set Checks =\nend\n"
-      << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n";
-  SceneParameters parameters;
-  parameters.read_from_string(prm.str());
-  static std::ostringstream log; // the problem keeps a reference
-  auto problem = std::make_unique<PlateOnHalfspaceProblem>(parameters, log);
-  problem->run();
-  return problem;
+  std::ostringstream extra;
+  extra << "subsection Foundation\n set Contact = " << contact << "\nend\n"
+        << "subsection Loads\n set Point loads = " << eccentricity
+        << ",0,1000\nend\n"
+        << "subsection Adaptivity\n set Cycles = 1\nend\n";
+  return solve_scene("rigid-disk.prm", extra.str());
 }
 
 int

@@ -20,25 +20,21 @@
 
 #include "../tests.h"
 
-using namespace PlateOnHalfspace;
+#include "../test_tools.h"
 
+using namespace PlateOnHalfspace;
+using namespace TestTools;
+
+
+/** A shipped scene with the Galerkin operator and the active set. */
 std::unique_ptr<PlateOnHalfspaceProblem>
 solve(const std::string &scene, const std::string &extra)
 {
-  std::ostringstream prm;
-  prm << "include " << SOURCE_DIR << "/../../parameters/" << scene << "\n"
-      << "set Output directory = results\n"
-      << "subsection Discretization\n set Flexibility = galerkin\nend\n"
-      << "subsection Contact\n set Method = active set\nend\n"
-      << "subsection Verification\n set Checks =\nend\n"
-      << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n"
-      << extra;
-  SceneParameters parameters;
-  parameters.read_from_string(prm.str());
-  static std::ostringstream log; // the problem keeps a reference
-  auto problem = std::make_unique<PlateOnHalfspaceProblem>(parameters, log);
-  problem->run();
-  return problem;
+  return solve_scene(scene,
+                     "subsection Discretization\n set Flexibility = "
+                     "galerkin\nend\nsubsection Contact\n set Method = "
+                     "active set\nend\n" +
+                       extra);
 }
 
 void

@@ -1,0 +1,126 @@
+/**
+ * Small helpers shared by the unit tests: scenes from the shipped parameter
+ * files, plate variants set past the parameter checks, the hard simple
+ * support of the Navier tests.
+ */
+#ifndef plate_on_halfspace_test_tools_h
+#define plate_on_halfspace_test_tools_h
+
+#include <deal.II/base/function.h>
+
+#include <deal.II/fe/component_mask.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <plate_on_halfspace/plate_on_halfspace_problem.h>
+
+#include <iomanip>
+#include <memory>
+#include <sstream>
+#include <string>
+
+namespace TestTools
+{
+  using namespace dealii;
+  using namespace PlateOnHalfspace;
+
+  /**
+   * Run parameters/@p scene (tests are in tests/unit, so SOURCE_DIR/../..
+   * is the project) with the entries @p extra appended, quietly, results
+   * in ./results, no verification checks.
+   */
+  inline std::unique_ptr<PlateOnHalfspaceProblem>
+  solve_scene(const std::string &scene, const std::string &extra)
+  {
+    std::ostringstream prm;
+    prm << "include " << SOURCE_DIR << "/../../parameters/" << scene << "\n"
+        << "set Output directory = results\n"
+        << "subsection Verification\n set Checks =\nend\n"
+        << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n"
+        << extra;
+    SceneParameters parameters;
+    parameters.read_from_string(prm.str());
+    static std::ostringstream log; // the problem keeps a reference
+    auto problem = std::make_unique<PlateOnHalfspaceProblem>(parameters, log);
+    problem->run();
+    return problem;
+  }
+
+  /**
+   * The integral of the plate's deflection over the footprint, 1^T M w
+   * (= 1^T A q with the Galerkin operator).
+   */
+  inline double
+  integral_of_deflection(const PlateOnHalfspaceProblem &problem)
+  {
+    Vector<double> mw(problem.contact_state().w.size());
+    problem.foundation().mass_matrix().vmult(mw, problem.contact_state().w);
+    double integral = 0;
+    for (const double v : mw)
+      integral += v;
+    return integral;
+  }
+
+  /**
+   * A plate of thickness @p t with D = 1 and nu = 0.3 and the given element
+   * and shear integration, set directly: the parameter file refuses the
+   * unstable combinations (reduced with heterosis or lagrange) that the
+   * plate tests examine. @p loads: entries of subsection Loads.
+   */
+  inline SceneParameters
+  unit_rigidity_plate(const std::string &element,
+                      const std::string &integration,
+                      const double       t,
+                      const std::string &loads = "")
+  {
+    std::ostringstream text;
+    text << std::setprecision(17) << "subsection Plate\n"
+         << "  set Thickness = " << t << "\n"
+         << "  set Young's modulus = " << 10.92 / (t * t * t) << "\n"
+         << "  set Poisson's ratio = 0.3\n"
+         << "end\n"
+         << "subsection Loads\n"
+         << loads << "end\n";
+    SceneParameters parameters;
+    parameters.read_from_string(text.str());
+    using D   = Parameters::Discretization;
+    D &d      = parameters.discretization;
+    d.element = (element == "serendipity" ? D::Element::serendipity :
+                 element == "heterosis"   ? D::Element::heterosis :
+                                            D::Element::lagrange);
+    d.shear_integration =
+      (integration == "reduced"   ? D::ShearIntegration::reduced :
+       integration == "selective" ? D::ShearIntegration::selective :
+                                    D::ShearIntegration::full);
+    return parameters;
+  }
+
+  /**
+   * Hard simple support of a rectangle from GridGenerator: w = 0 on the
+   * boundary, beta_y = 0 on x = const (boundary ids 0, 1), beta_x = 0 on
+   * y = const (ids 2, 3).
+   */
+  inline void
+  hard_simple_support(const DoFHandler<2>       &dof_handler,
+                      AffineConstraints<double> &constraints)
+  {
+    const Functions::ZeroFunction<2> zero(3);
+    VectorTools::interpolate_boundary_values(
+      dof_handler,
+      {{0, &zero}, {1, &zero}, {2, &zero}, {3, &zero}},
+      constraints,
+      ComponentMask(std::vector<bool>{true, false, false}));
+    VectorTools::interpolate_boundary_values(
+      dof_handler,
+      {{2, &zero}, {3, &zero}},
+      constraints,
+      ComponentMask(std::vector<bool>{false, true, false}));
+    VectorTools::interpolate_boundary_values(
+      dof_handler,
+      {{0, &zero}, {1, &zero}},
+      constraints,
+      ComponentMask(std::vector<bool>{false, false, true}));
+  }
+} // namespace TestTools
+
+#endif
