@@ -1,0 +1,96 @@
+// The reference value of parameters/infinite-plate-patch.prm, computed here
+// independently of the finite element code: the centre deflection of an
+// infinite Mindlin plate on a half-space under a uniform circular patch
+// (formulation.md, "Reference values"):
+//   w(0) = (P/(pi a)) Int_0^inf J1(k a) (1 + c k^2) /
+//          (D k^4 + (1 + c k^2) E* k / 2) dk,
+//   c = D/(k_s G t), E* = E0/(1 - nu0^2), k_s = 5/6.
+// The integrand oscillates with period 2 pi / a and decays like k^-5/2:
+// Gauss-Legendre on each half period of J1, the partial sums of the
+// alternating tail averaged (Euler's first step). Cross-checked against
+// mpmath (quadosc, 20 digits): 1.9231820006778574e-4. Also the Kirchhoff
+// limit (c = 0, a -> 0) against the exact point-load value P l^2/(3 sqrt 3 D)
+// (references.md).
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <cmath>
+
+#include "../tests.h"
+
+double
+hankel_centre_deflection(const double D,
+                         const double c,
+                         const double E_star,
+                         const double a,
+                         const double P)
+{
+  // The formula written as (P/(2 pi)) Int (2 J1(ka)/(ka)) k f(k) dk, whose
+  // first factor tends to 1 as a -> 0 (the point load).
+  const auto integrand = [&](const double k) {
+    const double x      = k * a;
+    const double factor = (x > 0) ? 2. * std::cyl_bessel_j(1, x) / x : 1.;
+    return factor * k * (1. + c * k * k) /
+           (D * k * k * k * k + (1. + c * k * k) * E_star * k / 2.);
+  };
+  const QGauss<1> gauss(12);
+  const auto      integrate = [&](const double from, const double to) {
+    double             integral = 0;
+    const unsigned int panels   = 16;
+    const double       h        = (to - from) / panels;
+    for (unsigned int j = 0; j < panels; ++j)
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        integral +=
+          gauss.weight(q) * h * integrand(from + (j + gauss.point(q)[0]) * h);
+    return integral;
+  };
+  // Intervals between the zeros of J1(ka), asymptotically (n + 1/4) pi / a,
+  // so that the tail alternates: average the last two partial sums. For a
+  // point load the integrand does not oscillate; integrate far out.
+  double sum = 0, previous = 0;
+  if (a > 0)
+    for (unsigned int n = 0; n < 20000; ++n)
+      {
+        previous = sum;
+        sum +=
+          integrate(n == 0 ? 0. : (n + 0.25) * M_PI / a, (n + 1.25) * M_PI / a);
+      }
+  else
+    {
+      // k f(k) ~ 1/(D k^3) + ...: integrate to K and add the tail exactly.
+      const double K = 1e4;
+      for (double k = 0; k < K; k += 0.5)
+        sum += integrate(k, k + 0.5);
+      sum += (c == 0 ? 1. / (2. * D * K * K) : 0.);
+      previous = sum;
+    }
+  return P / (2. * M_PI) * 0.5 * (sum + previous);
+}
+
+int
+main()
+{
+  initlog();
+  // parameters/infinite-plate-patch.prm
+  const double E = 3e7, nu = 0.15, t = 0.25, E0 = 1e5, nu0 = 0.35, a = 0.15,
+               p      = 700.;
+  const double D      = E * t * t * t / (12. * (1. - nu * nu));
+  const double G      = E / (2. * (1. + nu));
+  const double c      = D / (5. / 6. * G * t);
+  const double E_star = E0 / (1. - nu0 * nu0);
+  const double P      = p * M_PI * a * a;
+  check("Mindlin plate, patch a = 0.15 m: w(0) [m]",
+        hankel_centre_deflection(D, c, E_star, a, P),
+        1.9231820006778574e-4,
+        1e-8);
+  check("value in parameters/infinite-plate-patch.prm",
+        1.9231820e-4,
+        hankel_centre_deflection(D, c, E_star, a, P),
+        1e-7);
+  // Kirchhoff plate, point load: w0 = P l^2 / (3 sqrt 3 D), l^3 = 2 D/E*
+  const double l = std::cbrt(2. * D * (1. - nu0 * nu0) / E0);
+  check("Kirchhoff plate, point load: w(0) / (P l^2 / D)",
+        hankel_centre_deflection(D, 0., E_star, 0., 1.) / (l * l / D),
+        1. / (3. * std::sqrt(3.)),
+        1e-6);
+}
