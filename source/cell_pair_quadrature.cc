@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace PlateOnHalfspace
 {
@@ -34,13 +35,28 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
+  CellPairIntegrator::SingularRule::SingularRule(const Point<2> &split,
+                                                 const QDuffy   &duffy)
+    : at_split(q2_shape_values(split))
+  {
+    const QSplit<2> rule(duffy, split);
+    points  = rule.get_points();
+    weights = rule.get_weights();
+    for (const Point<2> &y : points)
+      phi.push_back(q2_shape_values(y));
+  }
+
   CellPairIntegrator::CellPairIntegrator(const FoundationSpace &space,
                                          const unsigned int     singular_order)
     : space(space)
     , singular_order(singular_order)
     , orders{2, 3, 5, 0}
     , cell_data(space.cells.size())
+    , duffy(singular_order, 1.0)
   {
+    const Quadrature<2> outer_rule = graded_rule(singular_order);
+    for (const Point<2> &p : outer_rule.get_points())
+      coincident_rules.emplace_back(p, duffy);
     for (unsigned int c = 0; c < space.cells.size(); ++c)
       {
         const FoundationSpace::Cell &cell = space.cells[c];
@@ -147,51 +163,58 @@ namespace PlateOnHalfspace
                                          FullMatrix<double> &block) const
   {
     const BilinearQuadrilateral &inner_cell = space.cells[l].geometry;
-    const Table        &outer = cell_data[k].tables.back(); // singular order
-    const Quadrature<2> outer_rule = graded_rule(singular_order);
-    const QDuffy        duffy(singular_order, 1.0);
-    const unsigned int  nb = cell_data[l].nodes.size();
-    std::vector<double> t(nb), values;
-    const auto         &v               = inner_cell.get_vertices();
+    const Table       &outer = cell_data[k].tables.back(); // singular order
+    const unsigned int nb    = cell_data[l].nodes.size();
+    const auto        &v     = inner_cell.get_vertices();
     const std::vector<Point<2>> polygon = {v[0], v[1], v[3], v[2]};
+    const FullMatrix<double>   &T       = cell_data[l].node_from_q2;
+    std::array<double, 9>       t;
     for (unsigned int p = 0; p < outer.points.size(); ++p)
       {
         const Point<2> &x = outer.points[p];
         // The inner singularity sits at x's reference point in L; outside
         // L (touching pairs) the nearest point of the reference square is
-        // the best place to concentrate the Duffy points.
-        Point<2> split =
-          (k == l) ? outer_rule.point(p) : inner_cell.inverse_map(x);
-        for (unsigned int d = 0; d < 2; ++d)
-          split[d] = std::min(1., std::max(0., split[d]));
-        // Singularity subtraction: psi_b(y) = (psi_b(y) - psi_b(split)) +
-        // psi_b(split). The first part over r is bounded and the Duffy rule
-        // integrates it accurately; the second is psi_b(split) times the
-        // exact integral of 1/r over the polygon L.
-        const QSplit<2>     inner(duffy, split);
-        std::vector<double> at_split;
-        node_shape_values(l, split, at_split);
+        // the best place to concentrate the Duffy points. Coincident pairs
+        // reuse the rules built once for the outer points.
+        std::unique_ptr<SingularRule> own_rule;
+        const SingularRule           *rule = nullptr;
+        if (k == l)
+          rule = &coincident_rules[p];
+        else
+          {
+            Point<2> split = inner_cell.inverse_map(x);
+            for (unsigned int d = 0; d < 2; ++d)
+              split[d] = std::min(1., std::max(0., split[d]));
+            own_rule = std::make_unique<SingularRule>(split, duffy);
+            rule     = own_rule.get();
+          }
+        // Singularity subtraction, in the Q2 basis: phi_i(y) = (phi_i(y) -
+        // phi_i(split)) + phi_i(split). The first part over r is bounded
+        // and the Duffy rule integrates it accurately; the second is
+        // phi_i(split) times the exact integral of 1/r over the polygon L.
         const double polygon_integral =
           integral_of_inverse_distance_over_polygon(x, polygon);
-        for (unsigned int b = 0; b < nb; ++b)
-          t[b] = at_split[b] * polygon_integral;
-        for (unsigned int q = 0; q < inner.size(); ++q)
+        for (unsigned int i = 0; i < 9; ++i)
+          t[i] = rule->at_split[i] * polygon_integral;
+        for (unsigned int q = 0; q < rule->points.size(); ++q)
           {
-            const Point<2> &y_ref = inner.point(q);
+            const Point<2> &y_ref = rule->points[q];
             const double    r     = x.distance(inner_cell.map(y_ref));
             if (r == 0.)
               continue; // a point of measure zero
             const double kernel =
-              inner.weight(q) * inner_cell.jacobian_determinant(y_ref) / r;
-            node_shape_values(l, y_ref, values);
-            for (unsigned int b = 0; b < nb; ++b)
-              t[b] += kernel * (values[b] - at_split[b]);
+              rule->weights[q] * inner_cell.jacobian_determinant(y_ref) / r;
+            for (unsigned int i = 0; i < 9; ++i)
+              t[i] += kernel * (rule->phi[q][i] - rule->at_split[i]);
           }
-        for (unsigned int a = 0; a < outer.values[p].size(); ++a)
+        // to the node shape functions psi_b = sum_i T_bi phi_i
+        for (unsigned int b = 0; b < nb; ++b)
           {
-            const double wa = outer.weights[p] * outer.values[p][a];
-            for (unsigned int b = 0; b < nb; ++b)
-              block(a, b) += wa * t[b];
+            double tb = 0;
+            for (unsigned int i = 0; i < 9; ++i)
+              tb += T(b, i) * t[i];
+            for (unsigned int a = 0; a < outer.values[p].size(); ++a)
+              block(a, b) += outer.weights[p] * outer.values[p][a] * tb;
           }
       }
   }

@@ -1,3 +1,6 @@
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/thread_management.h>
+
 #include <plate_on_halfspace/boussinesq_collocation_operator.h>
 #include <plate_on_halfspace/boussinesq_galerkin_operator.h>
 #include <plate_on_halfspace/boussinesq_kernel.h>
@@ -97,18 +100,35 @@ namespace PlateOnHalfspace
     if (contact_index.empty())
       return;
     contact_factor.solve(rows);
+    // M_{:,C} restricted to the contact columns, row by row.
     std::vector<int> position(n, -1);
     for (unsigned int i = 0; i < contact_index.size(); ++i)
       position[contact_index[i]] = i;
+    std::vector<std::vector<std::pair<unsigned int, double>>> mass_rows(n);
     for (unsigned int r = 0; r < n; ++r)
       for (auto entry = mass.begin(r); entry != mass.end(r); ++entry)
         if (position[entry->column()] >= 0)
+          mass_rows[r].emplace_back(position[entry->column()], entry->value());
+    // matrix(:, c) += M_{:,C} rows(:, c): both columns are contiguous in
+    // LAPACK's column-major storage; the columns are independent, so they
+    // are split over the threads.
+    const auto add_columns = [&](const unsigned int begin,
+                                 const unsigned int end) {
+      for (unsigned int c = begin; c < end; ++c)
+        for (unsigned int r = 0; r < n; ++r)
           {
-            const unsigned int k = position[entry->column()];
-            const double       v = entry->value();
-            for (unsigned int c = 0; c < n; ++c)
-              matrix(r, c) += v * rows(k, c);
+            double sum = 0;
+            for (const auto &kv : mass_rows[r])
+              sum += kv.second * rows(kv.first, c);
+            matrix(r, c) += sum;
           }
+    };
+    Threads::TaskGroup<void> tasks;
+    const unsigned int       n_chunks = MultithreadInfo::n_threads();
+    for (unsigned int t = 0; t < n_chunks; ++t)
+      tasks += Threads::new_task(
+        [&, t]() { add_columns(n * t / n_chunks, n * (t + 1) / n_chunks); });
+    tasks.join_all();
   }
 
   std::unique_ptr<FoundationOperator>

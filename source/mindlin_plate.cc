@@ -365,6 +365,16 @@ namespace PlateOnHalfspace
         if (foundation_index[entry->column()] >= 0)
           condensed(i, foundation_index[entry->column()]) = entry->value();
 
+    // K_fr row by row, columns numbered within r
+    std::vector<std::vector<std::pair<unsigned int, double>>> coupling_rows(nf);
+    for (unsigned int i = 0; i < nf; ++i)
+      for (auto entry = stiffness.begin(foundation_dofs[i]);
+           entry != stiffness.end(foundation_dofs[i]);
+           ++entry)
+        if (rest_position[entry->column()] >= 0)
+          coupling_rows[i].emplace_back(rest_position[entry->column()],
+                                        entry->value());
+
     // - K_fr K_rr^{-1} K_rf, a block of columns at a time (K symmetric: row
     // f_j of K holds column j of K_rf).
     const unsigned int  block_size = 256;
@@ -383,17 +393,18 @@ namespace PlateOnHalfspace
                   entry->value();
           }
         rest_factor.solve(block, k);
-        for (unsigned int i = 0; i < nf; ++i)
-          for (auto entry = stiffness.begin(foundation_dofs[i]);
-               entry != stiffness.end(foundation_dofs[i]);
-               ++entry)
-            if (rest_position[entry->column()] >= 0)
+        // column by column: both the block's and K̄'s columns are contiguous
+        for (unsigned int jj = 0; jj < k; ++jj)
+          {
+            const double *x = block.data() + std::size_t(jj) * nr;
+            for (unsigned int i = 0; i < nf; ++i)
               {
-                const double  v = entry->value();
-                const double *x = block.data() + rest_position[entry->column()];
-                for (unsigned int jj = 0; jj < k; ++jj)
-                  condensed(i, first + jj) -= v * x[std::size_t(jj) * nr];
+                double sum = 0;
+                for (const auto &entry : coupling_rows[i])
+                  sum += entry.second * x[entry.first];
+                condensed(i, first + jj) -= sum;
               }
+          }
       }
 
     // P̄ = P_f - K_fr K_rr^{-1} P_r

@@ -6,10 +6,13 @@
 #ifndef plate_on_halfspace_cell_pair_quadrature_h
 #define plate_on_halfspace_cell_pair_quadrature_h
 
+#include <deal.II/base/quadrature_lib.h>
+
 #include <deal.II/lac/full_matrix.h>
 
 #include <plate_on_halfspace/foundation_space.h>
 
+#include <array>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -59,6 +62,19 @@ namespace PlateOnHalfspace
       std::vector<std::vector<double>> values;  ///< [q][a]
     };
 
+    /**
+     * The inner rule of a singular pair for one split point, with the Q2
+     * shape values at its points and at the split point.
+     */
+    struct SingularRule
+    {
+      SingularRule(const Point<2> &split, const QDuffy &duffy);
+      std::vector<Point<2>>              points;
+      std::vector<double>                weights;
+      std::vector<std::array<double, 9>> phi;
+      std::array<double, 9>              at_split;
+    };
+
     struct CellData
     {
       std::vector<unsigned int> nodes;
@@ -92,6 +108,10 @@ namespace PlateOnHalfspace
     /** Gauss orders of the tables; 0: the graded singular-pair rule. */
     std::vector<unsigned int> orders;
     std::vector<CellData>     cell_data;
+    /** The Duffy rule on the reference triangle, singular at vertex 0. */
+    const QDuffy duffy;
+    /** Inner rules of coincident pairs, one per outer point. */
+    std::vector<SingularRule> coincident_rules;
   };
 } // namespace PlateOnHalfspace
 
