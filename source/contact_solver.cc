@@ -1,8 +1,11 @@
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/lac/full_matrix.h>
+
 #include <plate_on_halfspace/contact_solver.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <numeric>
@@ -70,6 +73,7 @@ namespace PlateOnHalfspace
   ContactSolver::solve_coupled(const LAPACKFullMatrix<double> &plate_stiffness,
                                const Vector<double>           &plate_load,
                                const FoundationOperator       &foundation,
+                               const FoundationSpace          &space,
                                ContactState                   &state) const
   {
     // (K̄ + S) w = P̄ (P21), S the foundation stiffness on the contact set.
@@ -94,7 +98,57 @@ namespace PlateOnHalfspace
     for (const double v : state.w)
       AssertThrow(std::isfinite(v), ExcMessage(mechanism));
     foundation.solve(state.w, state.q);
+    correct_rigid_body_equilibrium(plate_load, foundation, space, state);
     state.in_contact = foundation.contact_nodes();
+  }
+
+  void
+  ContactSolver::correct_rigid_body_equilibrium(
+    const Vector<double>     &plate_load,
+    const FoundationOperator &foundation,
+    const FoundationSpace    &space,
+    ContactState             &state) const
+  {
+    // The rigid-body motions w = 1, x, y of the free plate are exactly in
+    // the kernel of K̄, so the three equations r^T (K̄ + S) w = r^T P̄ read
+    // r^T S w = r^T P̄: vertical force and moment equilibrium. In floating
+    // point K̄ r is only zero to rounding times |K̄|, which for a plate much
+    // stiffer than the soil (E/E0 >= 1e8) spoils equilibrium. A correction
+    // w += R da within that kernel restores the three equations at the
+    // soil's scale without touching the others.
+    const unsigned int n = state.w.size();
+    Point<2>           centre;
+    double             extent = 0;
+    for (const Point<2> &x : space.node_locations)
+      centre += x / n;
+    for (const Point<2> &x : space.node_locations)
+      extent = std::max(extent, x.distance(centre));
+    std::array<Vector<double>, 3> modes;
+    for (auto &mode : modes)
+      mode.reinit(n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        modes[0][i] = 1.;
+        modes[1][i] = (space.node_locations[i][0] - centre[0]) / extent;
+        modes[2][i] = (space.node_locations[i][1] - centre[1]) / extent;
+      }
+    FullMatrix<double> rigid_stiffness(3, 3); // R^T S R
+    Vector<double>     residual(3), correction(3), forces, q;
+    foundation.nodal_forces(state.q, forces);
+    for (unsigned int j = 0; j < 3; ++j)
+      {
+        residual[j] = modes[j] * plate_load - modes[j] * forces;
+        Vector<double> s_mode;
+        foundation.solve(modes[j], q);
+        foundation.nodal_forces(q, s_mode);
+        for (unsigned int i = 0; i < 3; ++i)
+          rigid_stiffness(i, j) = modes[i] * s_mode;
+      }
+    rigid_stiffness.gauss_jordan();
+    rigid_stiffness.vmult(correction, residual);
+    for (unsigned int j = 0; j < 3; ++j)
+      state.w.add(correction[j], modes[j]);
+    foundation.solve(state.w, state.q);
   }
 
   void
@@ -140,7 +194,7 @@ namespace PlateOnHalfspace
 
     if (!tensionless)
       {
-        solve_coupled(plate_stiffness, plate_load, foundation, state);
+        solve_coupled(plate_stiffness, plate_load, foundation, space, state);
         state.iterations = 1;
         state.converged  = true;
         evaluate_conditions(foundation, state);
@@ -168,7 +222,8 @@ namespace PlateOnHalfspace
                         ExcMessage("The plate is a mechanism: after element "
                                    "exclusion the remaining foundation "
                                    "cannot carry it."));
-            solve_coupled(plate_stiffness, plate_load, foundation, state);
+            solve_coupled(
+              plate_stiffness, plate_load, foundation, space, state);
             const double norm = state.w.l2_norm();
             const double change =
               std::abs(norm - previous_norm) / std::max(norm, 1e-300);
@@ -235,7 +290,7 @@ namespace PlateOnHalfspace
                                "contact cannot carry it (fewer than three "
                                "non-collinear supporting nodes)."));
         foundation.set_contact_nodes(active);
-        solve_coupled(plate_stiffness, plate_load, foundation, state);
+        solve_coupled(plate_stiffness, plate_load, foundation, space, state);
         foundation.gap(state.w, state.q, state.gap);
 
         Vector<double> plate;

@@ -73,7 +73,18 @@ namespace PlateOnHalfspace
     solve_coupled(const LAPACKFullMatrix<double> &plate_stiffness,
                   const Vector<double>           &plate_load,
                   const FoundationOperator       &foundation,
+                  const FoundationSpace          &space,
                   ContactState                   &state) const;
+
+    /**
+     * Restore vertical force and moment equilibrium within the rigid-body
+     * kernel of the free plate (see the implementation for why).
+     */
+    void
+    correct_rigid_body_equilibrium(const Vector<double>     &plate_load,
+                                   const FoundationOperator &foundation,
+                                   const FoundationSpace    &space,
+                                   ContactState             &state) const;
 
     /** Fill gap and complementarity_violation of @p state. */
     void

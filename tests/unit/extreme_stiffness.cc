@@ -1,0 +1,48 @@
+// The extremes of the plate-to-soil stiffness ratio, on the rigid disk of
+// parameters/rigid-disk.prm (E0 = 1e4): plate moduli from 1e3 (a plate far
+// softer than the soil) to 1e15 (E/E0 = 1e11). Every run must finish with
+// finite results, equilibrium to 1e-10 (the rigid-body correction of the
+// contact solver keeps it at the soil's scale however stiff the plate), and
+// the stiff runs must approach the rigid punch P(1-nu0^2)/(2 E0 a) =
+// 0.0455 (within the disk mesh's discretisation error, 1%), E = 1e12 and
+// 1e15 agreeing to 1e-6 (the rigid limit); tensionless contact with the
+// eccentric load 0.4 a as well.
+
+#include <plate_on_halfspace/plate_on_halfspace_problem.h>
+
+#include "../tests.h"
+
+#include "../test_tools.h"
+
+using namespace PlateOnHalfspace;
+using namespace TestTools;
+
+int
+main()
+{
+  initlog();
+  double previous = 0;
+  for (const std::string contact : {"bonded", "tensionless"})
+    for (const double E : {1e3, 1e9, 1e12, 1e15})
+      {
+        std::ostringstream extra;
+        extra << "subsection Plate\n set Young's modulus = " << E << "\nend\n"
+              << "subsection Foundation\n set Contact = " << contact
+              << "\nend\nsubsection Adaptivity\n set Cycles = 1\nend\n";
+        if (contact == "tensionless")
+          extra << "subsection Loads\n set Point loads = 0.4,0,1000\nend\n";
+        const auto   problem = solve_scene("rigid-disk.prm", extra.str());
+        const auto  &s       = problem->summaries().back();
+        const double w       = problem->values_at(Point<2>(0, 0.5)).w;
+        deallog << std::setprecision(6) << contact << ", E = " << E
+                << ": w(0,0.5) = " << w << std::setprecision(10)
+                << ", nodes in contact " << s.contact_nodes << std::endl;
+        AssertThrow(std::isfinite(w), ExcMessage("not finite"));
+        check("  contact force", s.contact_force, s.applied_load, 1e-10);
+        if (E >= 1e9 && contact == "bonded")
+          check("  rigid punch", w, 0.0455, 1e-2);
+        if (E >= 1e15)
+          check("  same as E = 1e12", w, previous, 1e-6);
+        previous = w;
+      }
+}
