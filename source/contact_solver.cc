@@ -98,16 +98,18 @@ namespace PlateOnHalfspace
     for (const double v : state.w)
       AssertThrow(std::isfinite(v), ExcMessage(mechanism));
     foundation.solve(state.w, state.q);
-    correct_rigid_body_equilibrium(plate_load, foundation, space, state);
+    correct_rigid_body_equilibrium(
+      plate_stiffness, plate_load, foundation, space, state);
     state.in_contact = foundation.contact_nodes();
   }
 
   void
   ContactSolver::correct_rigid_body_equilibrium(
-    const Vector<double>     &plate_load,
-    const FoundationOperator &foundation,
-    const FoundationSpace    &space,
-    ContactState             &state) const
+    const LAPACKFullMatrix<double> &plate_stiffness,
+    const Vector<double>           &plate_load,
+    const FoundationOperator       &foundation,
+    const FoundationSpace          &space,
+    ContactState                   &state) const
   {
     // The rigid-body motions w = 1, x, y of the free plate are exactly in
     // the kernel of K̄, so the three equations r^T (K̄ + S) w = r^T P̄ read
@@ -117,8 +119,10 @@ namespace PlateOnHalfspace
     // w += R da within that kernel restores the three equations at the
     // soil's scale without touching the others.
     const unsigned int n = state.w.size();
-    Point<2>           centre;
-    double             extent = 0;
+    if (n < 3)
+      return;
+    Point<2> centre;
+    double   extent = 0;
     for (const Point<2> &x : space.node_locations)
       centre += x / n;
     for (const Point<2> &x : space.node_locations)
@@ -131,6 +135,16 @@ namespace PlateOnHalfspace
         modes[0][i] = 1.;
         modes[1][i] = (space.node_locations[i][0] - centre[0]) / extent;
         modes[2][i] = (space.node_locations[i][1] - centre[1]) / extent;
+      }
+    // Only a free plate has these motions in its kernel (a plate with
+    // supports, or any other stiffness, is left as solved).
+    const double plate_scale = plate_stiffness.linfty_norm();
+    for (const auto &mode : modes)
+      {
+        Vector<double> image(n);
+        plate_stiffness.vmult(image, mode);
+        if (image.linfty_norm() > 1e-8 * plate_scale * mode.linfty_norm())
+          return;
       }
     FullMatrix<double> rigid_stiffness(3, 3); // R^T S R
     Vector<double>     residual(3), correction(3), forces, q;

@@ -81,10 +81,12 @@ namespace PlateOnHalfspace
      * kernel of the free plate (see the implementation for why).
      */
     void
-    correct_rigid_body_equilibrium(const Vector<double>     &plate_load,
-                                   const FoundationOperator &foundation,
-                                   const FoundationSpace    &space,
-                                   ContactState             &state) const;
+    correct_rigid_body_equilibrium(
+      const LAPACKFullMatrix<double> &plate_stiffness,
+      const Vector<double>           &plate_load,
+      const FoundationOperator       &foundation,
+      const FoundationSpace          &space,
+      ContactState                   &state) const;
 
     /** Fill gap and complementarity_violation of @p state. */
     void
