@@ -61,11 +61,7 @@ namespace PlateOnHalfspace
       {
         const FoundationSpace::Cell &cell = space.cells[c];
         CellData                    &data = cell_data[c];
-        for (const auto &terms : cell.expansion)
-          for (const auto &t : terms)
-            if (std::find(data.nodes.begin(), data.nodes.end(), t.first) ==
-                data.nodes.end())
-              data.nodes.push_back(t.first);
+        data.nodes                        = cell.nodes();
         data.node_from_q2.reinit(data.nodes.size(), 9);
         for (unsigned int i = 0; i < 9; ++i)
           for (const auto &t : cell.expansion[i])

@@ -252,11 +252,8 @@ namespace PlateOnHalfspace
                     ++n_excluded;
                     continue;
                   }
-                std::set<unsigned int> nodes;
-                for (const auto &terms : space.cells[c].expansion)
-                  for (const auto &t : terms)
-                    nodes.insert(t.first);
-                unsigned int n_tensile = 0;
+                const std::vector<unsigned int> nodes = space.cells[c].nodes();
+                unsigned int                    n_tensile = 0;
                 for (const unsigned int i : nodes)
                   if (state.q[i] < 0)
                     ++n_tensile;

@@ -4,6 +4,8 @@
 
 #include <plate_on_halfspace/foundation_space.h>
 
+#include <algorithm>
+
 namespace PlateOnHalfspace
 {
   std::array<double, 9>
@@ -79,22 +81,14 @@ namespace PlateOnHalfspace
         }
   }
 
-  Vector<double>
-  FoundationSpace::integrals_of_shape_functions() const
+  std::vector<unsigned int>
+  FoundationSpace::Cell::nodes() const
   {
-    Vector<double>  integrals(n_nodes());
-    const QGauss<2> quadrature(3);
-    for (const Cell &cell : cells)
-      for (unsigned int q = 0; q < quadrature.size(); ++q)
-        {
-          const Point<2> &p   = quadrature.point(q);
-          const auto      phi = q2_shape_values(p);
-          const double    JxW =
-            quadrature.weight(q) * cell.geometry.jacobian_determinant(p);
-          for (unsigned int i = 0; i < 9; ++i)
-            for (const auto &t : cell.expansion[i])
-              integrals[t.first] += t.second * phi[i] * JxW;
-        }
-    return integrals;
+    std::vector<unsigned int> result;
+    for (const auto &terms : expansion)
+      for (const auto &t : terms)
+        if (std::find(result.begin(), result.end(), t.first) == result.end())
+          result.push_back(t.first);
+    return result;
   }
 } // namespace PlateOnHalfspace

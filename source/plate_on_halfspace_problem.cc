@@ -133,6 +133,7 @@ namespace PlateOnHalfspace
                              plate.get_foundation_space(),
                              seed);
       plate.expand(contact.w, plate_solution);
+      pressure_field = plate.foundation_field_to_solution(contact.q);
     }
     TimerOutput::Scope output_scope(timer_output, "output");
 
@@ -243,9 +244,10 @@ namespace PlateOnHalfspace
   PointValues
   PlateOnHalfspaceProblem::values_at(const Point<2> &x) const
   {
-    const Vector<double> pressure =
-      mindlin_plate->foundation_field_to_solution(contact.q);
-    return output->point_values(*mindlin_plate, plate_solution, pressure, x);
+    return output->point_values(*mindlin_plate,
+                                plate_solution,
+                                pressure_field,
+                                x);
   }
 
   bool

@@ -146,12 +146,8 @@ namespace PlateOnHalfspace
         for (unsigned int q = 0; q < area_rule.size(); ++q)
           cell_area += area_rule.weight(q) *
                        cell.geometry.jacobian_determinant(area_rule.point(q));
-        std::vector<unsigned int> nodes;
-        for (const auto &terms : cell.expansion)
-          for (const auto &t : terms)
-            if (std::find(nodes.begin(), nodes.end(), t.first) == nodes.end())
-              nodes.push_back(t.first);
-        unsigned int n_in = 0;
+        const std::vector<unsigned int> nodes = cell.nodes();
+        unsigned int                    n_in  = 0;
         for (const unsigned int i : nodes)
           n_in += contact.in_contact[i];
         area += cell_area;

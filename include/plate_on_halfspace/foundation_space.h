@@ -47,6 +47,11 @@ namespace PlateOnHalfspace
       BilinearQuadrilateral geometry;
       /** Expansion of the 9 local w-shape functions into foundation nodes. */
       std::array<std::vector<Term>, 9> expansion;
+
+      /** The foundation nodes of the cell, each once, in order of first
+       *  appearance in the expansion. */
+      std::vector<unsigned int>
+      nodes() const;
     };
 
     /** Location of each foundation node (x, y). */
@@ -70,10 +75,6 @@ namespace PlateOnHalfspace
     assemble_mass_matrix(const std::vector<bool> &cell_in_foundation,
                          SparsityPattern         &sparsity,
                          SparseMatrix<double>    &matrix) const;
-
-    /** Integral of each foundation shape function: m_i = ∫ φ_i. */
-    Vector<double>
-    integrals_of_shape_functions() const;
   };
 } // namespace PlateOnHalfspace
 

@@ -90,10 +90,12 @@ namespace PlateOnHalfspace
     std::unique_ptr<MindlinPlate>       mindlin_plate;
     std::unique_ptr<FoundationOperator> foundation_operator;
     Vector<double>                      plate_solution;
-    ContactState                        contact;
-    std::vector<CycleSummary>           cycle_summaries;
-    ConvergenceTable                    convergence;
-    std::unique_ptr<ResultsOutput>      output;
+    /** q as a field on the plate's w-space (for point values). */
+    Vector<double>                 pressure_field;
+    ContactState                   contact;
+    std::vector<CycleSummary>      cycle_summaries;
+    ConvergenceTable               convergence;
+    std::unique_ptr<ResultsOutput> output;
     /** Wall times per phase, printed with Output/Verbosity = 2. */
     TimerOutput timer_output;
   };
