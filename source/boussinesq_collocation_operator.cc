@@ -23,9 +23,10 @@ namespace PlateOnHalfspace
     // The paper's subdivision (Figure 2): 3x3 sub-rectangles around the
     // 3-point Gauss points; with the weights 5/9, 8/9, 5/9 their bounds in
     // xi are -1, -4/9, 4/9, 1, i.e. 0, 5/18, 13/18, 1 on [0,1].
-    const double bounds[4] = {0., 5. / 18., 13. / 18., 1.};
-    const double g         = 0.5 * std::sqrt(3. / 5.);
-    const double gauss[3]  = {0.5 - g, 0.5, 0.5 + g};
+    const double bounds[4]   = {0., 5. / 18., 13. / 18., 1.};
+    const double g           = 0.5 * std::sqrt(3. / 5.);
+    const auto   reflections = space.symmetry.reflections();
+    const double gauss[3]    = {0.5 - g, 0.5, 0.5 + g};
 
     for (unsigned int c = 0; c < space.cells.size(); ++c)
       {
@@ -57,12 +58,24 @@ namespace PlateOnHalfspace
               for (unsigned int i = 0; i < 9; ++i)
                 for (const auto &t : cell.expansion[i])
                   pressure_weights.emplace_back(t.first, t.second * phi[i]);
-              // G_ji += alpha I_Gk(x_j) N_i(xi_Gk)  (P7)-(P9)
+              // G_ji += alpha I_Gk(x_j) N_i(xi_Gk)  (P7)-(P9). A symmetric
+              // scene (mirror_symmetry.h) adds the settlement under the
+              // mirror images R of the sub-rectangle, I_{R Gk}(x_j) =
+              // I_Gk(R x_j).
               for (unsigned int j = 0; j < n; ++j)
                 {
-                  const double integral =
+                  const Point<2> &x = space.node_locations[j];
+                  double          integral =
                     alpha * integral_of_inverse_distance_over_rectangle(
-                              space.node_locations[j], x1, x2, y1, y2);
+                              x, x1, x2, y1, y2);
+                  for (const auto &signs : reflections)
+                    integral +=
+                      alpha * integral_of_inverse_distance_over_rectangle(
+                                Point<2>(signs[0] * x[0], signs[1] * x[1]),
+                                x1,
+                                x2,
+                                y1,
+                                y2);
                   for (const auto &pw : pressure_weights)
                     flexibility(j, pw.first) += integral * pw.second;
                 }

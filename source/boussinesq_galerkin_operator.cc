@@ -8,6 +8,35 @@
 
 namespace PlateOnHalfspace
 {
+  namespace
+  {
+    /**
+     * A cell against its own mirror image: block(i, k) couples node
+     * rows[i] with node columns[k], the same nodes in another order. The
+     * integral is symmetric in the two nodes, the quadrature only nearly:
+     * average each entry with its transpose, so that A stays exactly
+     * symmetric.
+     */
+    void
+    symmetrise_self_image_block(const std::vector<unsigned int> &rows,
+                                const std::vector<unsigned int> &columns,
+                                FullMatrix<double>              &block)
+    {
+      const auto position = [](const std::vector<unsigned int> &list,
+                               const unsigned int               node) {
+        return static_cast<unsigned int>(
+          std::find(list.begin(), list.end(), node) - list.begin());
+      };
+      FullMatrix<double> symmetric(block.m(), block.n());
+      for (unsigned int i = 0; i < block.m(); ++i)
+        for (unsigned int k = 0; k < block.n(); ++k)
+          symmetric(i, k) =
+            0.5 * (block(i, k) + block(position(rows, columns[k]),
+                                       position(columns, rows[i])));
+      block = symmetric;
+    }
+  } // namespace
+
   BoussinesqGalerkinOperator::BoussinesqGalerkinOperator(
     const double       alpha,
     const unsigned int singular_order)
@@ -42,9 +71,42 @@ namespace PlateOnHalfspace
     // the foundation cells (the settlement everywhere); system_flexibility:
     // both over the foundation cells (the paper's exclusion removes a cell's
     // contribution to A). They coincide when every cell is in.
-    const CellPairIntegrator integrator(space, singular_order);
+    const auto add = [&](const unsigned int               a,
+                         const unsigned int               b,
+                         const FullMatrix<double>        &block,
+                         const std::vector<unsigned int> &nodes_a,
+                         const std::vector<unsigned int> &nodes_b) {
+      for (unsigned int i = 0; i < nodes_a.size(); ++i)
+        for (unsigned int j = 0; j < nodes_b.size(); ++j)
+          {
+            const double value = alpha * block(i, j);
+            if (included(b))
+              flexibility(nodes_a[i], nodes_b[j]) += value;
+            if (a != b && included(a))
+              flexibility(nodes_b[j], nodes_a[i]) += value;
+            if (partial_foundation && included(a) && included(b))
+              {
+                system_flexibility(nodes_a[i], nodes_b[j]) += value;
+                if (a != b)
+                  system_flexibility(nodes_b[j], nodes_a[i]) += value;
+              }
+          }
+    };
+
+    // A symmetric scene (mirror_symmetry.h): the pressure of the computed
+    // part has mirror images, so cell b acts on cell a also through its
+    // images R b: A_ij = alpha sum_R ∫_K ∫_{R L} psi_i(x) psi_j(R y) /
+    // |x - y|. The image pair (b, R a) is the transpose of (a, R b) (R is an
+    // isometry and an involution), so the loop over b >= a covers all.
+    std::vector<FoundationSpace::Cell> cells = space.cells;
+    {
+      const auto images = space.mirror_image_cells();
+      cells.insert(cells.end(), images.begin(), images.end());
+    }
+    const CellPairIntegrator integrator(cells, singular_order);
+    const unsigned int       n_cells  = space.cells.size();
+    const unsigned int       n_images = space.symmetry.reflections().size();
     FullMatrix<double>       block;
-    const unsigned int       n_cells = space.cells.size();
     for (unsigned int a = 0; a < n_cells; ++a)
       for (unsigned int b = a; b < n_cells; ++b)
         {
@@ -53,23 +115,17 @@ namespace PlateOnHalfspace
           // block(i,j) = ∫_K ∫_L psi_i(x) psi_j(y) / |x - y| over the node
           // shape functions psi of the two cells.
           integrator.integrate_inverse_distance(a, b, block);
-          const auto &nodes_a = integrator.nodes(a);
-          const auto &nodes_b = integrator.nodes(b);
-          for (unsigned int i = 0; i < nodes_a.size(); ++i)
-            for (unsigned int j = 0; j < nodes_b.size(); ++j)
-              {
-                const double value = alpha * block(i, j);
-                if (included(b))
-                  flexibility(nodes_a[i], nodes_b[j]) += value;
-                if (a != b && included(a))
-                  flexibility(nodes_b[j], nodes_a[i]) += value;
-                if (partial_foundation && included(a) && included(b))
-                  {
-                    system_flexibility(nodes_a[i], nodes_b[j]) += value;
-                    if (a != b)
-                      system_flexibility(nodes_b[j], nodes_a[i]) += value;
-                  }
-              }
+          add(a, b, block, integrator.nodes(a), integrator.nodes(b));
+          for (unsigned int r = 1; r <= n_images; ++r)
+            {
+              const unsigned int image = r * n_cells + b;
+              integrator.integrate_inverse_distance(a, image, block);
+              if (a == b)
+                symmetrise_self_image_block(integrator.nodes(a),
+                                            integrator.nodes(image),
+                                            block);
+              add(a, b, block, integrator.nodes(a), integrator.nodes(image));
+            }
         }
     set_contact_nodes(node_supported);
   }

@@ -46,20 +46,21 @@ namespace PlateOnHalfspace
       phi.push_back(q2_shape_values(y));
   }
 
-  CellPairIntegrator::CellPairIntegrator(const FoundationSpace &space,
-                                         const unsigned int     singular_order)
-    : space(space)
+  CellPairIntegrator::CellPairIntegrator(
+    const std::vector<FoundationSpace::Cell> &cells,
+    const unsigned int                        singular_order)
+    : cells(cells)
     , singular_order(singular_order)
     , orders{2, 3, 5, 0}
-    , cell_data(space.cells.size())
+    , cell_data(cells.size())
     , duffy(singular_order, 1.0)
   {
     const Quadrature<2> outer_rule = graded_rule(singular_order);
     for (const Point<2> &p : outer_rule.get_points())
       coincident_rules.emplace_back(p, duffy);
-    for (unsigned int c = 0; c < space.cells.size(); ++c)
+    for (unsigned int c = 0; c < cells.size(); ++c)
       {
-        const FoundationSpace::Cell &cell = space.cells[c];
+        const FoundationSpace::Cell &cell = cells[c];
         CellData                    &data = cell_data[c];
         data.nodes                        = cell.nodes();
         data.node_from_q2.reinit(data.nodes.size(), 9);
@@ -115,7 +116,7 @@ namespace PlateOnHalfspace
     // Convex cells that touch have a vertex of one on the closed other one
     // (also across hanging nodes, where a small cell's vertex lies on a
     // large cell's edge).
-    const auto &gk = space.cells[k].geometry, &gl = space.cells[l].geometry;
+    const auto &gk = cells[k].geometry, &gl = cells[l].geometry;
     for (const Point<2> &v : gk.get_vertices())
       if (gl.contains(v))
         return true;
@@ -158,7 +159,7 @@ namespace PlateOnHalfspace
                                          const unsigned int  l,
                                          FullMatrix<double> &block) const
   {
-    const BilinearQuadrilateral &inner_cell = space.cells[l].geometry;
+    const BilinearQuadrilateral &inner_cell = cells[l].geometry;
     const Table       &outer = cell_data[k].tables.back(); // singular order
     const unsigned int nb    = cell_data[l].nodes.size();
     const auto        &v     = inner_cell.get_vertices();

@@ -30,27 +30,33 @@ namespace PlateOnHalfspace
     contact_set_supports_plate(const FoundationSpace   &space,
                                const std::vector<bool> &in_contact)
     {
-      Point<2>     centre;
-      unsigned int n = 0;
+      // The nodes in contact on the whole plate: those of the computed
+      // part and, for a symmetric scene, their mirror images.
+      std::vector<Point<2>> points;
+      const auto            reflections = space.symmetry.reflections();
       for (unsigned int i = 0; i < in_contact.size(); ++i)
         if (in_contact[i])
           {
-            centre += space.node_locations[i];
-            ++n;
+            const Point<2> &p = space.node_locations[i];
+            points.push_back(p);
+            for (const auto &signs : reflections)
+              points.emplace_back(signs[0] * p[0], signs[1] * p[1]);
           }
+      const unsigned int n = points.size();
       if (n < 3)
         return false;
-      centre /= n;
+      Point<2> centre;
+      for (const Point<2> &p : points)
+        centre += p / n;
       double xx = 0, xy = 0, yy = 0, extent = 0;
-      for (unsigned int i = 0; i < in_contact.size(); ++i)
-        if (in_contact[i])
-          {
-            const Tensor<1, 2> d = space.node_locations[i] - centre;
-            xx += d[0] * d[0];
-            xy += d[0] * d[1];
-            yy += d[1] * d[1];
-            extent = std::max(extent, d.norm_square());
-          }
+      for (const Point<2> &p : points)
+        {
+          const Tensor<1, 2> d = p - centre;
+          xx += d[0] * d[0];
+          xy += d[0] * d[1];
+          yy += d[1] * d[1];
+          extent = std::max(extent, d.norm_square());
+        }
       // smallest eigenvalue of the 2x2 second-moment matrix
       const double mean = 0.5 * (xx + yy);
       const double smallest =
@@ -127,14 +133,20 @@ namespace PlateOnHalfspace
       centre += x / n;
     for (const Point<2> &x : space.node_locations)
       extent = std::max(extent, x.distance(centre));
-    std::array<Vector<double>, 3> modes;
-    for (auto &mode : modes)
-      mode.reinit(n);
+    // Of w = 1, x, y, a symmetric scene's computed part (mirror_symmetry.h)
+    // only has the motions that are even across its mirror planes.
+    std::vector<Vector<double>> modes(1, Vector<double>(n));
+    for (unsigned int axis = 0; axis < 2; ++axis)
+      if (!(axis == 0 ? space.symmetry.x : space.symmetry.y))
+        modes.emplace_back(n);
     for (unsigned int i = 0; i < n; ++i)
       {
-        modes[0][i] = 1.;
-        modes[1][i] = (space.node_locations[i][0] - centre[0]) / extent;
-        modes[2][i] = (space.node_locations[i][1] - centre[1]) / extent;
+        modes[0][i]    = 1.;
+        unsigned int m = 1;
+        for (unsigned int axis = 0; axis < 2; ++axis)
+          if (!(axis == 0 ? space.symmetry.x : space.symmetry.y))
+            modes[m++][i] =
+              (space.node_locations[i][axis] - centre[axis]) / extent;
       }
     // Only a free plate has these motions in its kernel (a plate with
     // supports, or any other stiffness, is left as solved).
@@ -146,21 +158,22 @@ namespace PlateOnHalfspace
         if (image.linfty_norm() > 1e-8 * plate_scale * mode.linfty_norm())
           return;
       }
-    FullMatrix<double> rigid_stiffness(3, 3); // R^T S R
-    Vector<double>     residual(3), correction(3), forces, q;
+    const unsigned int n_modes = modes.size();
+    FullMatrix<double> rigid_stiffness(n_modes, n_modes); // R^T S R
+    Vector<double>     residual(n_modes), correction(n_modes), forces, q;
     foundation.nodal_forces(state.q, forces);
-    for (unsigned int j = 0; j < 3; ++j)
+    for (unsigned int j = 0; j < n_modes; ++j)
       {
         residual[j] = modes[j] * plate_load - modes[j] * forces;
         Vector<double> s_mode;
         foundation.solve(modes[j], q);
         foundation.nodal_forces(q, s_mode);
-        for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int i = 0; i < n_modes; ++i)
           rigid_stiffness(i, j) = modes[i] * s_mode;
       }
     rigid_stiffness.gauss_jordan();
     rigid_stiffness.vmult(correction, residual);
-    for (unsigned int j = 0; j < 3; ++j)
+    for (unsigned int j = 0; j < n_modes; ++j)
       state.w.add(correction[j], modes[j]);
     foundation.solve(state.w, state.q);
   }

@@ -30,6 +30,46 @@ namespace PlateOnHalfspace
              lx[1] * ly[1]}};
   }
 
+  std::vector<FoundationSpace::Cell>
+  FoundationSpace::mirror_image_cells() const
+  {
+    // Local numbering of the reflections of the reference square: vertices
+    // 0-3 and FE_Q(2)'s face midpoints 4-7 (faces x=0, x=1, y=0, y=1) and
+    // centre 8. xi -> 1 - xi swaps 0<->1, 2<->3, 4<->5; eta -> 1 - eta
+    // swaps 0<->2, 1<->3, 6<->7.
+    constexpr std::array<unsigned int, 9> flip_x = {
+      {1, 0, 3, 2, 5, 4, 6, 7, 8}};
+    constexpr std::array<unsigned int, 9> flip_y = {
+      {2, 3, 0, 1, 4, 5, 7, 6, 8}};
+    std::vector<Cell> images;
+    for (const auto &signs : symmetry.reflections())
+      for (const Cell &cell : cells)
+        {
+          std::array<unsigned int, 9> from;
+          for (unsigned int i = 0; i < 9; ++i)
+            {
+              from[i] = i;
+              if (signs[0] < 0)
+                from[i] = flip_x[from[i]];
+              if (signs[1] < 0)
+                from[i] = flip_y[from[i]];
+            }
+          // image vertex i = R (vertex from[i]), image function i = function
+          // from[i]: psi'(xi) = psi(sigma xi) and x'(xi) = R x(sigma xi).
+          std::array<Point<2>, 4> vertices;
+          for (unsigned int v = 0; v < 4; ++v)
+            {
+              const Point<2> &p = cell.geometry.get_vertices()[from[v]];
+              vertices[v]       = Point<2>(signs[0] * p[0], signs[1] * p[1]);
+            }
+          Cell image{BilinearQuadrilateral(vertices), {}};
+          for (unsigned int i = 0; i < 9; ++i)
+            image.expansion[i] = cell.expansion[from[i]];
+          images.push_back(image);
+        }
+    return images;
+  }
+
   void
   FoundationSpace::assemble_mass_matrix(
     const std::vector<bool> &cell_in_foundation,

@@ -47,6 +47,7 @@ namespace PlateOnHalfspace
     constraints.clear();
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     add_centre_constraints();
+    add_mirror_plane_constraints();
     if (extra_constraints)
       extra_constraints(dof_handler, constraints);
     constraints.close();
@@ -60,6 +61,29 @@ namespace PlateOnHalfspace
     load.reinit(dof_handler.n_dofs());
     total_load = 0;
     assemble_stiffness();
+  }
+
+  void
+  MindlinPlate::add_mirror_plane_constraints()
+  {
+    // The solution of a symmetric scene is even across a mirror plane
+    // (mirror_symmetry.h): w is free there, the slope across the plane
+    // vanishes: beta_x = 0 on x = 0, beta_y = 0 on y = 0. Hanging nodes on
+    // the plane are already constrained to nodes on the plane, which are
+    // zero here too.
+    for (const unsigned int axis : {0u, 1u})
+      {
+        if (!(axis == 0 ? symmetry.x : symmetry.y))
+          continue;
+        const IndexSet plane_dofs = DoFTools::extract_boundary_dofs(
+          dof_handler,
+          fe.component_mask(FEValuesExtractors::Scalar(1 + axis)),
+          {axis == 0 ? mirror_plane_x_boundary_id :
+                       mirror_plane_y_boundary_id});
+        for (const auto dof : plane_dofs)
+          if (!constraints.is_constrained(dof))
+            constraints.add_line(dof);
+      }
   }
 
   void
@@ -112,7 +136,8 @@ namespace PlateOnHalfspace
 
     foundation_dofs.clear();
     foundation_index.assign(dof_handler.n_dofs(), -1);
-    foundation_space = FoundationSpace();
+    foundation_space          = FoundationSpace();
+    foundation_space.symmetry = symmetry;
     for (const auto dof : w_dofs)
       if (!constraints.is_constrained(dof))
         {

@@ -318,9 +318,15 @@ namespace PlateOnHalfspace
                         "rectangular cells).");
       prm.declare_entry("Symmetry",
                         "auto",
-                        Patterns::Selection("auto|none"),
-                        "Mirror planes to exploit. This version always "
-                        "computes the whole plate (auto = none).");
+                        Patterns::Selection("auto|none|x|y|xy"),
+                        "Mirror planes x = 0 and/or y = 0 to exploit: a "
+                        "scene whose mesh and loads are mirror symmetric is "
+                        "solved on the half or quarter plate, with the "
+                        "mirror images in the half-space kernel (the same "
+                        "answer, a 4x or 16x smaller dense block). auto: "
+                        "the planes the scene has; x, y, xy: insist (an "
+                        "error if the scene is not symmetric); none: the "
+                        "whole plate.");
       prm.declare_entry("Singular quadrature order",
                         "8",
                         Patterns::Integer(4, 30),

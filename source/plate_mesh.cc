@@ -13,6 +13,15 @@ namespace PlateOnHalfspace
                   const Parameters::Discretization &discretization,
                   Triangulation<2>                 &triangulation)
   {
+    make_coarse_plate_mesh(plate, discretization, triangulation);
+    triangulation.refine_global(discretization.initial_refinements);
+  }
+
+  void
+  make_coarse_plate_mesh(const Parameters::Plate          &plate,
+                         const Parameters::Discretization &discretization,
+                         Triangulation<2>                 &triangulation)
+  {
     triangulation.clear();
     switch (plate.shape)
       {
@@ -24,8 +33,9 @@ namespace PlateOnHalfspace
             Point<2>(plate.length_x / 2, plate.length_y / 2));
           break;
         case Parameters::Plate::Shape::disk:
-          // Five cells; refinement moves new boundary vertices onto the
-          // circle (the cells stay straight sided, MappingQ1).
+          // Twelve cells, mirror symmetric about x = 0 and y = 0; refinement
+          // moves new boundary vertices onto the circle (the cells stay
+          // straight sided, MappingQ1).
           GridGenerator::hyper_ball_balanced(triangulation,
                                              Point<2>(),
                                              plate.radius);
@@ -55,6 +65,5 @@ namespace PlateOnHalfspace
             break;
           }
       }
-    triangulation.refine_global(discretization.initial_refinements);
   }
 } // namespace PlateOnHalfspace

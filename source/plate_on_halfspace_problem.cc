@@ -24,13 +24,34 @@ namespace PlateOnHalfspace
   PlateOnHalfspaceProblem::run()
   {
     output = std::make_unique<ResultsOutput>(parameters.output_directory);
-    make_plate_mesh(parameters.plate, parameters.discretization, triangulation);
-    mindlin_plate       = std::make_unique<MindlinPlate>(parameters.plate,
+    // A symmetric scene is solved on the part x >= 0 and/or y >= 0 of the
+    // plate (mirror_symmetry.h), cut from the coarse mesh so that its
+    // refinements are those of the whole plate's mesh.
+    make_coarse_plate_mesh(parameters.plate,
+                           parameters.discretization,
+                           triangulation);
+    symmetry      = choose_mirror_symmetry(parameters, triangulation);
+    double extent = 0;
+    for (const Point<2> &v : triangulation.get_vertices())
+      extent = std::max(extent, v.norm());
+    computed_loads =
+      loads_on_computed_part(parameters.loads, symmetry, 1e-10 * extent);
+    cut_to_computed_part(symmetry, triangulation);
+    triangulation.refine_global(parameters.discretization.initial_refinements);
+    if (parameters.output.verbosity > 0 && symmetry.n_copies() > 1)
+      log << "symmetry " << symmetry.name() << ": computing "
+          << (symmetry.n_copies() == 2 ? "half" : "a quarter")
+          << " of the plate" << std::endl;
+
+    mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
                                                    parameters.discretization);
+    mindlin_plate->set_mirror_symmetry(symmetry);
     foundation_operator = create_foundation_operator(parameters);
     {
       TimerOutput::Scope scope(timer_output, "plate setup");
+      Timer              setup_timer;
       mindlin_plate->setup(triangulation);
+      setup_time_s = setup_timer.wall_time();
     }
 
     std::vector<bool> seed;
@@ -67,6 +88,7 @@ namespace PlateOnHalfspace
                                    *mindlin_plate,
                                    plate_solution,
                                    contact,
+                                   parameters.loads,
                                    triangulation))
       return std::nullopt;
     SolutionTransfer<2> transfer(mindlin_plate->get_dof_handler());
@@ -75,7 +97,9 @@ namespace PlateOnHalfspace
     triangulation.execute_coarsening_and_refinement();
     {
       TimerOutput::Scope scope(timer_output, "plate setup");
+      Timer              setup_timer;
       mindlin_plate->setup(triangulation);
+      setup_time_s = setup_timer.wall_time();
     }
 
     Vector<double> new_field(mindlin_plate->get_dof_handler().n_dofs());
@@ -92,18 +116,20 @@ namespace PlateOnHalfspace
   PlateOnHalfspaceProblem::solve_cycle(const unsigned int       cycle,
                                        const std::vector<bool> &seed)
   {
-    Timer         timer;
+    Timer         timer, phase;
     MindlinPlate &plate = *mindlin_plate;
-    plate.assemble_loads(parameters.loads,
+    plate.assemble_loads(computed_loads,
                          parameters.plate.unit_weight *
                            parameters.plate.thickness);
 
+    // Sums over the computed part times the copies that make the plate.
+    const double copies = symmetry.n_copies();
     CycleSummary summary;
     summary.cycle                = cycle;
     summary.n_cells              = triangulation.n_active_cells();
     summary.n_dofs               = plate.n_unconstrained_dofs();
     summary.n_foundation_dofs    = plate.get_foundation_dofs().size();
-    summary.applied_load         = plate.applied_load();
+    summary.applied_load         = copies * plate.applied_load();
     const unsigned int verbosity = parameters.output.verbosity;
     if (verbosity > 0)
       log << "cycle " << cycle << ": " << summary.n_cells << " cells, "
@@ -116,10 +142,14 @@ namespace PlateOnHalfspace
       TimerOutput::Scope scope(timer_output, "condense plate");
       plate.condense(plate_stiffness, plate_load);
     }
+    summary.assembly_time_s = setup_time_s + phase.wall_time();
+    phase.restart();
     {
       TimerOutput::Scope scope(timer_output, "build half-space operator");
       foundation_operator->build(plate.get_foundation_space(), {});
     }
+    summary.foundation_time_s = phase.wall_time();
+    phase.restart();
 
     const ContactSolver solver(parameters.contact,
                                parameters.foundation.tensionless,
@@ -135,12 +165,15 @@ namespace PlateOnHalfspace
       plate.expand(contact.w, plate_solution);
       pressure_field = plate.foundation_field_to_solution(contact.q);
     }
+    summary.solve_time_s = phase.wall_time();
+    phase.restart();
     TimerOutput::Scope output_scope(timer_output, "output");
 
     // Equilibrium: the integral of q is the sum of the nodal forces M q.
     Vector<double> forces;
     foundation_operator->nodal_forces(contact.q, forces);
-    summary.contact_force = std::accumulate(forces.begin(), forces.end(), 0.);
+    summary.contact_force =
+      copies * std::accumulate(forces.begin(), forces.end(), 0.);
     output->evaluate(plate, plate_solution, contact, summary);
     summary.foundation_storage      = foundation_operator->storage_name();
     summary.foundation_memory_bytes = foundation_operator->memory_consumption();
@@ -172,6 +205,8 @@ namespace PlateOnHalfspace
               x_min = std::min(x_min, v[0]);
               x_max = std::max(x_max, v[0]);
             }
+        if (symmetry.x)
+          x_min = -x_max;
         start = Point<2>(x_min, 0);
         end   = Point<2>(x_max, 0);
       }
@@ -186,7 +221,8 @@ namespace PlateOnHalfspace
       cycle, plate, plate_solution, contact, start, end);
     if (parameters.output.vtu)
       output->write_vtu(cycle, plate, plate_solution, contact);
-    summary.wall_time_s = timer.wall_time();
+    summary.output_time_s = phase.wall_time();
+    summary.wall_time_s   = timer.wall_time() + setup_time_s;
 
     if (verbosity > 0)
       {
@@ -215,30 +251,68 @@ namespace PlateOnHalfspace
     bool all_converged = true;
     for (const auto &s : cycle_summaries)
       all_converged = all_converged && s.converged;
-    output->write_summary(cycle_summaries, "none", all_converged);
-
-    convergence.add_value("cycle", cycle);
-    convergence.add_value("cells", summary.n_cells);
-    convergence.add_value("dofs", summary.n_dofs);
-    convergence.add_value("foundation nodes", summary.n_foundation_dofs);
-    convergence.add_value("contact iterations", summary.contact_iterations);
-    convergence.add_value("max w", summary.max_w);
-    convergence.add_value("max q", summary.max_q);
-    convergence.add_value("max Mx", summary.max_mx);
-    convergence.add_value("contact force", summary.contact_force);
-    convergence.add_value("time [s]", summary.wall_time_s);
-    for (const std::string column :
-         {"max w", "max q", "max Mx", "contact force"})
-      {
-        convergence.set_scientific(column, true);
-        convergence.set_precision(column, 6);
-      }
+    output->write_summary(cycle_summaries, symmetry.name(), all_converged);
+    add_convergence_row(summary);
     output->write_convergence(convergence);
 
     AssertThrow(contact.converged,
                 ExcMessage("Contact/Max iterations (" +
                            std::to_string(parameters.contact.max_iterations) +
                            ") reached before the contact set settled."));
+  }
+
+  void
+  PlateOnHalfspaceProblem::add_convergence_row(const CycleSummary &summary)
+  {
+    // One row per cycle: size, effort, the quantities of interest with
+    // their relative change from the previous cycle, and the time split.
+    convergence.add_value("cycle", summary.cycle);
+    convergence.add_value("cells", summary.n_cells);
+    convergence.add_value("dofs", summary.n_dofs);
+    convergence.add_value("foundation dofs", summary.n_foundation_dofs);
+    convergence.add_value("contact its", summary.contact_iterations);
+    const CycleSummary *previous =
+      cycle_summaries.size() > 1 ?
+        &cycle_summaries[cycle_summaries.size() - 2] :
+        nullptr;
+    const auto add_quantity = [&](const std::string &name,
+                                  const double       value,
+                                  const double       previous_value) {
+      convergence.add_value(name, value);
+      convergence.set_scientific(name, true);
+      convergence.set_precision(name, 6);
+      const std::string change = "change " + name;
+      // relative change; the first cycle has none ("-": 0 would read as
+      // converged)
+      if (previous)
+        convergence.add_value(change,
+                              std::abs(value - previous_value) /
+                                std::max(std::abs(value), 1e-300));
+      else
+        convergence.add_value(change, std::string("-"));
+      convergence.set_scientific(change, true);
+      convergence.set_precision(change, 2);
+    };
+    add_quantity("max w", summary.max_w, previous ? previous->max_w : 0.);
+    add_quantity("max Mx", summary.max_mx, previous ? previous->max_mx : 0.);
+    add_quantity("max q", summary.max_q, previous ? previous->max_q : 0.);
+    add_quantity("contact fraction",
+                 summary.contact_area_fraction,
+                 previous ? previous->contact_area_fraction : 0.);
+    convergence.add_value("contact force", summary.contact_force);
+    convergence.set_scientific("contact force", true);
+    convergence.set_precision("contact force", 6);
+    for (const auto &[name, value] :
+         std::vector<std::pair<std::string, double>>{
+           {"assembly [s]", summary.assembly_time_s},
+           {"foundation [s]", summary.foundation_time_s},
+           {"solve [s]", summary.solve_time_s},
+           {"output [s]", summary.output_time_s},
+           {"total [s]", summary.wall_time_s}})
+      {
+        convergence.add_value(name, value);
+        convergence.set_precision(name, 3);
+      }
   }
 
   PointValues

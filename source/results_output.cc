@@ -155,8 +155,14 @@ namespace PlateOnHalfspace
           cell_area * n_in / std::max<std::size_t>(nodes.size(), 1);
       }
     summary.contact_area_fraction = contact_area / area;
-    summary.contact_nodes =
-      std::count(contact.in_contact.begin(), contact.in_contact.end(), true);
+    // Nodes in contact on the whole plate: a node of the computed part
+    // stands for its distinct mirror images.
+    const double tolerance = 1e-10 * std::sqrt(area);
+    summary.contact_nodes  = 0;
+    for (unsigned int i = 0; i < space.n_nodes(); ++i)
+      if (contact.in_contact[i])
+        summary.contact_nodes +=
+          space.symmetry.multiplicity(space.node_locations[i], tolerance);
     summary.complementarity_violation = contact.complementarity_violation;
     summary.tensile_nodes             = contact.tensile_nodes;
     summary.max_penetration           = contact.max_penetration;
@@ -170,11 +176,15 @@ namespace PlateOnHalfspace
                               const Vector<double> &pressure_field,
                               const Point<2>       &x) const
   {
+    // w, q, Mx and My are even across a mirror plane: a point of the
+    // mirrored-away part reads its image in the computed part.
+    const Point<2> y =
+      plate.get_foundation_space().symmetry.to_computed_part(x);
     PointValues values;
     values.location       = x;
-    values.w              = plate.point_value(solution, x, 0);
-    values.q              = plate.point_value(pressure_field, x, 0);
-    const auto    located = plate.locate(x);
+    values.w              = plate.point_value(solution, y, 0);
+    values.q              = plate.point_value(pressure_field, y, 0);
+    const auto    located = plate.locate(y);
     const Moments m = plate.moments(located.first, located.second, solution);
     values.mx       = m.mx;
     values.my       = m.my;
@@ -214,6 +224,10 @@ namespace PlateOnHalfspace
         j["max_My"]                    = c.max_my;
         j["min_My"]                    = c.min_my;
         j["wall_time_s"]               = c.wall_time_s;
+        j["assembly_time_s"]           = c.assembly_time_s;
+        j["foundation_time_s"]         = c.foundation_time_s;
+        j["solve_time_s"]              = c.solve_time_s;
+        j["output_time_s"]             = c.output_time_s;
         j["foundation_storage"]        = c.foundation_storage;
         j["foundation_memory_bytes"]   = c.foundation_memory_bytes;
         j["converged"]                 = c.converged;
@@ -272,10 +286,26 @@ namespace PlateOnHalfspace
     const FoundationSpace &space = plate.get_foundation_space();
     std::ostringstream     nodes;
     nodes << "x,y,w,q,gap,contact\n" << std::setprecision(10);
-    for (unsigned int i = 0; i < space.n_nodes(); ++i)
-      nodes << space.node_locations[i][0] << ',' << space.node_locations[i][1]
-            << ',' << contact.w[i] << ',' << contact.q[i] << ','
-            << contact.gap[i] << ',' << (contact.in_contact[i] ? 1 : 0) << '\n';
+    // The whole plate: the nodes of the computed part and, for a symmetric
+    // scene, their distinct mirror images.
+    std::vector<std::array<double, 2>> transforms = {{{1., 1.}}};
+    for (const auto &signs : space.symmetry.reflections())
+      transforms.push_back(signs);
+    double extent = 0;
+    for (const Point<2> &x : space.node_locations)
+      extent = std::max(extent, x.norm());
+    for (const auto &signs : transforms)
+      for (unsigned int i = 0; i < space.n_nodes(); ++i)
+        {
+          const Point<2> &p = space.node_locations[i];
+          // a node on a plane is its own image there
+          if ((signs[0] < 0 && std::abs(p[0]) <= 1e-10 * extent) ||
+              (signs[1] < 0 && std::abs(p[1]) <= 1e-10 * extent))
+            continue;
+          nodes << signs[0] * p[0] << ',' << signs[1] * p[1] << ','
+                << contact.w[i] << ',' << contact.q[i] << ',' << contact.gap[i]
+                << ',' << (contact.in_contact[i] ? 1 : 0) << '\n';
+        }
     write_file("nodes-" + two_digits(cycle) + ".csv", nodes.str());
 
     // Gauss points of the cells the line crosses or borders, keeping those
@@ -292,26 +322,29 @@ namespace PlateOnHalfspace
     std::vector<Tensor<2, 2>> grad(rule.size());
     const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
     std::vector<std::array<double, 4>> rows;
-    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
-      {
-        values.reinit(cell);
-        double nearest = std::numeric_limits<double>::max();
-        for (unsigned int q = 0; q < rule.size(); ++q)
-          nearest = std::min(nearest, distance(values.quadrature_point(q)));
-        if (nearest > cell->diameter() / 2)
-          continue;
-        values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
-                                                                     grad);
-        for (unsigned int q = 0; q < rule.size(); ++q)
-          if (distance(values.quadrature_point(q)) <= nearest * (1 + 1e-8))
-            {
-              const Point<2> &x = values.quadrature_point(q);
-              rows.push_back({{x[0],
-                               x[1],
+    // (Mx and My are even across mirror planes: the images of a cell's
+    // Gauss points carry its values.)
+    for (const auto &signs : transforms)
+      for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+        {
+          values.reinit(cell);
+          std::vector<Point<2>> points;
+          for (const Point<2> &x : values.get_quadrature_points())
+            points.emplace_back(signs[0] * x[0], signs[1] * x[1]);
+          double nearest = std::numeric_limits<double>::max();
+          for (const Point<2> &x : points)
+            nearest = std::min(nearest, distance(x));
+          if (nearest > cell->diameter() / 2)
+            continue;
+          values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
+                                                                       grad);
+          for (unsigned int q = 0; q < rule.size(); ++q)
+            if (distance(points[q]) <= nearest * (1 + 1e-8))
+              rows.push_back({{points[q][0],
+                               points[q][1],
                                -D * (grad[q][0][0] + nu * grad[q][1][1]),
                                -D * (grad[q][1][1] + nu * grad[q][0][0])}});
-            }
-      }
+        }
     std::sort(rows.begin(), rows.end(), [&](const auto &a, const auto &b) {
       return (Point<2>(a[0], a[1]) - start) * direction <
              (Point<2>(b[0], b[1]) - start) * direction;

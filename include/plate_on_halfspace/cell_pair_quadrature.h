@@ -18,11 +18,12 @@
 namespace PlateOnHalfspace
 {
   /**
-   * For every cell of a FoundationSpace: its foundation nodes and the node
-   * shape functions psi_a = sum_i T_ai phi_i (the Q2 functions phi after the
-   * serendipity and hanging-node constraints), tabulated on Gauss rules of
-   * several orders. integrate_inverse_distance() picks the rule from the
-   * pair's separation:
+   * For every cell of a list of FoundationSpace cells (a space's cells,
+   * and for a symmetric scene their mirror images): its foundation nodes and
+   * the node shape functions psi_a = sum_i T_ai phi_i (the Q2 functions phi
+   * after the serendipity and hanging-node constraints), tabulated on Gauss
+   * rules of several orders. integrate_inverse_distance() picks the rule from
+   * the pair's separation:
    *  - coincident and touching cells (sharing a vertex or part of an edge):
    *    outer Gauss rule of the singular order on K; for each outer point x
    *    the inner integral over L uses QSplit(QDuffy) split at x's reference
@@ -34,8 +35,8 @@ namespace PlateOnHalfspace
   class CellPairIntegrator
   {
   public:
-    CellPairIntegrator(const FoundationSpace &space,
-                       const unsigned int     singular_order);
+    CellPairIntegrator(const std::vector<FoundationSpace::Cell> &cells,
+                       const unsigned int singular_order);
 
     /** Foundation nodes of cell @p c (the rows of its node shape functions). */
     const std::vector<unsigned int> &
@@ -103,8 +104,8 @@ namespace PlateOnHalfspace
                        const unsigned int  l,
                        FullMatrix<double> &block) const;
 
-    const FoundationSpace &space;
-    const unsigned int     singular_order;
+    const std::vector<FoundationSpace::Cell> &cells;
+    const unsigned int                        singular_order;
     /** Gauss orders of the tables; 0: the graded singular-pair rule. */
     std::vector<unsigned int> orders;
     std::vector<CellData>     cell_data;

@@ -17,6 +17,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <plate_on_halfspace/mirror_symmetry.h>
 #include <plate_on_halfspace/quadrilateral_geometry.h>
 
 #include <array>
@@ -58,6 +59,23 @@ namespace PlateOnHalfspace
     std::vector<Point<2>> node_locations;
     /** All active plate cells, in the DoFHandler's active cell order. */
     std::vector<Cell> cells;
+    /**
+     * The mirror planes of the scene: the cells are the computed part of
+     * the plate, and the half-space also carries the mirror images of its
+     * pressure (mirror_symmetry.h).
+     */
+    MirrorSymmetry symmetry;
+
+    /**
+     * The mirror images of the cells, for each reflection of
+     * symmetry.reflections() in turn (cells.size() each), with the same
+     * foundation nodes: the image of cell c under reflection r is element
+     * r * cells.size() + c. The vertices and local shape functions are
+     * renumbered so that the image is again counterclockwise and its node
+     * shape functions are those of c at the mirrored point.
+     */
+    std::vector<Cell>
+    mirror_image_cells() const;
 
     unsigned int
     n_nodes() const

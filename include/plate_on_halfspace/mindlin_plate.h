@@ -62,6 +62,17 @@ namespace PlateOnHalfspace
                                    AffineConstraints<double> &)>
             &extra_constraints = {});
 
+    /**
+     * Solve the computed part of a symmetric scene (mirror_symmetry.h): the
+     * mesh given to setup() is that part, its faces on the mirror planes
+     * carry mirror_plane_x/y_boundary_id. Call before setup().
+     */
+    void
+    set_mirror_symmetry(const MirrorSymmetry &mirror_symmetry)
+    {
+      symmetry = mirror_symmetry;
+    }
+
     /** Assemble the load vector of a scene's loads (downward positive). */
     void
     assemble_loads(const Parameters::Loads &loads,
@@ -177,12 +188,15 @@ namespace PlateOnHalfspace
     void
     add_centre_constraints();
     void
+    add_mirror_plane_constraints();
+    void
     build_foundation_space();
     void
     assemble_stiffness();
 
     const Parameters::Plate          plate;
     const Parameters::Discretization discretization;
+    MirrorSymmetry                   symmetry;
 
     FESystem<2>               fe;
     MappingQ1<2>              mapping;

@@ -23,6 +23,13 @@ namespace PlateOnHalfspace
   make_plate_mesh(const Parameters::Plate          &plate,
                   const Parameters::Discretization &discretization,
                   Triangulation<2>                 &triangulation);
+
+  /** The same without the Initial refinements (the mesh before a
+   *  symmetric scene is cut to its computed part). */
+  void
+  make_coarse_plate_mesh(const Parameters::Plate          &plate,
+                         const Parameters::Discretization &discretization,
+                         Triangulation<2>                 &triangulation);
 } // namespace PlateOnHalfspace
 
 #endif

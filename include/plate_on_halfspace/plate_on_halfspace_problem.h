@@ -16,6 +16,7 @@
 #include <plate_on_halfspace/contact_solver.h>
 #include <plate_on_halfspace/foundation_operator.h>
 #include <plate_on_halfspace/mindlin_plate.h>
+#include <plate_on_halfspace/mirror_symmetry.h>
 #include <plate_on_halfspace/parameters.h>
 #include <plate_on_halfspace/results_output.h>
 
@@ -83,9 +84,19 @@ namespace PlateOnHalfspace
     refine_and_transfer_contact();
     bool
     run_checks() const;
+    /** Append the cycle's row to convergence.txt's table. */
+    void
+    add_convergence_row(const CycleSummary &summary);
 
-    const SceneParameters               parameters;
-    std::ostream                       &log;
+    const SceneParameters parameters;
+    std::ostream         &log;
+    /** The mirror planes the scene is solved with, and its loads on the
+     *  computed part (mirror_symmetry.h). */
+    MirrorSymmetry    symmetry;
+    Parameters::Loads computed_loads;
+    /** Wall time of the plate setup (DoFs, constraints, stiffness) of the
+     *  current cycle. */
+    double                              setup_time_s = 0;
     Triangulation<2>                    triangulation;
     std::unique_ptr<MindlinPlate>       mindlin_plate;
     std::unique_ptr<FoundationOperator> foundation_operator;

@@ -41,10 +41,13 @@ namespace PlateOnHalfspace
     double       max_penetration           = 0;
     double       max_w = 0, min_w = 0, max_q = 0, min_q = 0;
     double       max_mx = 0, min_mx = 0, max_my = 0, min_my = 0;
-    double       wall_time_s = 0;
-    std::string  foundation_storage;
-    std::size_t  foundation_memory_bytes = 0;
-    bool         converged               = true;
+    /** Wall time of the cycle and its parts: plate assembly (setup,
+     *  loads, condensation), half-space operator, contact solve, output. */
+    double      wall_time_s = 0, assembly_time_s = 0, foundation_time_s = 0;
+    double      solve_time_s = 0, output_time_s = 0;
+    std::string foundation_storage;
+    std::size_t foundation_memory_bytes = 0;
+    bool        converged               = true;
     std::vector<PointValues> probes;
   };
 
