@@ -249,7 +249,7 @@ namespace PlateOnHalfspace
     // on a threshold, and rounding must not send a pair and its mirror
     // image to different rules.
     const double       rounded = std::round(separation * 1e6) * 1e-6;
-    const unsigned int rule    = (rounded < 2.5 ? 2 : rounded < 5 ? 1 : 0);
+    const unsigned int rule    = (rounded < 2.5 ? 2 : rounded < 20 ? 1 : 0);
     integrate_regular(cell_data[k].tables[rule],
                       cell_data[l].tables[rule],
                       block);

@@ -3,6 +3,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/grid/grid_refinement.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/numerics/error_estimator.h>
 
@@ -86,8 +87,17 @@ namespace PlateOnHalfspace
         return true;
       }
 
-    const unsigned int n_refined = static_cast<unsigned int>(
-      std::max(1., adaptivity.refine_fraction * n_cells));
+    // The numbers to mark are those of the whole plate: its n-th cell in
+    // the order of the indicators is the computed part's ceil(n / copies)-th
+    // (a symmetric scene's cells come in groups of copies).
+    const unsigned int copies =
+      plate.get_foundation_space().symmetry.n_copies();
+    const auto part_count = [&](const double fraction_of_plate) {
+      const auto whole = static_cast<unsigned int>(fraction_of_plate);
+      return (whole + copies - 1) / copies;
+    };
+    const unsigned int n_refined =
+      std::max(1u, part_count(adaptivity.refine_fraction * n_cells * copies));
     if (n_cells + 3 * n_refined > adaptivity.max_cells)
       return false;
 
@@ -135,38 +145,49 @@ namespace PlateOnHalfspace
       }
     // The contact pressure is singular at the plate edge and changes sign
     // or vanishes non-smoothly at the contact boundary: on those cells add
-    // an indicator sqrt(area) * max |q| (the pressure resolved at the
-    // cell's scale). The edges of load patches and point loads make the
-    // shear force jump: there add the load of the discontinuity. Each
-    // family is normalised to its maximum, so that every kind of singular
-    // place is refined where it matters most. Faces on a mirror plane
-    // (boundary id != 0) are not plate edges.
+    // an indicator sqrt(area) * (max q - min q) over the cell's nodes (the
+    // variation of the pressure at the cell's scale: large where q is
+    // singular, small where it is smooth, e.g. under a flexible plate). The
+    // edges of load patches and point loads make the shear force jump: there
+    // add the load of the discontinuity. Each family is normalised to its
+    // maximum, so that every kind of singular place is refined where it matters
+    // most. Faces on a mirror plane (boundary id != 0) are not plate edges.
     const FoundationSpace &space = plate.get_foundation_space();
     Vector<float> pressure_indicators(n_cells), load_indicators(n_cells);
     unsigned int  index = 0;
     for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
       {
         bool   in = false, out = false, positive = false, negative = false;
-        double largest = 0;
+        double q_min = std::numeric_limits<double>::max(),
+               q_max = -std::numeric_limits<double>::max();
         for (const auto &terms : space.cells[index].expansion)
           for (const auto &t : terms)
             {
               (contact.in_contact[t.first] ? in : out)        = true;
               (contact.q[t.first] >= 0 ? positive : negative) = true;
-              largest = std::max(largest, std::abs(contact.q[t.first]));
+              q_min = std::min(q_min, contact.q[t.first]);
+              q_max = std::max(q_max, contact.q[t.first]);
             }
         bool on_plate_edge = false;
         for (const unsigned int f : cell->face_indices())
           on_plate_edge = on_plate_edge || (cell->at_boundary(f) &&
                                             cell->face(f)->boundary_id() == 0);
         if (on_plate_edge || (in && out) || (positive && negative))
-          pressure_indicators[index] = std::sqrt(cell->measure()) * largest;
+          pressure_indicators[index] =
+            std::sqrt(cell->measure()) * (q_max - q_min);
         load_indicators[index] = load_edge_indicator(cell, loads);
         ++index;
       }
-    const double kelly_max    = indicators.linfty_norm(),
-                 pressure_max = pressure_indicators.linfty_norm(),
-                 load_max     = load_indicators.linfty_norm();
+    // A family that only sees rounding (q uniform under a flexible plate)
+    // is left out.
+    const double kelly_max = indicators.linfty_norm(),
+                 pressure_max =
+                   pressure_indicators.linfty_norm() >
+                       1e-8 * contact.q.linfty_norm() *
+                         std::sqrt(GridTools::volume(triangulation)) ?
+                     pressure_indicators.linfty_norm() :
+                     0.,
+                 load_max = load_indicators.linfty_norm();
     for (unsigned int c = 0; c < n_cells; ++c)
       indicators[c] =
         (kelly_max > 0 ? indicators[c] / kelly_max : 0.) +
@@ -181,7 +202,7 @@ namespace PlateOnHalfspace
     const double       tie    = 1e-5 * sorted.front();
     const double       refine = sorted[n_refined - 1] - tie;
     const unsigned int n_coarsened =
-      static_cast<unsigned int>(adaptivity.coarsen_fraction * n_cells);
+      part_count(adaptivity.coarsen_fraction * n_cells * copies);
     const double coarsen =
       n_coarsened > 0 ? sorted[n_cells - n_coarsened] + tie : -1.;
     unsigned int index_c = 0;

@@ -1,0 +1,312 @@
+#!/usr/bin/env python3
+"""Speed against accuracy: run one scene over a grid of settings and measure
+the error of the quantities of interest against DOFs and wall time.
+
+    python3 scripts/accuracy_study.py build/plate-on-halfspace example2
+    python3 scripts/accuracy_study.py build/plate-on-halfspace flexible-square
+    python3 scripts/accuracy_study.py build/plate-on-halfspace large-plate
+
+Each variant is the shipped scene (parameters/) with a few entries changed;
+every refinement cycle of a run is one point. Quantities of interest: the
+centre deflection w(0,0), the peak Mx (largest at the 2x2 Gauss points), the
+contact area fraction and q at an interior point. The reference is the exact
+value where one exists (references.md) and otherwise a Richardson
+extrapolation from the three finest globally refined runs of the default
+settings; the output says which. Writes to output/study/<scene>/:
+  runs/<variant>/...     each run's result files
+  study.csv              one row per variant and cycle
+  study.md               the table, the reference, what 1 % costs
+  study.png              error against wall time and against DOFs
+Wall time: a globally refined cycle could be computed directly, so it
+counts alone; an adaptive cycle needs the cycles before it, so it counts
+with them (cumulative).
+"""
+
+import csv
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# the program's defaults, written out (a shipped scene may set others)
+DEFAULTS = {
+    "Element": "serendipity",
+    "Shear integration": "reduced",
+    "Flexibility": "galerkin",
+}
+
+# variant name -> (Discretization entries, Contact method, refinement
+#                  [, cycles if not the scene's])
+VARIANTS = {
+    "default, adaptive": ({}, "active set", "adaptive"),
+    "default, global": ({}, "active set", "global"),
+    "serendipity selective": ({"Shear integration": "selective"}, "active set",
+                              "adaptive"),
+    "heterosis selective": ({"Element": "heterosis",
+                             "Shear integration": "selective"}, "active set",
+                            "adaptive"),
+    "lagrange selective": ({"Element": "lagrange",
+                            "Shear integration": "selective"}, "active set",
+                           "adaptive"),
+    "lagrange full": ({"Element": "lagrange", "Shear integration": "full"},
+                      "active set", "adaptive"),
+    "collocation, adaptive": ({"Flexibility": "collocation"}, "active set",
+                              "adaptive"),
+    "element exclusion": ({}, "element exclusion", "adaptive"),
+    "paper (serendipity, collocation, element exclusion), global":
+        ({"Flexibility": "collocation"}, "element exclusion", "global", 3),
+}
+
+SCENES = {
+    # the paper's example 2: tensionless, lifts off at the ends
+    "example2": {
+        "file": "parameters/example2.prm",
+        "probe_q": (3.0, 0.0),
+        "cycles": {"global": 4, "adaptive": 6},
+        "exact": {},
+        "tensionless": True,
+    },
+    # a flexible uniformly loaded square: w(0,0) and q exact
+    "flexible-square": {
+        "file": "parameters/flexible-square.prm",
+        "probe_q": (1.0, 1.0),
+        "cycles": {"global": 4, "adaptive": 6},
+        "exact": {"w": 8.16961385005846e-3, "q": 100.0, "fraction": 1.0},
+        "skip": {"Mx"},  # a flexible plate carries no moment to speak of
+        "tensionless": False,
+    },
+    # a large slab under a tyre patch: w(0,0) is the Hankel integral
+    "large-plate": {
+        "file": "parameters/infinite-plate-patch.prm",
+        "probe_q": (0.888, 0.0),
+        "cycles": {"global": 4, "adaptive": 7},
+        "exact": {"w": 1.9231820e-4, "fraction": 1.0},
+        "tensionless": False,
+    },
+}
+
+QUANTITIES = [("w", "w(0,0)"), ("Mx", "peak Mx"), ("fraction", "contact area"),
+              ("q", "q at interior point")]
+
+
+def scene_text(scene, name, settings, directory):
+    base = open(os.path.join(ROOT, scene["file"])).read()
+    entries, method, refinement = settings[:3]
+    cycles = settings[3] if len(settings) > 3 else scene["cycles"][refinement]
+    discretization = "".join(f"  set {k} = {v}\n"
+                             for k, v in {**DEFAULTS, **entries}.items())
+    px, py = scene["probe_q"]
+    tensionless = scene["tensionless"]
+    if not tensionless and method != "active set":
+        return None  # the contact method only matters without tension
+    text = base + f"""
+set Output directory = {directory}
+subsection Discretization
+{discretization}end
+subsection Contact
+  set Method = {method}
+end
+subsection Adaptivity
+  set Cycles = {cycles}
+  set Refinement = {refinement}
+  set Refine fraction = 0.3
+  set Max cells = 100000
+end
+subsection Output
+  set Probe points = 0,0 ; {px},{py}
+  set VTU = false
+  set Verbosity = 0
+end
+subsection Verification
+  set Checks =
+end
+"""
+    return text
+
+
+def run_variant(executable, scene, scene_name, name, settings, out):
+    directory = os.path.join(out, "runs", name.replace(" ", "_").replace(
+        ",", "").replace("(", "").replace(")", ""))
+    text = scene_text(scene, name, settings, directory)
+    if text is None:
+        return []
+    os.makedirs(directory, exist_ok=True)
+    prm = os.path.join(directory, "scene.prm")
+    with open(prm, "w") as f:
+        f.write(text)
+    result = subprocess.run([executable, prm], capture_output=True, text=True)
+    if result.returncode != 0:
+        print(f"  {name}: failed: {result.stderr.strip()}", file=sys.stderr)
+    summary_file = os.path.join(directory, "summary.json")
+    if not os.path.exists(summary_file):
+        return []
+    summary = json.load(open(summary_file))
+    rows, elapsed = [], 0.0
+    for c in summary["cycles"]:
+        elapsed += c["wall_time_s"]
+        adaptive = settings[2] == "adaptive"
+        probes = c["probes"]
+        rows.append({
+            "variant": name, "cycle": c["cycle"], "cells": c["n_cells"],
+            "dofs": c["n_dofs"], "foundation_dofs": c["n_foundation_dofs"],
+            "time": elapsed if adaptive else c["wall_time_s"],
+            "w": probes[0]["w"], "Mx": c["max_Mx"],
+            "fraction": c["contact_area_fraction"], "q": probes[1]["q"],
+            "symmetry": summary["symmetry"],
+        })
+    return rows
+
+
+def richardson(values):
+    """Limit of the last three values of a sequence halving h each step,
+    with the observed order; the finest value if the sequence does not
+    converge monotonically."""
+    a, b, c = values[-3:]
+    if (b - a) * (c - b) <= 0 or abs(b - a) <= abs(c - b):
+        return c, None
+    ratio = (b - a) / (c - b)
+    order = math.log(ratio, 2)
+    return c + (c - b) / (ratio - 1), order
+
+
+def main():
+    if len(sys.argv) < 3 or sys.argv[2] not in SCENES:
+        print(__doc__)
+        sys.exit(2)
+    executable = os.path.abspath(sys.argv[1])
+    scene_name = sys.argv[2]
+    scene = SCENES[scene_name]
+    out = os.path.join(ROOT, "output", "study", scene_name)
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+
+    rows = []
+    for name, settings in VARIANTS.items():
+        print(f"running {name} ...", flush=True)
+        rows += run_variant(executable, scene, scene_name, name, settings, out)
+
+    # reference values
+    reference, how = {}, {}
+    finest = [r for r in rows if r["variant"] == "default, global"]
+    for key, label in QUANTITIES:
+        if key in scene.get("skip", set()):
+            continue
+        if key in scene["exact"]:
+            reference[key] = scene["exact"][key]
+            how[key] = "exact"
+        elif len(finest) >= 3:
+            value, order = richardson([r[key] for r in finest])
+            reference[key] = value
+            how[key] = ("Richardson extrapolation of the three finest global "
+                        "default runs" + (f" (observed order {order:.2f})"
+                                          if order else " (not monotone: "
+                                          "finest value)"))
+    for r in rows:
+        for key in reference:
+            r["err_" + key] = abs(r[key] - reference[key]) / max(
+                abs(reference[key]), 1e-300)
+
+    keys = list(rows[0].keys())
+    for r in rows:
+        for k in r:
+            if k not in keys:
+                keys.append(k)
+    with open(os.path.join(out, "study.csv"), "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=keys)
+        writer.writeheader()
+        writer.writerows(rows)
+
+    # what 1 % costs: the first cycle from which the error stays below 1 %
+    def cost(variant, key, bound=0.01):
+        vrows = [r for r in rows if r["variant"] == variant]
+        for i, r in enumerate(vrows):
+            if all(s.get("err_" + key, 1) < bound for s in vrows[i:]):
+                return r
+        return None
+
+    lines = [f"# Accuracy study: {scene_name}", "",
+             f"Command: `python3 scripts/accuracy_study.py "
+             f"build/plate-on-halfspace {scene_name}`", "",
+             f"Symmetry used: {rows[0]['symmetry']} (the dense block of the "
+             "computed part only).", "", "References:", ""]
+    for key, label in QUANTITIES:
+        if key in reference:
+            lines.append(f"- {label}: {reference[key]:.8g} ({how[key]})")
+    lines += ["", "## Every run", "",
+              "| variant | cycle | dofs | foundation dofs | time [s] | " +
+              " | ".join(f"err {label}" for key, label in QUANTITIES
+                         if key in reference) + " |",
+              "|---|---|---|---|---|" + "---|" * len(reference)]
+    for r in rows:
+        lines.append(
+            f"| {r['variant']} | {r['cycle']} | {r['dofs']} | "
+            f"{r['foundation_dofs']} | {r['time']:.2f} | " +
+            " | ".join(f"{r['err_' + key]:.2e}" for key, _ in QUANTITIES
+                       if key in reference) + " |")
+    lines += ["", "## What 1 % costs", "",
+              "First cycle from which the error stays below 1 % "
+              "(dofs / wall time; '-' = not reached in the runs).", "",
+              "| variant | " + " | ".join(label for key, label in QUANTITIES
+                                         if key in reference) + " |",
+              "|---|" + "---|" * len(reference)]
+    for variant in VARIANTS:
+        if not any(r["variant"] == variant for r in rows):
+            continue
+        cells = []
+        for key, _ in QUANTITIES:
+            if key not in reference:
+                continue
+            r = cost(variant, key)
+            cells.append(f"{r['dofs']} / {r['time']:.2f} s" if r else "-")
+        lines.append(f"| {variant} | " + " | ".join(cells) + " |")
+    with open(os.path.join(out, "study.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+    # the plot: error against time (top) and DOFs (bottom) per quantity
+    plotted = [key for key, _ in QUANTITIES if key in reference]
+    data = os.path.join(out, "plot-data.txt")
+    variants = [v for v in VARIANTS if any(r["variant"] == v for r in rows)]
+    with open(data, "w") as f:
+        for v in variants:
+            f.write(f'"{v}"\n')
+            for r in rows:
+                if r["variant"] == v:
+                    f.write(f"{r['dofs']} {r['time']} " + " ".join(
+                        f"{max(r['err_' + key], 1e-16)}" for key in plotted)
+                        + "\n")
+            f.write("\n\n")
+    terminals = subprocess.run(["gnuplot", "-e", "set terminal"],
+                               capture_output=True, text=True)
+    cairo = "pngcairo" in terminals.stdout + terminals.stderr
+    script = [f"set terminal {'pngcairo' if cairo else 'png'} size "
+              f"{420 * len(plotted)},760 font ',9'",
+              f"set output '{os.path.join(out, 'study.png')}'",
+              f"set multiplot layout 2,{len(plotted)} title "
+              f"'{scene_name}: relative error against wall time and DOFs'",
+              "set logscale xy", "set format y '10^{%L}'", "set grid",
+              "set key off"]
+    labels = dict(QUANTITIES)
+    for axis, column in (("wall time [s]", 2), ("DOFs", 1)):
+        for k, key in enumerate(plotted):
+            if axis == "DOFs" and k == len(plotted) - 1:
+                script.append("set key outside right font ',7'")
+            script += [f"set xlabel '{axis}'",
+                       f"set title '{labels[key]}'",
+                       "plot " + ", ".join(
+                           f"'{data}' index {i} using {column}:{3 + k} "
+                           f"with linespoints title columnheader(1)"
+                           for i in range(len(variants)))]
+            script.append("set key off")
+    script.append("unset multiplot")
+    subprocess.run(["gnuplot"], input="\n".join(script), text=True,
+                   check=False)
+    print(f"\nwrote {out}/study.md, study.csv, study.png")
+
+
+if __name__ == "__main__":
+    main()
