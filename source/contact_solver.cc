@@ -2,6 +2,7 @@
 
 #include <deal.II/lac/full_matrix.h>
 
+#include <plate_on_halfspace/condition_estimate.h>
 #include <plate_on_halfspace/contact_solver.h>
 
 #include <algorithm>
@@ -85,6 +86,7 @@ namespace PlateOnHalfspace
     // (K̄ + S) w = P̄ (P21), S the foundation stiffness on the contact set.
     LAPACKFullMatrix<double> coupled(plate_stiffness);
     foundation.add_stiffness(coupled);
+    const double      l1_norm = coupled.l1_norm();
     const std::string mechanism =
       "The plate is a mechanism: the contact set cannot carry it (fewer than "
       "three non-collinear supporting nodes, or loads that lift it off).";
@@ -99,6 +101,8 @@ namespace PlateOnHalfspace
       {
         AssertThrow(false, ExcMessage(mechanism));
       }
+    state.coupled_rcond =
+      reciprocal_condition_number(coupled, l1_norm, foundation.is_symmetric());
     state.w = plate_load;
     coupled.solve(state.w);
     for (const double v : state.w)
@@ -218,6 +222,15 @@ namespace PlateOnHalfspace
   {
     ContactState state;
     state.cell_in_foundation.assign(space.cells.size(), true);
+
+    // Without any load the answer is w = q = 0 whatever the scene: a user
+    // who asks for it has forgotten a load (or put every load off the
+    // plate, which the load assembly refuses first).
+    AssertThrow(plate_load.linfty_norm() > 0,
+                ExcMessage("Loads: the total load is zero (Loads/Uniform "
+                           "pressure, Rectangular patches, Circular patches, "
+                           "Point loads and Plate/Unit weight give no load); "
+                           "set at least one non-zero load."));
 
     if (!tensionless)
       {

@@ -4,6 +4,7 @@
 #include <plate_on_halfspace/boussinesq_collocation_operator.h>
 #include <plate_on_halfspace/boussinesq_galerkin_operator.h>
 #include <plate_on_halfspace/boussinesq_kernel.h>
+#include <plate_on_halfspace/condition_estimate.h>
 #include <plate_on_halfspace/foundation_operator.h>
 
 namespace PlateOnHalfspace
@@ -62,8 +63,10 @@ namespace PlateOnHalfspace
     for (unsigned int i = 0; i < m; ++i)
       for (unsigned int j = 0; j < m; ++j)
         contact_factor(i, j) = flexibility(contact_index[i], contact_index[j]);
+    contact_block_rcond = 1.;
     if (m == 0)
       return;
+    const double l1_norm = contact_factor.l1_norm();
     try
       {
         if (symmetric)
@@ -75,6 +78,8 @@ namespace PlateOnHalfspace
       {
         AssertThrow(false, ExcMessage(failure));
       }
+    contact_block_rcond =
+      reciprocal_condition_number(contact_factor, l1_norm, symmetric);
   }
 
   void

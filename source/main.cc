@@ -8,6 +8,7 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <plate_on_halfspace/input_checks.h>
 #include <plate_on_halfspace/parameters.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 
@@ -48,6 +49,8 @@ main(int argc, char **argv)
         }
       SceneParameters parameters;
       parameters.read(argument);
+      for (const std::string &warning : scene_warnings(parameters))
+        std::cerr << "Warning: " << warning << std::endl;
       PlateOnHalfspaceProblem problem(parameters, std::cout);
       if (!problem.run())
         {

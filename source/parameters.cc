@@ -1,10 +1,13 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include <plate_on_halfspace/input_checks.h>
 #include <plate_on_halfspace/parameters.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace PlateOnHalfspace
 {
@@ -61,6 +64,15 @@ namespace PlateOnHalfspace
     require(const bool condition, const std::string &message)
     {
       AssertThrow(condition, ExcMessage(message));
+    }
+
+    /** " (got X)" for the messages of the checks below. */
+    std::string
+    got(const double value)
+    {
+      std::ostringstream s;
+      s << " (got " << value << ")";
+      return s.str();
     }
   } // namespace
 
@@ -135,17 +147,23 @@ namespace PlateOnHalfspace
       if (shape == Shape::rectangle)
         require(length_x > 0 && length_y > 0,
                 "Plate/Length x and Plate/Length y must be > 0 for "
-                "Shape = rectangle.");
+                "Shape = rectangle" +
+                  got(std::min(length_x, length_y)) + ".");
       if (shape == Shape::disk)
-        require(radius > 0, "Plate/Radius must be > 0 for Shape = disk.");
+        require(radius > 0,
+                "Plate/Radius must be > 0 for Shape = disk" + got(radius) +
+                  ".");
       if (shape == Shape::mesh_file)
         require(!mesh_file.empty(),
                 "Plate/Mesh file must name a Gmsh .msh file for "
                 "Shape = mesh file.");
-      require(thickness > 0, "Plate/Thickness must be > 0.");
-      require(youngs_modulus > 0, "Plate/Young's modulus must be > 0.");
+      require(thickness > 0,
+              "Plate/Thickness must be > 0" + got(thickness) + ".");
+      require(youngs_modulus > 0,
+              "Plate/Young's modulus must be > 0" + got(youngs_modulus) + ".");
       require(poissons_ratio > -1 && poissons_ratio < 0.5,
-              "Plate/Poisson's ratio must lie in (-1, 0.5).");
+              "Plate/Poisson's ratio must lie in (-1, 0.5)" +
+                got(poissons_ratio) + ".");
     }
 
     double
@@ -166,9 +184,9 @@ namespace PlateOnHalfspace
                         "[force/length^2].");
       prm.declare_entry("Poisson's ratio",
                         "0.3",
-                        Patterns::Double(-1, 0.5),
+                        Patterns::Double(0, 0.5),
                         "Poisson's ratio nu0 of the half-space, "
-                        "-1 < nu0 <= 0.5.");
+                        "0 <= nu0 < 0.5.");
       prm.declare_entry("Contact",
                         "tensionless",
                         Patterns::Selection("tensionless|bonded"),
@@ -185,9 +203,14 @@ namespace PlateOnHalfspace
       poissons_ratio = prm.get_double("Poisson's ratio");
       tensionless    = (prm.get("Contact") == "tensionless");
       prm.leave_subsection();
-      require(youngs_modulus > 0, "Foundation/Young's modulus must be > 0.");
-      require(poissons_ratio > -1 && poissons_ratio <= 0.5,
-              "Foundation/Poisson's ratio must lie in (-1, 0.5].");
+      require(youngs_modulus > 0,
+              "Foundation/Young's modulus must be > 0" + got(youngs_modulus) +
+                ".");
+      // A soil's nu0 lies in [0, 0.5); 0.5 (undrained) is the limit the
+      // Poisson sweep of tests/unit/extreme_scenes approaches continuously.
+      require(poissons_ratio >= 0 && poissons_ratio < 0.5,
+              "Foundation/Poisson's ratio must lie in [0, 0.5)" +
+                got(poissons_ratio) + ".");
     }
 
     void
@@ -217,7 +240,9 @@ namespace PlateOnHalfspace
       require(storage != "hierarchical",
               "Foundation operator/Storage = hierarchical is not available "
               "in this version; use dense or auto (= dense).");
-      require(tolerance > 0, "Foundation operator/Tolerance must be > 0.");
+      require(tolerance > 0,
+              "Foundation operator/Tolerance must lie in (0, 1]" +
+                got(tolerance) + ".");
     }
 
     void
@@ -260,8 +285,9 @@ namespace PlateOnHalfspace
                                              "x1,y1,x2,y2,pressure"))
         {
           require(v[0] < v[2] && v[1] < v[3],
-                  "Loads/Rectangular patches: each patch needs x1 < x2 and "
-                  "y1 < y2.");
+                  "Loads/Rectangular patches: each patch x1,y1,x2,y2,pressure "
+                  "needs x1 < x2 and y1 < y2 (patch " +
+                    std::to_string(rectangular_patches.size() + 1) + ").");
           rectangular_patches.push_back(
             {Point<2>(v[0], v[1]), Point<2>(v[2], v[3]), v[4]});
         }
@@ -271,7 +297,9 @@ namespace PlateOnHalfspace
                                              "Loads/Circular patches",
                                              "xc,yc,radius,pressure"))
         {
-          require(v[2] > 0, "Loads/Circular patches: the radius must be > 0.");
+          require(v[2] > 0,
+                  "Loads/Circular patches: the radius must be > 0" + got(v[2]) +
+                    ".");
           circular_patches.push_back({Point<2>(v[0], v[1]), v[2], v[3]});
         }
       point_loads.clear();
@@ -397,7 +425,8 @@ namespace PlateOnHalfspace
       max_iterations = prm.get_integer("Max iterations");
       tolerance      = prm.get_double("Tolerance");
       prm.leave_subsection();
-      require(tolerance > 0, "Contact/Tolerance must be > 0.");
+      require(tolerance > 0,
+              "Contact/Tolerance must lie in (0, 1]" + got(tolerance) + ".");
     }
 
     void
@@ -623,14 +652,28 @@ namespace PlateOnHalfspace
   void
   SceneParameters::read(const std::string &filename)
   {
-    AssertThrow(std::ifstream(filename).good(),
+    AssertThrow(std::filesystem::is_regular_file(filename) &&
+                  std::ifstream(filename).good(),
                 ExcMessage("Cannot open the parameter file <" + filename +
                            ">."));
+    std::ostringstream text;
+    text << std::ifstream(filename).rdbuf();
     ParameterHandler prm;
     declare_parameters(prm);
     // parse_input() also follows "include other.prm" lines, so tests can
-    // derive from the shipped scenes.
-    prm.parse_input(filename);
+    // derive from the shipped scenes. Its messages name the line, not the
+    // section and the allowed values: input_checks.h adds them.
+    try
+      {
+        prm.parse_input(filename);
+      }
+    catch (const std::exception &error)
+      {
+        AssertThrow(false,
+                    ExcMessage(explain_parameter_file_error(error,
+                                                            text.str(),
+                                                            filename)));
+      }
     parse_parameters(prm);
   }
 
@@ -639,7 +682,18 @@ namespace PlateOnHalfspace
   {
     ParameterHandler prm;
     declare_parameters(prm);
-    prm.parse_input_from_string(text, "input");
+    try
+      {
+        prm.parse_input_from_string(text);
+      }
+    catch (const std::exception &error)
+      {
+        // deal.II names a string "input string"
+        AssertThrow(false,
+                    ExcMessage(explain_parameter_file_error(error,
+                                                            text,
+                                                            "input string")));
+      }
     parse_parameters(prm);
   }
 } // namespace PlateOnHalfspace

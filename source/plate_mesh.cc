@@ -4,6 +4,7 @@
 
 #include <plate_on_halfspace/plate_mesh.h>
 
+#include <filesystem>
 #include <fstream>
 
 namespace PlateOnHalfspace
@@ -43,7 +44,7 @@ namespace PlateOnHalfspace
         case Parameters::Plate::Shape::mesh_file:
           {
             std::ifstream file(plate.mesh_file);
-            AssertThrow(file,
+            AssertThrow(file && !std::filesystem::is_directory(plate.mesh_file),
                         ExcMessage("Plate/Mesh file: cannot open <" +
                                    plate.mesh_file + ">."));
             GridIn<2> grid_in(triangulation);
@@ -53,15 +54,27 @@ namespace PlateOnHalfspace
               }
             catch (const std::exception &e)
               {
+                // GridIn's own reason, without deal.II's source location
+                std::string       reason = e.what();
+                const std::string marker = "Additional information:";
+                if (reason.find(marker) != std::string::npos)
+                  reason = reason.substr(reason.find(marker) + marker.size());
                 AssertThrow(false,
                             ExcMessage("Plate/Mesh file: <" + plate.mesh_file +
                                        "> is not a readable Gmsh mesh of "
                                        "quadrilaterals: " +
-                                       std::string(e.what())));
+                                       reason));
               }
             AssertThrow(triangulation.n_active_cells() > 0,
                         ExcMessage("Plate/Mesh file: <" + plate.mesh_file +
                                    "> holds no quadrilaterals."));
+            // The plate elements are quadrilaterals (formulation.md); Gmsh
+            // triangles would reach FE_Q as simplices.
+            AssertThrow(triangulation.all_reference_cells_are_hyper_cube(),
+                        ExcMessage("Plate/Mesh file: <" + plate.mesh_file +
+                                   "> contains triangles; only "
+                                   "quadrilaterals are allowed (in Gmsh: "
+                                   "Mesh.RecombineAll = 1)."));
             break;
           }
       }

@@ -2,6 +2,7 @@
 
 #include <deal.II/numerics/solution_transfer.h>
 
+#include <plate_on_halfspace/memory_guard.h>
 #include <plate_on_halfspace/mesh_refinement.h>
 #include <plate_on_halfspace/plate_mesh.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
@@ -136,6 +137,7 @@ namespace PlateOnHalfspace
           << summary.n_dofs << " dofs, " << summary.n_foundation_dofs
           << " foundation nodes" << std::endl;
 
+    check_dense_foundation_memory(summary.n_foundation_dofs);
     LAPACKFullMatrix<double> plate_stiffness;
     Vector<double>           plate_load;
     {
@@ -177,6 +179,9 @@ namespace PlateOnHalfspace
     output->evaluate(plate, plate_solution, contact, summary);
     summary.foundation_storage      = foundation_operator->storage_name();
     summary.foundation_memory_bytes = foundation_operator->memory_consumption();
+    summary.coupled_matrix_rcond    = contact.coupled_rcond;
+    summary.foundation_block_rcond =
+      foundation_operator->contact_block_reciprocal_condition_number();
     for (const Point<2> &x : parameters.output.probe_points)
       {
         try

@@ -231,6 +231,8 @@ namespace PlateOnHalfspace
         j["foundation_storage"]        = c.foundation_storage;
         j["foundation_memory_bytes"]   = c.foundation_memory_bytes;
         j["converged"]                 = c.converged;
+        j["coupled_matrix_rcond"]      = c.coupled_matrix_rcond;
+        j["foundation_block_rcond"]    = c.foundation_block_rcond;
         j["probes"]                    = nlohmann::ordered_json::array();
         for (const PointValues &p : c.probes)
           j["probes"].push_back({{"x", p.location[0]},

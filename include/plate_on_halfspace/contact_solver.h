@@ -39,6 +39,11 @@ namespace PlateOnHalfspace
     unsigned int tensile_nodes = 0;
     /** Largest penetration -gap, relative to max |B w| (0 if none). */
     double max_penetration = 0;
+    /**
+     * LAPACK's estimate of 1/κ₁ of the coupled matrix K̄ + S of the last
+     * solve (condition_estimate.h).
+     */
+    double coupled_rcond = 1;
   };
 
   /**

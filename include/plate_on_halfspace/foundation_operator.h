@@ -114,6 +114,16 @@ namespace PlateOnHalfspace
       return mass;
     }
 
+    /**
+     * LAPACK's estimate of 1/κ₁ of the flexibility block F_CC of the
+     * current contact set (condition_estimate.h).
+     */
+    double
+    contact_block_reciprocal_condition_number() const
+    {
+      return contact_block_rcond;
+    }
+
     /** "dense" or the name of a compressed storage. */
     virtual std::string
     storage_name() const = 0;
@@ -157,6 +167,7 @@ namespace PlateOnHalfspace
     std::vector<bool>         in_contact;
     std::vector<unsigned int> contact_index;  ///< the nodes of C
     LAPACKFullMatrix<double>  contact_factor; ///< factor of F_CC
+    double                    contact_block_rcond = 1.;
   };
 
   /**

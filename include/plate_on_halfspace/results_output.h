@@ -48,6 +48,8 @@ namespace PlateOnHalfspace
     std::string foundation_storage;
     std::size_t foundation_memory_bytes = 0;
     bool        converged               = true;
+    /** 1/κ₁ estimates of the coupled matrix and of the half-space block. */
+    double coupled_matrix_rcond = 1, foundation_block_rcond = 1;
     std::vector<PointValues> probes;
   };
 

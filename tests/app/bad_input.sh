@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# The table of malformed scenes (issue 5): every tests/app/bad_input/NAME.prm
+# is a scene with one mistake, run through the real executable. Each must
+# exit with status 1 (no signal, no time-out) and one "Error: ..." line on
+# stderr that contains every "# expect: TEXT" line of the file (the
+# section/entry and the allowed values); an "# env: VAR=VALUE" line sets an
+# environment variable for the run. A valid run in the same directory comes
+# first, and no failed run may change its results or leave a temporary file.
+# Prints the table (name | message) that README.md's "Errors you may see"
+# summarises.
+# usage: bad_input.sh PROGRAM TESTS_APP_DIRECTORY
+set -u
+program=$1
+here=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cp "$here/bad_input_base.prm" "$work/base.prm"
+cp "$here/triangles.msh" "$work/"
+cd "$work"
+passed=0
+failed=0
+fail() { echo "FAILED: $*"; failed=$((failed + 1)); }
+
+"$program" base.prm >stdout 2>stderr || { fail "the valid base scene"; cat stderr; }
+snapshot() { (cd results && md5sum * | sort); }
+snapshot >before.md5
+
+run_bad() { # name, then the command
+  local name=$1
+  shift
+  timeout 60 "$@" >stdout 2>stderr
+  local status=$?
+  local errors
+  errors=$(grep -v '^Warning: ' stderr)
+  if [ $status -ne 1 ]; then
+    fail "$name: exit status $status (1 expected)"; cat stderr; return 1
+  fi
+  if [ "$(printf '%s\n' "$errors" | wc -l)" -ne 1 ] ||
+     [[ "$errors" != "Error: "* ]]; then
+    fail "$name: stderr is not one 'Error: ...' line"; cat stderr; return 1
+  fi
+  if ! snapshot | cmp -s - before.md5 ||
+     [ -n "$(find . -name '*.tmp')" ]; then
+    fail "$name: the earlier results changed or a temporary file is left"
+    return 1
+  fi
+  return 0
+}
+
+echo "| scene | message |"
+echo "|---|---|"
+for scene in "$here"/bad_input/*.prm; do
+  name=$(basename "$scene" .prm)
+  cp "$scene" "$name.prm"
+  environment=()
+  while IFS= read -r line; do
+    environment+=("$line")
+  done < <(sed -n 's/^# env: //p' "$name.prm")
+  if run_bad "$name" env "${environment[@]}" "$program" "$name.prm"; then
+    ok=1
+    while IFS= read -r expected; do
+      if ! grep -qF -- "$expected" stderr; then
+        fail "$name: the message lacks <$expected>"; cat stderr; ok=0
+      fi
+    done < <(sed -n 's/^# expect: //p' "$name.prm")
+    if [ -z "$(sed -n 's/^# expect: //p' "$name.prm")" ]; then
+      fail "$name: no '# expect:' line"; ok=0
+    fi
+    [ $ok = 1 ] && passed=$((passed + 1)) &&
+      echo "| $name | $(sed 's/^Error: //; s/|/\\|/g' stderr | grep -v '^Warning: ') |"
+  fi
+done
+
+# The command line itself.
+run_bad "no parameter file" "$program" no-such.prm && grep -q "no-such.prm" stderr &&
+  passed=$((passed + 1)) || fail "missing parameter file not named"
+run_bad "a directory as parameter file" "$program" . && grep -q "<.>" stderr &&
+  passed=$((passed + 1)) || fail "directory as parameter file not named"
+"$program" >stdout 2>stderr
+[ $? -eq 2 ] && grep -q "usage" stderr && passed=$((passed + 1)) ||
+  fail "no argument: usage and status 2 expected"
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""Fuzz-style test of the executable (issue 5): randomly perturbed versions
+of a small valid scene (tests/app/bad_input_base.prm made tensionless with a
+patch and a point load), a fixed seed, each run with a time limit. Every run
+must either succeed (status 0, summary.json without NaN/null, "converged":
+true) or fail cleanly (status 1, exactly one "Error: ..." line on stderr
+besides "Warning: ..." lines). A signal, a time-out, another status or a
+malformed result fails the test.
+
+usage: fuzz_scenes.py PROGRAM TESTS_APP_DIRECTORY [RUNS] [SEED]
+"""
+import json
+import os
+import random
+import shutil
+import subprocess
+import sys
+import tempfile
+
+program, here = sys.argv[1], sys.argv[2]
+runs = int(sys.argv[3]) if len(sys.argv) > 3 else 200
+seed = int(sys.argv[4]) if len(sys.argv) > 4 else 20240605
+time_limit = 30  # seconds; a valid run of these scenes takes well under 1 s
+
+base = """set Output directory = results
+subsection Plate
+  set Shape           = rectangle
+  set Length x        = 2
+  set Length y        = 1.5
+  set Radius          = 1
+  set Thickness       = 0.2
+  set Young's modulus = 1e6
+  set Poisson's ratio = 0.2
+  set Unit weight     = 0
+end
+subsection Foundation
+  set Young's modulus = 1e4
+  set Poisson's ratio = 0.3
+  set Contact         = tensionless
+end
+subsection Loads
+  set Uniform pressure    = 1
+  set Rectangular patches = 0,0,1,0.75,100
+  set Circular patches    =
+  set Point loads         = -0.5,0,20
+end
+subsection Discretization
+  set Element           = serendipity
+  set Shear integration = reduced
+  set Subdivisions x    = 3
+  set Subdivisions y    = 2
+  set Initial refinements = 0
+  set Flexibility       = galerkin
+end
+subsection Contact
+  set Method         = active set
+  set Max iterations = 100
+end
+subsection Adaptivity
+  set Cycles = 1
+end
+subsection Output
+  set Probe points = 0,0
+  set VTU          = false
+  set Verbosity    = 0
+end
+"""
+
+numbers = ["0", "-1", "1e-300", "1e300", "nan", "inf", "-inf", "x", "", "1,2",
+           "0.5", "0.499", "1e-6", "1e9", "2.5", "-0.2", "3", "1e999"]
+choices = {
+    "Shape": ["rectangle", "disk", "mesh file", "square", ""],
+    "Contact": ["bonded", "tensionless", "glued"],
+    "Element": ["serendipity", "heterosis", "lagrange", "quad"],
+    "Shear integration": ["reduced", "selective", "full", "none"],
+    "Flexibility": ["galerkin", "collocation", "winkler"],
+    "Method": ["active set", "element exclusion", "newton"],
+    "Subdivisions x": ["1", "2", "4", "0", "-3", "2.5", "1001", "x"],
+    "Subdivisions y": ["1", "2", "4", "0", "-3", "2.5", "1001", "x"],
+    "Initial refinements": ["0", "1", "-1", "11", "x"],
+    "Cycles": ["1", "2", "0", "31"],
+    "Max iterations": ["1", "2", "0", "100"],
+    "Rectangular patches": ["", "0,0,1,1,100", "1,0,0,1,10", "0,0,1", "5,5,6,6,1",
+                            "-3,-3,3,3,10", "0,0,1,1,nan", "0,0,1,1,-1e9", ";;", "a,b,c,d,e"],
+    "Circular patches": ["", "0,0,0.3,50", "0,0,0,50", "0,0,-1,50", "9,9,1,1", "0,0,5,10"],
+    "Point loads": ["", "0,0,10", "1,0.75,10", "0,0,-10", "3,0,10", "0,0", "0,0,inf",
+                    "0.3333,0.25,1e9", "-1,-0.75,1e-6"],
+    "Probe points": ["", "0,0", "1,0.75", "9,9", "0", "nan,0"],
+    "Mesh file": ["", "no-such.msh", "triangles.msh", "."],
+}
+
+
+def perturb(rng):
+    lines = base.splitlines()
+    for _ in range(rng.randint(1, 3)):
+        i = rng.randrange(1, len(lines))  # keep the output directory
+        line = lines[i]
+        if "=" in line and rng.random() < 0.8:
+            name = line.split("set", 1)[1].split("=")[0].strip()
+            pool = choices.get(name, numbers)
+            lines[i] = line.split("=")[0] + "= " + rng.choice(pool)
+        else:
+            kind = rng.randrange(4)
+            if kind == 0:
+                del lines[i]  # a lost line, e.g. an 'end'
+            elif kind == 1 and line:
+                j = rng.randrange(len(line))
+                lines[i] = line[:j] + line[j + 1:]  # a lost character
+            elif kind == 2:
+                lines.insert(i, lines[i])  # a repeated line
+            else:
+                lines[i] = line.replace("set ", "set  X", 1)  # a misspelt name
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    rng = random.Random(seed)
+    work = tempfile.mkdtemp()
+    shutil.copy(os.path.join(here, "triangles.msh"), work)
+    counts = {"ran": 0, "refused": 0}
+    failures = []
+    try:
+        for n in range(runs):
+            scene = perturb(rng)
+            with open(os.path.join(work, "scene.prm"), "w") as f:
+                f.write(scene)
+            shutil.rmtree(os.path.join(work, "results"), ignore_errors=True)
+            try:
+                p = subprocess.run([program, "scene.prm"], cwd=work, capture_output=True,
+                                   text=True, timeout=time_limit)
+            except subprocess.TimeoutExpired:
+                failures.append((n, "time-out", scene))
+                continue
+            errors = [l for l in p.stderr.splitlines() if not l.startswith("Warning: ")]
+            if p.returncode == 0:
+                try:
+                    text = open(os.path.join(work, "results", "summary.json")).read()
+                    summary = json.loads(text)
+                    ok = ("NaN" not in text and "null" not in text and summary["converged"])
+                except (OSError, ValueError, KeyError):
+                    ok = False
+                if ok and not errors:
+                    counts["ran"] += 1
+                else:
+                    failures.append((n, "status 0 but bad summary.json or stderr", scene))
+            elif p.returncode == 1 and len(errors) == 1 and errors[0].startswith("Error: "):
+                counts["refused"] += 1
+            else:
+                failures.append((n, "status %d, stderr %r" % (p.returncode, p.stderr[-500:]), scene))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    print("seed %d: %d scenes, %d ran, %d refused cleanly, %d failed"
+          % (seed, runs, counts["ran"], counts["refused"], len(failures)))
+    for n, why, scene in failures[:5]:
+        print("FAILED scene %d: %s\n%s" % (n, why, scene))
+    return 1 if failures else 0
+
+
+sys.exit(main())

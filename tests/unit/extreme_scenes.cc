@@ -1,0 +1,264 @@
+// Extremes of issue 5 other than thickness and stiffness ratio
+// (thin_plate_limit, stiffness_ratio_sweep): Poisson's ratios, load
+// magnitude, awkward geometry and contact on the edge of lift-off. Base
+// scene: a 4 m square of parameters/flexible-square.prm made a 0.2 m
+// concrete slab (E = 2.5e7) on 8 x 8 cells, Galerkin, tensionless, soil
+// E0 = 5e4. Every run must converge with equilibrium to 1e-12 and the
+// discrete contact conditions to 1e-12 (complementarity_violation). Exact
+// or independent values:
+// - Poisson's ratio of the soil enters only through E* = E0/(1 - nu0^2):
+//   at fixed E* the answer must not change (1e-12) from nu0 = 0 to 0.499;
+//   at fixed E0 it must fall monotonically and without a jump;
+// - Poisson's ratio of the plate at fixed D, 0 ... 0.49: no jumps;
+// - the tensionless problem is positively homogeneous: loads times
+//   1e-6 ... 1e9 give deflections times the same factor (1e-12) and the
+//   same contact set;
+// - a 50 m x 1 m flexible slab (1:50, collocation): the closed-form
+//   settlement of the rectangle at its centre (formulation.md) to 1e-10;
+// - a point load 1e-6 off a node differs from the one on it by O(1e-6);
+// - a patch half off the plate: the part on it is applied (exactly, 1e-12)
+//   and scene_warnings() says so;
+// - a corner load on stiff soil converges for plates from flexible to
+//   stiff; a near-rigid disk (parameters/rigid-disk.prm) stays in full contact
+//   for an eccentricity e < a/3, just lifts at e = a/3 (incipient lift-off) and
+//   lifts more as e grows to 0.95 a.
+
+#include <plate_on_halfspace/boussinesq_kernel.h>
+#include <plate_on_halfspace/input_checks.h>
+#include <plate_on_halfspace/plate_on_halfspace_problem.h>
+
+#include "../tests.h"
+
+#include "../test_tools.h"
+
+using namespace PlateOnHalfspace;
+using namespace TestTools;
+
+namespace
+{
+  const std::string slab =
+    "subsection Plate\n set Thickness = 0.2\n set Young's modulus = 2.5e7\n"
+    "end\nsubsection Foundation\n set Contact = tensionless\nend\n"
+    "subsection Discretization\n set Subdivisions x = 8\n"
+    " set Subdivisions y = 8\n set Flexibility = galerkin\nend\n"
+    "subsection Output\n set Probe points = 0,0 ; 2,2 ; -2,-2\nend\n";
+  const std::string corner_patch =
+    "subsection Loads\n set Uniform pressure = 0\n"
+    " set Rectangular patches = 0,0,2,2,100\nend\n";
+
+  /** Solve, check convergence, equilibrium and complementarity. */
+  CycleSummary
+  solve(const std::string &scene,
+        const std::string &extra,
+        const std::string &label)
+  {
+    const auto          problem = solve_scene(scene, extra);
+    const CycleSummary &s       = problem->summaries().back();
+    AssertThrow(s.converged, ExcMessage(label + ": not converged"));
+    AssertThrow(std::abs(s.contact_force - s.applied_load) <=
+                  1e-12 * std::abs(s.applied_load),
+                ExcMessage(label + ": equilibrium"));
+    AssertThrow(s.complementarity_violation <= 1e-12,
+                ExcMessage(label + ": complementarity"));
+    deallog << label << ": w(0,0) = " << std::setprecision(8)
+            << (s.probes.empty() ? 0. : s.probes[0].w)
+            << ", contact iterations " << s.contact_iterations
+            << ", contact area fraction " << s.contact_area_fraction
+            << std::setprecision(10) << std::endl;
+    return s;
+  }
+
+  std::string
+  entry(const std::string &section, const std::string &name, const double v)
+  {
+    std::ostringstream s;
+    s << std::setprecision(17) << "subsection " << section << "\n set " << name
+      << " = " << v << "\nend\n";
+    return s.str();
+  }
+} // namespace
+
+int
+main()
+{
+  initlog();
+
+  // Soil: E* fixed (the answer must not move), then E0 fixed.
+  const double              soil_star = 5e4 / (1 - 0.09);
+  std::vector<double>       soil_nus  = {0., 0.1, 0.3, 0.45, 0.49, 0.499};
+  std::vector<CycleSummary> at_fixed_star, at_fixed_e0;
+  for (const double nu0 : soil_nus)
+    {
+      const std::string nu = entry("Foundation", "Poisson's ratio", nu0);
+      at_fixed_star.push_back(solve(
+        "flexible-square.prm",
+        slab + corner_patch + nu +
+          entry("Foundation", "Young's modulus", soil_star * (1 - nu0 * nu0)),
+        "soil nu0 = " + std::to_string(nu0) + ", E* fixed"));
+      at_fixed_e0.push_back(
+        solve("flexible-square.prm",
+              slab + corner_patch + nu,
+              "soil nu0 = " + std::to_string(nu0) + ", E0 fixed"));
+    }
+  for (unsigned int i = 1; i < soil_nus.size(); ++i)
+    {
+      for (unsigned int k = 0; k < 3; ++k)
+        AssertThrow(std::abs(at_fixed_star[i].probes[k].w -
+                             at_fixed_star[0].probes[k].w) <=
+                      1e-12 * std::abs(at_fixed_star[0].probes[k].w),
+                    ExcMessage("E* invariance"));
+      const double w0 = at_fixed_e0[i - 1].probes[0].w,
+                   w1 = at_fixed_e0[i].probes[0].w;
+      // dw/dnu0 = w * d ln(E*)/dnu0-ish: bounded by 2 w per unit of nu0
+      AssertThrow(w1 < w0 &&
+                    (w0 - w1) <= 2 * w0 * (soil_nus[i] - soil_nus[i - 1]),
+                  ExcMessage("soil Poisson sweep not monotone or jumps"));
+    }
+  deallog << "soil: E* fixed, w unchanged to 1e-12 for nu0 = 0 ... 0.499; "
+             "E0 fixed, w(0,0) falls monotonically without jumps"
+          << std::endl;
+
+  // Plate at fixed D = E t^3 / (12 (1 - nu^2)).
+  const std::vector<double> plate_nus = {0., 0.1, 0.3, 0.45, 0.49};
+  std::vector<double>       plate_w;
+  for (const double nu : plate_nus)
+    plate_w.push_back(
+      solve("flexible-square.prm",
+            slab + corner_patch + entry("Plate", "Poisson's ratio", nu) +
+              entry("Plate", "Young's modulus", 2.5e7 * (1 - nu * nu) / 0.91),
+            "plate nu = " + std::to_string(nu) + ", D fixed")
+        .probes[0]
+        .w);
+  for (unsigned int i = 1; i < plate_nus.size(); ++i)
+    AssertThrow(std::abs(plate_w[i] - plate_w[i - 1]) <=
+                  0.1 * plate_w[0] * (plate_nus[i] - plate_nus[i - 1]),
+                ExcMessage("plate Poisson sweep jumps"));
+  deallog << "plate: |dw(0,0)/dnu| < 0.1 w for nu = 0 ... 0.49" << std::endl;
+
+  // Positive homogeneity over 15 decades of load.
+  CycleSummary reference;
+  for (const double factor : {1., 1e-6, 1e-3, 1e3, 1e6, 1e9})
+    {
+      std::ostringstream loads;
+      loads << std::setprecision(17)
+            << "subsection Loads\n set Uniform pressure = 0\n"
+            << " set Rectangular patches = 0,0,2,2," << 100 * factor
+            << "\n set Point loads = -1.5,1.5," << 50 * factor << "\nend\n";
+      std::ostringstream label;
+      label << "loads x " << factor;
+      const CycleSummary s =
+        solve("flexible-square.prm", slab + loads.str(), label.str());
+      if (factor == 1.)
+        reference = s;
+      for (unsigned int k = 0; k < 3; ++k)
+        AssertThrow(std::abs(s.probes[k].w / factor - reference.probes[k].w) <=
+                      1e-12 * std::abs(reference.probes[0].w),
+                    ExcMessage("not homogeneous: " + label.str()));
+      AssertThrow(s.contact_nodes == reference.contact_nodes,
+                  ExcMessage("contact set changed: " + label.str()));
+    }
+  deallog << "w / load factor unchanged to 1e-12 for 1e-6 ... 1e9, same "
+             "contact set"
+          << std::endl;
+
+  // A 1:50 flexible slab: the closed-form settlement of the rectangle.
+  const CycleSummary long_slab =
+    solve("flexible-square.prm",
+          "subsection Plate\n set Length x = 50\n set Length y = 1\nend\n"
+          "subsection Discretization\n set Subdivisions x = 50\n"
+          " set Subdivisions y = 1\nend\n"
+          "subsection Output\n set Probe points = 0,0\nend\n",
+          "slab 50 m x 1 m, flexible, uniform load");
+  check("slab 1:50, w(0,0) against the closed form",
+        long_slab.probes[0].w,
+        100 * (1 - 0.09) / (numbers::PI * 5e4) *
+          integral_of_inverse_distance_over_rectangle(
+            Point<2>(0, 0), -25, 25, -0.5, 0.5),
+        1e-10);
+
+  // Loads at awkward places.
+  solve("flexible-square.prm",
+        slab + "subsection Loads\n set Uniform pressure = 0\n"
+               " set Rectangular patches = 1.9,1.9,2,2,1000\nend\n",
+        "small patch at a corner");
+  solve("flexible-square.prm",
+        slab + "subsection Loads\n set Uniform pressure = 0\n"
+               " set Point loads = 2,0,100\nend\n",
+        "point load on the edge");
+  const double on_node =
+    solve("flexible-square.prm",
+          slab + "subsection Loads\n set Uniform pressure = 0\n"
+                 " set Point loads = 0.5,0.5,100\nend\n",
+          "point load on a node")
+      .probes[0]
+      .w;
+  const double off_node =
+    solve("flexible-square.prm",
+          slab + "subsection Loads\n set Uniform pressure = 0\n"
+                 " set Point loads = 0.500001,0.5,100\nend\n",
+          "point load 1e-6 off the node")
+      .probes[0]
+      .w;
+  AssertThrow(std::abs(off_node - on_node) <= 1e-5 * on_node,
+              ExcMessage("point load off a node jumps"));
+  const std::string half_off = "subsection Loads\n set Uniform pressure = 0\n"
+                               " set Rectangular patches = 1,1,3,3,100\nend\n";
+  check("patch half off the plate: applied load = the part on it",
+        solve("flexible-square.prm",
+              slab + half_off,
+              "patch half off the plate")
+          .applied_load,
+        100.,
+        1e-12);
+  {
+    SceneParameters parameters;
+    parameters.read_from_string(
+      "subsection Plate\n set Length x = 4\n set Length y = 4\nend\n" + slab +
+      half_off);
+    const auto warnings = scene_warnings(parameters);
+    AssertThrow(warnings.size() == 1 &&
+                  warnings[0].find("extends beyond the plate") !=
+                    std::string::npos,
+                ExcMessage("no warning for a patch off the plate"));
+    deallog << "warning: " << warnings[0] << std::endl;
+  }
+
+  // A corner load on stiff soil (E0 = 1e8) over the plate stiffnesses where
+  // the plate pivots about the corner: the active set must converge (the
+  // checks of solve()); the unloaded rest of a weightless plate stays on
+  // the soil with zero pressure, so the contact area only falls to 2/3.
+  for (const std::string modulus : {"1e8", "1e10", "1e11"})
+    solve("flexible-square.prm",
+          slab + "subsection Plate\n set Young's modulus = " + modulus +
+            "\nend\nsubsection Foundation\n set Young's modulus = 1e8\nend\n"
+            "subsection Loads\n set Uniform pressure = 0\n"
+            " set Point loads = 2,2,100\nend\n",
+          "corner load on stiff soil, E = " + modulus);
+
+  // Incipient lift-off of a near-rigid disk under an eccentric load.
+  double previous_area = 1.;
+  for (const double e : {0.3, 1. / 3, 0.34, 0.36, 0.5, 0.8, 0.95})
+    {
+      std::ostringstream extra;
+      extra << std::setprecision(17)
+            << "subsection Plate\n set Young's modulus = 3e12\nend\n"
+            << "subsection Foundation\n set Contact = tensionless\nend\n"
+            << "subsection Adaptivity\n set Cycles = 1\nend\n"
+            << "subsection Loads\n set Point loads = " << e << ",0,1000\nend\n";
+      const CycleSummary s = solve("rigid-disk.prm",
+                                   extra.str(),
+                                   "rigid disk, e/a = " + std::to_string(e));
+      if (e < 1. / 3)
+        {
+          AssertThrow(s.contact_area_fraction == 1.,
+                      ExcMessage("lift-off below e = a/3"));
+        }
+      else
+        {
+          AssertThrow(s.contact_area_fraction < previous_area &&
+                        s.contact_area_fraction > 0.99 - 0.5 * (e - 1. / 3),
+                      ExcMessage("lift-off does not grow continuously"));
+        }
+      previous_area = s.contact_area_fraction;
+    }
+}
