@@ -66,7 +66,7 @@ SCENES = {
     "example2": {
         "file": "parameters/example2.prm",
         "probe_q": (3.0, 0.0),
-        "cycles": {"global": 4, "adaptive": 6},
+        "cycles": {"global": 4, "adaptive": 5},
         "exact": {},
         "tensionless": True,
     },

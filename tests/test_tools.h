@@ -27,7 +27,8 @@ namespace TestTools
   /**
    * Run parameters/@p scene (tests are in tests/unit, so SOURCE_DIR/../..
    * is the project) with the entries @p extra appended, quietly, results
-   * in ./results, no verification checks.
+   * in ./results, no verification checks, on the whole plate (Symmetry =
+   * none unless @p extra says otherwise).
    */
   inline std::unique_ptr<PlateOnHalfspaceProblem>
   solve_scene(const std::string &scene, const std::string &extra)
@@ -35,6 +36,9 @@ namespace TestTools
     std::ostringstream prm;
     prm << "include " << SOURCE_DIR << "/../../parameters/" << scene << "\n"
         << "set Output directory = results\n"
+        // the whole plate: tests look at its node vectors and matrices
+        // (a test of symmetry sets Symmetry in @p extra)
+        << "subsection Discretization\n set Symmetry = none\nend\n"
         << "subsection Verification\n set Checks =\nend\n"
         << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n"
         << extra;

@@ -45,6 +45,7 @@ main()
           << "/../../parameters/flexible-square.prm\n"
           << "set Output directory = results\n"
           << "subsection Discretization\n set Flexibility = galerkin\n"
+          << " set Symmetry = none\n"
           << " set Subdivisions x = " << n << "\n set Subdivisions y = " << n
           << "\nend\nsubsection Verification\n set Checks =\nend\n"
           << "subsection Output\n set Verbosity = 0\nend\n";

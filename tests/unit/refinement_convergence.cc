@@ -30,6 +30,7 @@ namespace
     const auto   problem =
       solve_scene("flexible-square.prm",
                   "subsection Discretization\n set Flexibility = galerkin\n"
+                  " set Symmetry = auto\n"
                   " set Subdivisions x = 2\n set Subdivisions y = 2\nend\n"
                   "subsection Adaptivity\n set Cycles = " +
                     std::to_string(cycles) + "\n set Refinement = " +
