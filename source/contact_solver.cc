@@ -34,15 +34,11 @@ namespace PlateOnHalfspace
       // The nodes in contact on the whole plate: those of the computed
       // part and, for a symmetric scene, their mirror images.
       std::vector<Point<2>> points;
-      const auto            reflections = space.symmetry.reflections();
       for (unsigned int i = 0; i < in_contact.size(); ++i)
         if (in_contact[i])
-          {
-            const Point<2> &p = space.node_locations[i];
-            points.push_back(p);
-            for (const auto &signs : reflections)
-              points.emplace_back(signs[0] * p[0], signs[1] * p[1]);
-          }
+          for (const Point<2> &x :
+               space.symmetry.images(space.node_locations[i]))
+            points.push_back(x);
       const unsigned int n = points.size();
       if (n < 3)
         return false;
@@ -140,18 +136,16 @@ namespace PlateOnHalfspace
     // Of w = 1, x, y, a symmetric scene's computed part (mirror_symmetry.h)
     // only has the motions that are even across its mirror planes.
     std::vector<Vector<double>> modes(1, Vector<double>(n));
+    modes[0]               = 1.;
+    const bool mirrored[2] = {space.symmetry.x, space.symmetry.y};
     for (unsigned int axis = 0; axis < 2; ++axis)
-      if (!(axis == 0 ? space.symmetry.x : space.symmetry.y))
-        modes.emplace_back(n);
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        modes[0][i]    = 1.;
-        unsigned int m = 1;
-        for (unsigned int axis = 0; axis < 2; ++axis)
-          if (!(axis == 0 ? space.symmetry.x : space.symmetry.y))
-            modes[m++][i] =
-              (space.node_locations[i][axis] - centre[axis]) / extent;
-      }
+      if (!mirrored[axis])
+        {
+          Vector<double> mode(n);
+          for (unsigned int i = 0; i < n; ++i)
+            mode[i] = (space.node_locations[i][axis] - centre[axis]) / extent;
+          modes.push_back(mode);
+        }
     // Only a free plate has these motions in its kernel (a plate with
     // supports, or any other stiffness, is left as solved).
     const double plate_scale = plate_stiffness.linfty_norm();

@@ -37,11 +37,16 @@ namespace PlateOnHalfspace
     return Point<2>(x ? std::abs(p[0]) : p[0], y ? std::abs(p[1]) : p[1]);
   }
 
-  unsigned int
-  MirrorSymmetry::multiplicity(const Point<2> &p, const double tolerance) const
+  std::vector<Point<2>>
+  MirrorSymmetry::images(const Point<2> &p) const
   {
-    return (x && std::abs(p[0]) > tolerance ? 2 : 1) *
-           (y && std::abs(p[1]) > tolerance ? 2 : 1);
+    std::vector<Point<2>> result = {p};
+    for (const auto &signs : reflections())
+      // a point on a plane is its own image across that plane
+      if ((signs[0] > 0 || std::abs(p[0]) > tolerance) &&
+          (signs[1] > 0 || std::abs(p[1]) > tolerance))
+        result.emplace_back(signs[0] * p[0], signs[1] * p[1]);
+    return result;
   }
 
   namespace
@@ -217,9 +222,10 @@ namespace PlateOnHalfspace
   {
     const std::string &requested = parameters.discretization.symmetry;
     MirrorSymmetry     symmetry;
+    symmetry.tolerance = 1e-10 * mesh_extent(coarse_mesh);
     if (requested == "none")
       return symmetry;
-    const double tolerance = 1e-10 * mesh_extent(coarse_mesh);
+    const double tolerance = symmetry.tolerance;
     for (const unsigned int axis : {0u, 1u})
       {
         const bool wanted =
@@ -246,7 +252,7 @@ namespace PlateOnHalfspace
       return;
     AssertThrow(triangulation.n_levels() == 1,
                 ExcInternalError("The mesh is cut before it is refined."));
-    const double tolerance = 1e-10 * mesh_extent(triangulation);
+    const double tolerance = symmetry.tolerance;
     const auto   kept      = [&](const Triangulation<2>::cell_iterator &cell) {
       const Point<2> c = cell->center();
       return (!symmetry.x || c[0] > 0) && (!symmetry.y || c[1] > 0);
@@ -326,9 +332,9 @@ namespace PlateOnHalfspace
 
   Parameters::Loads
   loads_on_computed_part(const Parameters::Loads &loads,
-                         const MirrorSymmetry    &symmetry,
-                         const double             tolerance)
+                         const MirrorSymmetry    &symmetry)
   {
+    const double      tolerance = symmetry.tolerance;
     Parameters::Loads part      = loads;
     const bool        planes[2] = {symmetry.x, symmetry.y};
     part.rectangular_patches.clear();

@@ -31,12 +31,8 @@ namespace PlateOnHalfspace
     make_coarse_plate_mesh(parameters.plate,
                            parameters.discretization,
                            triangulation);
-    symmetry      = choose_mirror_symmetry(parameters, triangulation);
-    double extent = 0;
-    for (const Point<2> &v : triangulation.get_vertices())
-      extent = std::max(extent, v.norm());
-    computed_loads =
-      loads_on_computed_part(parameters.loads, symmetry, 1e-10 * extent);
+    symmetry       = choose_mirror_symmetry(parameters, triangulation);
+    computed_loads = loads_on_computed_part(parameters.loads, symmetry);
     cut_to_computed_part(symmetry, triangulation);
     triangulation.refine_global(parameters.discretization.initial_refinements);
     if (parameters.output.verbosity > 0 && symmetry.n_copies() > 1)

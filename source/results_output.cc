@@ -157,12 +157,11 @@ namespace PlateOnHalfspace
     summary.contact_area_fraction = contact_area / area;
     // Nodes in contact on the whole plate: a node of the computed part
     // stands for its distinct mirror images.
-    const double tolerance = 1e-10 * std::sqrt(area);
-    summary.contact_nodes  = 0;
+    summary.contact_nodes = 0;
     for (unsigned int i = 0; i < space.n_nodes(); ++i)
       if (contact.in_contact[i])
         summary.contact_nodes +=
-          space.symmetry.multiplicity(space.node_locations[i], tolerance);
+          space.symmetry.images(space.node_locations[i]).size();
     summary.complementarity_violation = contact.complementarity_violation;
     summary.tensile_nodes             = contact.tensile_nodes;
     summary.max_penetration           = contact.max_penetration;
@@ -290,24 +289,11 @@ namespace PlateOnHalfspace
     nodes << "x,y,w,q,gap,contact\n" << std::setprecision(10);
     // The whole plate: the nodes of the computed part and, for a symmetric
     // scene, their distinct mirror images.
-    std::vector<std::array<double, 2>> transforms = {{{1., 1.}}};
-    for (const auto &signs : space.symmetry.reflections())
-      transforms.push_back(signs);
-    double extent = 0;
-    for (const Point<2> &x : space.node_locations)
-      extent = std::max(extent, x.norm());
-    for (const auto &signs : transforms)
-      for (unsigned int i = 0; i < space.n_nodes(); ++i)
-        {
-          const Point<2> &p = space.node_locations[i];
-          // a node on a plane is its own image there
-          if ((signs[0] < 0 && std::abs(p[0]) <= 1e-10 * extent) ||
-              (signs[1] < 0 && std::abs(p[1]) <= 1e-10 * extent))
-            continue;
-          nodes << signs[0] * p[0] << ',' << signs[1] * p[1] << ','
-                << contact.w[i] << ',' << contact.q[i] << ',' << contact.gap[i]
-                << ',' << (contact.in_contact[i] ? 1 : 0) << '\n';
-        }
+    for (unsigned int i = 0; i < space.n_nodes(); ++i)
+      for (const Point<2> &x : space.symmetry.images(space.node_locations[i]))
+        nodes << x[0] << ',' << x[1] << ',' << contact.w[i] << ','
+              << contact.q[i] << ',' << contact.gap[i] << ','
+              << (contact.in_contact[i] ? 1 : 0) << '\n';
     write_file("nodes-" + two_digits(cycle) + ".csv", nodes.str());
 
     // Gauss points of the cells the line crosses or borders, keeping those
@@ -325,7 +311,10 @@ namespace PlateOnHalfspace
     const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
     std::vector<std::array<double, 4>> rows;
     // (Mx and My are even across mirror planes: the images of a cell's
-    // Gauss points carry its values.)
+    // Gauss points, never on a plane, carry its values.)
+    std::vector<std::array<double, 2>> transforms = {{{1., 1.}}};
+    for (const auto &signs : space.symmetry.reflections())
+      transforms.push_back(signs);
     for (const auto &signs : transforms)
       for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
         {

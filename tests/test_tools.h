@@ -10,6 +10,8 @@
 
 #include <deal.II/fe/component_mask.h>
 
+#include <deal.II/grid/grid_generator.h>
+
 #include <deal.II/numerics/vector_tools.h>
 
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
@@ -124,6 +126,35 @@ namespace TestTools
       {{0, &zero}, {1, &zero}},
       constraints,
       ComponentMask(std::vector<bool>{false, false, true}));
+  }
+
+  /** Deflection and moment Mx at the centre of a plate. */
+  struct CentreValues
+  {
+    double w, mx;
+  };
+
+  /**
+   * The plate of @p p alone on the square [-1/2, 1/2]^2 with n x n cells
+   * and the hard simple support (the Navier problems): centre values.
+   */
+  inline CentreValues
+  simply_supported_square_centre(const SceneParameters &p, const unsigned int n)
+  {
+    Triangulation<2> triangulation;
+    GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                              {n, n},
+                                              Point<2>(-0.5, -0.5),
+                                              Point<2>(0.5, 0.5),
+                                              /*colorize=*/true);
+    MindlinPlate plate(p.plate, p.discretization);
+    plate.setup(triangulation, hard_simple_support);
+    plate.assemble_loads(p.loads, 0.);
+    Vector<double> solution;
+    plate.solve_unsupported(solution);
+    const auto located = plate.locate(Point<2>(0., 0.));
+    return {plate.point_value(solution, Point<2>(0., 0.), 0),
+            plate.moments(located.first, located.second, solution).mx};
   }
 } // namespace TestTools
 

@@ -41,6 +41,9 @@ namespace PlateOnHalfspace
     bool x = false;
     /** Plane y = 0: the computed part is y >= 0. */
     bool y = false;
+    /** Distance from a plane below which a point counts as on it (1e-10
+     *  of the plate's extent, set by choose_mirror_symmetry()). */
+    double tolerance = 0;
 
     /** "none", "x", "y" or "xy" (summary.json's "symmetry"). */
     std::string
@@ -66,12 +69,12 @@ namespace PlateOnHalfspace
     to_computed_part(const Point<2> &p) const;
 
     /**
-     * How many points of the whole plate @p p of the computed part stands
-     * for: 1, 2 or 4; a point on a mirror plane is its own image there.
-     * @p tolerance: distance below which a point counts as on a plane.
+     * The points of the whole plate that @p p of the computed part stands
+     * for: p itself and its distinct mirror images (1, 2 or 4 points; a
+     * point on a mirror plane is its own image there).
      */
-    unsigned int
-    multiplicity(const Point<2> &p, const double tolerance) const;
+    std::vector<Point<2>>
+    images(const Point<2> &p) const;
   };
 
   /**
@@ -105,8 +108,7 @@ namespace PlateOnHalfspace
    */
   Parameters::Loads
   loads_on_computed_part(const Parameters::Loads &loads,
-                         const MirrorSymmetry    &symmetry,
-                         const double             tolerance);
+                         const MirrorSymmetry    &symmetry);
 } // namespace PlateOnHalfspace
 
 #endif

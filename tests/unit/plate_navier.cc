@@ -87,33 +87,6 @@ namespace
 
 
 
-  struct Result
-  {
-    double w, mx;
-  };
-
-  /** Centre deflection and centre moment Mx on an n x n mesh. */
-  Result
-  solve(const SceneParameters &p, const unsigned int n)
-  {
-    Triangulation<2> triangulation;
-    GridGenerator::subdivided_hyper_rectangle(triangulation,
-                                              {n, n},
-                                              Point<2>(-0.5, -0.5),
-                                              Point<2>(0.5, 0.5),
-                                              /*colorize=*/true);
-    MindlinPlate plate(p.plate, p.discretization);
-    plate.setup(triangulation, hard_simple_support);
-    plate.assemble_loads(p.loads, 0.);
-    Vector<double> solution;
-    plate.solve_unsupported(solution);
-    const auto located = plate.locate(Point<2>(0., 0.));
-    return {plate.point_value(solution, Point<2>(0., 0.), 0),
-            plate.moments(located.first, located.second, solution).mx};
-  }
-
-
-
   std::string
   mesh_name(const unsigned int n)
   {
@@ -176,10 +149,10 @@ main()
               meshes.push_back(32);
             // full integration (a/t = 10 only) converges more slowly
             const double factor = (integration == "full" ? 2. : 1.);
-            std::map<unsigned int, Result> results;
+            std::map<unsigned int, CentreValues> results;
             for (const unsigned int n : meshes)
               {
-                results[n]             = solve(p, n);
+                results[n]             = simply_supported_square_centre(p, n);
                 const std::string name = element + " " + integration + ", " +
                                          slenderness + ", " + mesh_name(n);
                 check("w centre / (q a^4/D), " + name,
@@ -220,14 +193,16 @@ main()
           for (const auto &element : elements)
             {
               const double reduced =
-                solve(unit_rigidity_plate(
-                        element, "reduced", t, "set Uniform pressure = 1\n"),
-                      4)
+                simply_supported_square_centre(
+                  unit_rigidity_plate(
+                    element, "reduced", t, "set Uniform pressure = 1\n"),
+                  4)
                   .w;
               const double full =
-                solve(unit_rigidity_plate(
-                        element, "full", t, "set Uniform pressure = 1\n"),
-                      4)
+                simply_supported_square_centre(
+                  unit_rigidity_plate(
+                    element, "full", t, "set Uniform pressure = 1\n"),
+                  4)
                   .w;
               check_greater("locking: error of full / error of reduced, " +
                               element + ", " + slenderness + ", 4x4",
@@ -245,11 +220,10 @@ main()
             for (const auto &integration : integrations)
               check("point load, w centre / (P a^2/D), " + element + " " +
                       integration + ", " + slenderness + ", 16x16",
-                    solve(unit_rigidity_plate(element,
-                                              integration,
-                                              t,
-                                              "set Point loads = 0,0,1\n"),
-                          16)
+                    simply_supported_square_centre(
+                      unit_rigidity_plate(
+                        element, integration, t, "set Point loads = 0,0,1\n"),
+                      16)
                       .w,
                     series.w_point,
                     5e-3);
