@@ -25,48 +25,63 @@ namespace PlateOnHalfspace
   PlateOnHalfspaceProblem::run()
   {
     output = std::make_unique<ResultsOutput>(parameters.output_directory);
-    // A symmetric scene is solved on the part x >= 0 and/or y >= 0 of the
-    // plate (mirror_symmetry.h), cut from the coarse mesh so that its
-    // refinements are those of the whole plate's mesh.
-    make_coarse_plate_mesh(parameters.plate,
-                           parameters.discretization,
-                           triangulation);
-    symmetry       = choose_mirror_symmetry(parameters, triangulation);
-    computed_loads = loads_on_computed_part(parameters.loads, symmetry);
-    cut_to_computed_part(symmetry, triangulation);
-    triangulation.refine_global(parameters.discretization.initial_refinements);
-    if (parameters.output.verbosity > 0 && symmetry.n_copies() > 1)
-      log << "symmetry " << symmetry.name() << ": computing "
-          << (symmetry.n_copies() == 2 ? "half" : "a quarter")
-          << " of the plate" << std::endl;
-
-    mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
-                                                   parameters.discretization);
-    mindlin_plate->set_mirror_symmetry(symmetry);
-    foundation_operator = create_foundation_operator(parameters);
-    {
-      TimerOutput::Scope scope(timer_output, "plate setup");
-      Timer              setup_timer;
-      mindlin_plate->setup(triangulation);
-      setup_time_s = setup_timer.wall_time();
-    }
-
-    std::vector<bool> seed;
-    for (unsigned int cycle = 0; cycle < parameters.adaptivity.cycles; ++cycle)
+    // A run that fails keeps the earlier run's results (results_output.h).
+    try
       {
-        if (cycle > 0)
+        // A symmetric scene is solved on the part x >= 0 and/or y >= 0 of the
+        // plate (mirror_symmetry.h), cut from the coarse mesh so that its
+        // refinements are those of the whole plate's mesh.
+        make_coarse_plate_mesh(parameters.plate,
+                               parameters.discretization,
+                               triangulation);
+        symmetry       = choose_mirror_symmetry(parameters, triangulation);
+        computed_loads = loads_on_computed_part(parameters.loads, symmetry);
+        cut_to_computed_part(symmetry, triangulation);
+        triangulation.refine_global(
+          parameters.discretization.initial_refinements);
+        if (parameters.output.verbosity > 0 && symmetry.n_copies() > 1)
+          log << "symmetry " << symmetry.name() << ": computing "
+              << (symmetry.n_copies() == 2 ? "half" : "a quarter")
+              << " of the plate" << std::endl;
+
+        mindlin_plate =
+          std::make_unique<MindlinPlate>(parameters.plate,
+                                         parameters.discretization);
+        mindlin_plate->set_mirror_symmetry(symmetry);
+        foundation_operator = create_foundation_operator(parameters);
+        {
+          TimerOutput::Scope scope(timer_output, "plate setup");
+          Timer              setup_timer;
+          mindlin_plate->setup(triangulation);
+          setup_time_s = setup_timer.wall_time();
+        }
+
+        std::vector<bool> seed;
+        for (unsigned int cycle = 0; cycle < parameters.adaptivity.cycles;
+             ++cycle)
           {
-            const auto transferred = refine_and_transfer_contact();
-            if (!transferred)
+            if (cycle > 0)
               {
-                log << "Adaptivity/Max cells reached: no further cycles."
-                    << std::endl;
-                break;
+                const auto transferred = refine_and_transfer_contact();
+                if (!transferred)
+                  {
+                    log << "Adaptivity/Max cells reached: no further cycles."
+                        << std::endl;
+                    break;
+                  }
+                seed = *transferred;
               }
-            seed = *transferred;
+            solve_cycle(cycle, seed);
           }
-        solve_cycle(cycle, seed);
       }
+    catch (...)
+      {
+        const std::string note = output->abandon();
+        if (!note.empty())
+          log << note << std::endl;
+        throw;
+      }
+    output->commit();
     if (parameters.output.verbosity > 1)
       timer_output.print_summary();
     return run_checks();

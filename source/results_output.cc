@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <regex>
 #include <sstream>
 
 namespace PlateOnHalfspace
@@ -73,12 +74,86 @@ namespace PlateOnHalfspace
 
   ResultsOutput::ResultsOutput(const std::string &directory)
     : directory(directory)
+    , previous_run((std::filesystem::path(directory) / "previous-run").string())
+    , failed_run((std::filesystem::path(directory) / "failed-run").string())
   {
     std::error_code error;
     std::filesystem::create_directories(directory, error);
     AssertThrow(!error && std::filesystem::is_directory(directory),
                 ExcMessage("Output directory: cannot create <" + directory +
                            ">: " + error.message()));
+    // previous-run/ left by a run that was killed holds the last good
+    // results; the files beside it are the killed run's.
+    if (std::filesystem::exists(previous_run))
+      {
+        std::filesystem::remove_all(failed_run);
+        move_result_files(directory, failed_run);
+      }
+    else
+      move_result_files(directory, previous_run);
+  }
+
+  ResultsOutput::~ResultsOutput()
+  {
+    if (!finished)
+      try
+        {
+          abandon();
+        }
+      catch (...)
+        {
+          // nothing more can be done while unwinding
+        }
+  }
+
+  bool
+  ResultsOutput::is_result_file(const std::string &name)
+  {
+    static const std::regex pattern(
+      R"((summary\.json|convergence\.txt|solution\.pvd|solution-\d+\.vtu|)"
+      R"((gauss-profile|profile|nodes)-\d+\.csv))");
+    return std::regex_match(name, pattern);
+  }
+
+  unsigned int
+  ResultsOutput::move_result_files(const std::string &from,
+                                   const std::string &to)
+  {
+    if (!std::filesystem::is_directory(from))
+      return 0;
+    std::vector<std::filesystem::path> files;
+    for (const auto &entry : std::filesystem::directory_iterator(from))
+      if (entry.is_regular_file() &&
+          is_result_file(entry.path().filename().string()))
+        files.push_back(entry.path());
+    if (!files.empty())
+      std::filesystem::create_directories(to);
+    for (const auto &file : files)
+      std::filesystem::rename(file,
+                              std::filesystem::path(to) / file.filename());
+    return files.size();
+  }
+
+  void
+  ResultsOutput::commit()
+  {
+    finished = true;
+    std::filesystem::remove_all(previous_run);
+    std::filesystem::remove_all(failed_run);
+  }
+
+  std::string
+  ResultsOutput::abandon()
+  {
+    finished = true;
+    std::filesystem::remove_all(failed_run);
+    const unsigned int written = move_result_files(directory, failed_run);
+    move_result_files(previous_run, directory);
+    std::filesystem::remove_all(previous_run);
+    if (written == 0)
+      return "";
+    return "The failed run's results are in <" + failed_run +
+           ">; the earlier results in <" + directory + "> are kept.";
   }
 
   void

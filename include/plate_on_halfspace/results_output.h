@@ -55,13 +55,35 @@ namespace PlateOnHalfspace
 
   /**
    * Evaluates a solved cycle (fields, extremes, points) and writes the result
-   * files. Every file is written to a temporary name and renamed, so a
-   * failed run never leaves a half-written file or destroys earlier results.
+   * files. Every file is written to a temporary name and renamed, so no file
+   * is ever half written. A run keeps the results of the run before it until
+   * it succeeds: the constructor moves them to previous-run/, commit() drops
+   * them, abandon() moves this run's files to failed-run/ and restores them.
    */
   class ResultsOutput
   {
   public:
+    /** Creates @p directory and sets the earlier run's results aside. */
     explicit ResultsOutput(const std::string &directory);
+
+    /** A run that neither committed nor abandoned is abandoned. */
+    ~ResultsOutput();
+
+    /** The run succeeded: its results replace the earlier run's. */
+    void
+    commit();
+
+    /**
+     * The run failed: its files go to failed-run/ (for diagnosis) and the
+     * earlier run's results come back. Returns a one-line note saying so,
+     * empty if the run had written nothing.
+     */
+    std::string
+    abandon();
+
+    /** Whether @p name is one of the files a run writes (interfaces.md). */
+    static bool
+    is_result_file(const std::string &name);
 
     /**
      * Pressure, gap and contact indicator on the plate's scalar w-space
@@ -126,7 +148,13 @@ namespace PlateOnHalfspace
     write_file(const std::string &name, const std::string &text) const;
 
   private:
+    /** Moves this program's result files from @p from to @p to. */
+    static unsigned int
+    move_result_files(const std::string &from, const std::string &to);
+
     std::string                                 directory;
+    std::string                                 previous_run, failed_run;
+    bool                                        finished = false;
     std::vector<std::pair<double, std::string>> pvd_records;
   };
 } // namespace PlateOnHalfspace

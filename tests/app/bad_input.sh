@@ -5,7 +5,9 @@
 # stderr that contains every "# expect: TEXT" line of the file (the
 # section/entry and the allowed values); an "# env: VAR=VALUE" line sets an
 # environment variable for the run. A valid run in the same directory comes
-# first, and no failed run may change its results or leave a temporary file.
+# first, and no failed run may change its results or leave a temporary file;
+# a "# failed-run: CYCLES" line says the run fails after writing CYCLES
+# cycles, whose results must then be in results/failed-run/.
 # Prints the table (name | message) that README.md's "Errors you may see"
 # summarises.
 # usage: bad_input.sh PROGRAM TESTS_APP_DIRECTORY
@@ -22,7 +24,7 @@ failed=0
 fail() { echo "FAILED: $*"; failed=$((failed + 1)); }
 
 "$program" base.prm >stdout 2>stderr || { fail "the valid base scene"; cat stderr; }
-snapshot() { (cd results && md5sum * | sort); }
+snapshot() { (cd results && find . -maxdepth 1 -type f -exec md5sum {} + | sort); }
 snapshot >before.md5
 
 run_bad() { # name, then the command
@@ -40,8 +42,8 @@ run_bad() { # name, then the command
     fail "$name: stderr is not one 'Error: ...' line"; cat stderr; return 1
   fi
   if ! snapshot | cmp -s - before.md5 ||
-     [ -n "$(find . -name '*.tmp')" ]; then
-    fail "$name: the earlier results changed or a temporary file is left"
+     [ -n "$(find . -name '*.tmp')" ] || [ -e results/previous-run ]; then
+    fail "$name: the earlier results changed or a temporary file or results/previous-run is left"
     return 1
   fi
   return 0
@@ -66,6 +68,16 @@ for scene in "$here"/bad_input/*.prm; do
     if [ -z "$(sed -n 's/^# expect: //p' "$name.prm")" ]; then
       fail "$name: no '# expect:' line"; ok=0
     fi
+    cycles=$(sed -n 's/^# failed-run: //p' "$name.prm")
+    if [ -n "$cycles" ]; then
+      if [ "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(len(d["cycles"]))' results/failed-run/summary.json 2>/dev/null)" != "$cycles" ]; then
+        fail "$name: results/failed-run/summary.json with $cycles cycle(s) expected"; ok=0
+      fi
+      grep -q "failed-run" stdout || { fail "$name: the log does not name failed-run"; ok=0; }
+    elif [ -e results/failed-run ]; then
+      fail "$name: failed before writing anything, yet results/failed-run exists"; ok=0
+    fi
+    rm -rf results/failed-run
     [ $ok = 1 ] && passed=$((passed + 1)) &&
       echo "| $name | $(sed 's/^Error: //; s/|/\\|/g' stderr | grep -v '^Warning: ') |"
   fi
