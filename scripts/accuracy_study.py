@@ -60,7 +60,8 @@ VARIANTS = {
     "collocation, adaptive": ({"Flexibility": "collocation"}, "active set",
                               "adaptive"),
     "element exclusion": ({}, "element exclusion", "adaptive"),
-    "paper (serendipity, collocation, element exclusion), global":
+    # the paper's choices: serendipity, collocation, element exclusion
+    "paper's choices, global":
         ({"Flexibility": "collocation"}, "element exclusion", "global", 3),
 }
 
@@ -262,7 +263,11 @@ def main():
              f"Command: `python3 scripts/accuracy_study.py "
              f"build/plate-on-halfspace {scene_name}`", "",
              f"Symmetry used: {rows[0]['symmetry']} (the dense block of the "
-             "computed part only).", "", "References:", ""]
+             "computed part only).", "",
+             "Variants: the defaults are serendipity, reduced shear "
+             "integration, Galerkin, active set; \"paper's choices\" are "
+             "serendipity, collocation and element exclusion (the paper's "
+             "method), refined globally.", "", "References:", ""]
     for key, label in QUANTITIES:
         if key in reference:
             lines.append(f"- {label}: {reference[key]:.8g} ({how[key]})")
@@ -316,23 +321,27 @@ def main():
                                capture_output=True, text=True)
     cairo = "pngcairo" in terminals.stdout + terminals.stderr
     script = [f"set terminal {'pngcairo' if cairo else 'png'} size "
-              f"{420 * len(plotted)},760 font ',9'",
+              f"{420 * len(plotted) + 300},800 font ',9'",
               f"set output '{os.path.join(out, 'study.png')}'",
               f"set multiplot layout 2,{len(plotted)} title "
-              f"'{scene_name}: relative error against wall time and DOFs'",
+              f"'{scene_name}: relative error against wall time and DOFs' "
+              f"margins 0.05,{1 - 300 / (420 * len(plotted) + 300):.3f},0.08,0.93 "
+              "spacing 0.06,0.1",
               "set logscale xy", "set format y '10^{%L}'", "set grid",
               "set key off"]
     labels = dict(QUANTITIES)
     for axis, column in (("wall time [s]", 2), ("DOFs", 1)):
         for k, key in enumerate(plotted):
             if axis == "DOFs" and k == len(plotted) - 1:
-                script.append("set key outside right font ',7'")
+                # one key for all panels, right of them
+                script.append("set key at screen 0.99,0.5 right center "
+                              "vertical font ',9'")
             script += [f"set xlabel '{axis}'",
                        f"set title '{labels[key]}'",
                        "plot " + ", ".join(
                            f"'{data}' index {i} using {column}:{3 + k} "
-                           f"with linespoints title columnheader(1)"
-                           for i in range(len(variants)))]
+                           f"with linespoints title \"{v}\""
+                           for i, v in enumerate(variants))]
             script.append("set key off")
     script.append("unset multiplot")
     subprocess.run(["gnuplot"], input="\n".join(script), text=True,

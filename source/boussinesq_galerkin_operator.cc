@@ -127,6 +127,16 @@ namespace PlateOnHalfspace
               add(a, b, block, integrator.nodes(a), integrator.nodes(image));
             }
         }
+
+    // The contact conditions in the positive pressure basis
+    // (foundation_space.h): A <- T^T A T, M <- T^T M.
+    use_positive_pressure_basis(space);
+    transform_flexibility(flexibility);
+    if (partial_foundation)
+      {
+        transform_flexibility(system_flexibility);
+        transform_tests(full_mass, full_tested_sparsity, full_tested_mass);
+      }
     set_contact_nodes(node_supported);
   }
 
@@ -156,7 +166,7 @@ namespace PlateOnHalfspace
                                                Vector<double>       &b) const
   {
     b.reinit(w.size());
-    (partial_foundation ? full_mass : mass).vmult(b, w);
+    (partial_foundation ? full_tested_mass : test_coupling()).vmult(b, w);
   }
 
   void
@@ -165,7 +175,7 @@ namespace PlateOnHalfspace
   {
     // (B w)_C with the system's M (over the foundation cells).
     Vector<double> b(w.size());
-    mass.vmult(b, w);
+    test_coupling().vmult(b, w);
     solve_contact_block(b, q);
   }
 
@@ -175,11 +185,12 @@ namespace PlateOnHalfspace
   {
     // S = M_{:,C} A_CC^{-1} M_{C,:} (formulation.md: the foundation
     // stiffness M A^{-1} M restricted to the contact set).
-    LAPACKFullMatrix<double> rows(contact_index.size(), mass.m());
+    const SparseMatrix<double> &coupling = test_coupling();
+    LAPACKFullMatrix<double>    rows(contact_index.size(), coupling.m());
     rows = 0.;
     for (unsigned int i = 0; i < contact_index.size(); ++i)
-      for (auto entry = mass.begin(contact_index[i]);
-           entry != mass.end(contact_index[i]);
+      for (auto entry = coupling.begin(contact_index[i]);
+           entry != coupling.end(contact_index[i]);
            ++entry)
         rows(i, entry->column()) = entry->value();
     add_mass_times_contact_inverse(rows, matrix);
@@ -191,6 +202,9 @@ namespace PlateOnHalfspace
     return flexibility.memory_consumption() +
            system_flexibility.memory_consumption() +
            full_mass.memory_consumption() +
+           full_tested_mass.memory_consumption() +
+           tested_mass.memory_consumption() + force_mass.memory_consumption() +
+           transform.memory_consumption() +
            contact_factor.memory_consumption() + mass.memory_consumption() +
            mass_sparsity.memory_consumption();
   }

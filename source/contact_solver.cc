@@ -214,6 +214,29 @@ namespace PlateOnHalfspace
                        const FoundationSpace          &space,
                        const std::vector<bool>        &initial_contact) const
   {
+    ContactState state = solve_in_contact_basis(
+      plate_stiffness, plate_load, foundation, space, initial_contact);
+    state.pressure_coefficients = state.q;
+    foundation.nodal_pressure(state.pressure_coefficients, state.q);
+    // Reported contact is where the pressure acts: in the positive basis a
+    // mid-side node whose own coefficient is zero still carries the
+    // pressure of its in-contact end nodes (q_m = alpha (qt_c0 + qt_c1)).
+    state.active_set                = state.in_contact;
+    const double pressure_tolerance = 1e-12 * max_abs(state.q);
+    for (unsigned int i = 0; i < state.q.size(); ++i)
+      if (state.q[i] > pressure_tolerance)
+        state.in_contact[i] = true;
+    return state;
+  }
+
+  ContactState
+  ContactSolver::solve_in_contact_basis(
+    const LAPACKFullMatrix<double> &plate_stiffness,
+    const Vector<double>           &plate_load,
+    FoundationOperator             &foundation,
+    const FoundationSpace          &space,
+    const std::vector<bool>        &initial_contact) const
+  {
     ContactState state;
     state.cell_in_foundation.assign(space.cells.size(), true);
 
@@ -263,6 +286,9 @@ namespace PlateOnHalfspace
               std::abs(norm - previous_norm) / std::max(norm, 1e-300);
             previous_norm = norm;
 
+            // the paper's criterion is on the nodal pressures
+            Vector<double> nodal_q;
+            foundation.nodal_pressure(state.q, nodal_q);
             unsigned int n_excluded = 0;
             bool         changed    = false;
             for (unsigned int c = 0; c < space.cells.size(); ++c)
@@ -275,7 +301,7 @@ namespace PlateOnHalfspace
                 const std::vector<unsigned int> nodes = space.cells[c].nodes();
                 unsigned int                    n_tensile = 0;
                 for (const unsigned int i : nodes)
-                  if (state.q[i] < 0)
+                  if (nodal_q[i] < 0)
                     ++n_tensile;
                 if (2 * n_tensile > nodes.size())
                   {
@@ -332,9 +358,9 @@ namespace PlateOnHalfspace
         const double q_tolerance = 1e-12 * q_scale,
                      g_tolerance = 1e-12 * gap_scale;
 
-        std::vector<bool> next      = active;
-        unsigned int      n_changes = 0, first_change = active.size();
-        const auto       &supported = foundation.supported_nodes();
+        std::vector<bool>         next = active;
+        std::vector<unsigned int> changes;
+        const auto               &supported = foundation.supported_nodes();
         for (unsigned int i = 0; i < active.size(); ++i)
           {
             if (!supported[i])
@@ -344,8 +370,7 @@ namespace PlateOnHalfspace
             if (violated)
               {
                 next[i] = !active[i];
-                ++n_changes;
-                first_change = std::min(first_change, i);
+                changes.push_back(i);
               }
           }
         unsigned int n_contact = 0;
@@ -353,9 +378,10 @@ namespace PlateOnHalfspace
           n_contact += a;
         if (verbosity > 0)
           log << "   contact iteration " << state.iterations
-              << ": nodes in contact " << n_contact << ", changes " << n_changes
-              << (single_pivots ? " (single pivots)" : "") << std::endl;
-        if (n_changes == 0)
+              << ": nodes in contact " << n_contact << ", changes "
+              << changes.size() << (single_pivots ? " (single pivots)" : "")
+              << std::endl;
+        if (changes.empty())
           {
             state.converged = true;
             break;
@@ -374,9 +400,43 @@ namespace PlateOnHalfspace
           }
         if (single_pivots)
           {
-            next               = active;
-            next[first_change] = !active[first_change];
+            // the least index whose change leaves a set that carries the
+            // plate
+            next = active;
+            for (const unsigned int i : changes)
+              {
+                next[i] = !active[i];
+                if (contact_set_supports_plate(space, next))
+                  break;
+                next[i] = active[i];
+              }
           }
+        else if (!contact_set_supports_plate(space, next))
+          {
+            // A plate that lifts off almost entirely (a load at an edge or
+            // a corner) can make the full step drop too many nodes at once.
+            // Take every entry, then the exits in order for as long as the
+            // rest still carries the plate.
+            next = active;
+            for (const unsigned int i : changes)
+              if (!active[i])
+                next[i] = true;
+            for (const unsigned int i : changes)
+              if (active[i])
+                {
+                  next[i] = false;
+                  if (!contact_set_supports_plate(space, next))
+                    next[i] = true;
+                }
+          }
+        AssertThrow(next != active,
+                    ExcMessage(
+                      "The plate is a mechanism: the nodes left in contact "
+                      "cannot carry it (fewer than three non-collinear "
+                      "supporting nodes). A load on or very near the edge "
+                      "of a weightless plate tilts it about that edge: move "
+                      "the load inward, refine the mesh there or give the "
+                      "plate its weight (Plate/Unit weight)."));
         active = next;
       }
     state.iterations = std::min(state.iterations, contact.max_iterations);

@@ -14,7 +14,79 @@ namespace PlateOnHalfspace
                                    Vector<double>       &forces) const
   {
     forces.reinit(q.size());
-    mass.vmult(forces, q);
+    force_coupling().vmult(forces, q);
+  }
+
+  void
+  FoundationOperator::nodal_pressure(const Vector<double> &q,
+                                     Vector<double>       &values) const
+  {
+    values.reinit(q.size());
+    if (positive_basis)
+      transform.vmult(values, q);
+    else
+      values = q;
+  }
+
+  void
+  FoundationOperator::use_positive_pressure_basis(const FoundationSpace &space)
+  {
+    positive_basis =
+      space.positive_pressure_transform(transform_sparsity, transform);
+    tested_mass.clear();
+    force_mass.clear();
+    if (!positive_basis)
+      return;
+    transform_tests(mass, tested_sparsity, tested_mass);
+    force_mass.reinit(force_sparsity);
+    mass.mmult(force_mass, transform);
+  }
+
+  void
+  FoundationOperator::transform_tests(const SparseMatrix<double> &matrix,
+                                      SparsityPattern            &sparsity,
+                                      SparseMatrix<double>       &tested) const
+  {
+    tested.clear();
+    if (!positive_basis)
+      {
+        sparsity.copy_from(matrix.get_sparsity_pattern());
+        tested.reinit(sparsity);
+        tested.copy_from(matrix);
+        return;
+      }
+    tested.reinit(sparsity);
+    transform.Tmmult(tested, matrix);
+  }
+
+  void
+  FoundationOperator::transform_flexibility(
+    LAPACKFullMatrix<double> &flexibility) const
+  {
+    if (!positive_basis)
+      return;
+    // T has at most three entries per row, so F T and T^T (F T) cost 3 n^2
+    // each and need one row or column of scratch, not a second matrix.
+    const unsigned int n = flexibility.m();
+    Vector<double>     scratch(n);
+    for (unsigned int r = 0; r < n; ++r)
+      {
+        scratch = 0.;
+        for (unsigned int j = 0; j < n; ++j)
+          for (auto t = transform.begin(j); t != transform.end(j); ++t)
+            scratch[t->column()] += flexibility(r, j) * t->value();
+        for (unsigned int i = 0; i < n; ++i)
+          flexibility(r, i) = scratch[i];
+      }
+    for (unsigned int c = 0; c < n; ++c)
+      {
+        scratch = 0.;
+        for (unsigned int j = 0; j < n; ++j)
+          for (auto t = transform.begin(j); t != transform.end(j); ++t)
+            scratch[t->column()] += t->value() * flexibility(j, c);
+        for (unsigned int i = 0; i < n; ++i)
+          flexibility(i, c) = scratch[i];
+      }
   }
 
   void
@@ -101,7 +173,7 @@ namespace PlateOnHalfspace
     LAPACKFullMatrix<double> &rows,
     LAPACKFullMatrix<double> &matrix) const
   {
-    const unsigned int n = mass.m();
+    const unsigned int n = force_coupling().m();
     if (contact_index.empty())
       return;
     contact_factor.solve(rows);
@@ -111,7 +183,9 @@ namespace PlateOnHalfspace
       position[contact_index[i]] = i;
     std::vector<std::vector<std::pair<unsigned int, double>>> mass_rows(n);
     for (unsigned int r = 0; r < n; ++r)
-      for (auto entry = mass.begin(r); entry != mass.end(r); ++entry)
+      for (auto entry = force_coupling().begin(r);
+           entry != force_coupling().end(r);
+           ++entry)
         if (position[entry->column()] >= 0)
           mass_rows[r].emplace_back(position[entry->column()], entry->value());
     // matrix(:, c) += M_{:,C} rows(:, c): both columns are contiguous in

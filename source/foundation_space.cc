@@ -121,6 +121,70 @@ namespace PlateOnHalfspace
         }
   }
 
+  bool
+  FoundationSpace::positive_pressure_transform(
+    SparsityPattern      &sparsity,
+    SparseMatrix<double> &transform) const
+  {
+    constexpr double alpha = 0.2;
+    // The end points (FE_Q numbering) of the edge of local mid-side node
+    // 4 + e: the faces x = 0, x = 1, y = 0, y = 1.
+    constexpr std::array<std::array<unsigned int, 2>, 4> edge_ends = {
+      {{{0, 2}}, {{1, 3}}, {{0, 1}}, {{2, 3}}}};
+    const auto single_node = [](const std::vector<Term> &terms) {
+      return terms.size() == 1 && std::abs(terms[0].second - 1.) < 1e-12 ?
+               static_cast<int>(terms[0].first) :
+               -1;
+    };
+
+    // A cell whose centre function is not a node of its own is serendipity
+    // (the centre is constrained to the vertices and mid-sides).
+    bool serendipity = false;
+    for (const Cell &cell : cells)
+      serendipity = serendipity || single_node(cell.expansion[8]) < 0;
+    transform.clear();
+    if (!serendipity)
+      return false;
+
+    // The end nodes of each mid-side node, from the cells in which the
+    // mid-side and both ends are nodes of their own (on a hanging edge:
+    // the coarse cell; the fine side's nodes there are constrained).
+    std::vector<std::array<int, 2>> ends(n_nodes(), {{-1, -1}});
+    for (const Cell &cell : cells)
+      for (unsigned int e = 0; e < 4; ++e)
+        {
+          const int m  = single_node(cell.expansion[4 + e]);
+          const int c0 = single_node(cell.expansion[edge_ends[e][0]]);
+          const int c1 = single_node(cell.expansion[edge_ends[e][1]]);
+          if (m >= 0 && c0 >= 0 && c1 >= 0 && ends[m][0] < 0)
+            ends[m] = {{c0, c1}};
+        }
+
+    DynamicSparsityPattern dsp(n_nodes(), n_nodes());
+    for (unsigned int i = 0; i < n_nodes(); ++i)
+      {
+        dsp.add(i, i);
+        if (ends[i][0] >= 0)
+          {
+            dsp.add(i, ends[i][0]);
+            dsp.add(i, ends[i][1]);
+          }
+      }
+    sparsity.copy_from(dsp);
+    transform.reinit(sparsity);
+    // q_m = (1 - 2 alpha) qt_m + alpha (qt_c0 + qt_c1), q_c = qt_c
+    for (unsigned int i = 0; i < n_nodes(); ++i)
+      if (ends[i][0] >= 0)
+        {
+          transform.set(i, i, 1. - 2. * alpha);
+          transform.add(i, ends[i][0], alpha);
+          transform.add(i, ends[i][1], alpha);
+        }
+      else
+        transform.set(i, i, 1.);
+    return true;
+  }
+
   std::vector<unsigned int>
   FoundationSpace::Cell::nodes() const
   {

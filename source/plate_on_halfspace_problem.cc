@@ -90,9 +90,10 @@ namespace PlateOnHalfspace
   std::optional<std::vector<bool>>
   PlateOnHalfspaceProblem::refine_and_transfer_contact()
   {
-    Vector<double> indicator(contact.in_contact.size());
+    // the active set (not the wider set where q > 0) seeds the next cycle
+    Vector<double> indicator(contact.active_set.size());
     for (unsigned int i = 0; i < indicator.size(); ++i)
-      indicator[i] = contact.in_contact[i] ? 1. : 0.;
+      indicator[i] = contact.active_set[i] ? 1. : 0.;
     const Vector<double> old_field =
       mindlin_plate->foundation_field_to_solution(indicator);
 
@@ -184,7 +185,7 @@ namespace PlateOnHalfspace
 
     // Equilibrium: the integral of q is the sum of the nodal forces M q.
     Vector<double> forces;
-    foundation_operator->nodal_forces(contact.q, forces);
+    foundation_operator->nodal_forces(contact.pressure_coefficients, forces);
     summary.contact_force =
       copies * std::accumulate(forces.begin(), forces.end(), 0.);
     output->evaluate(plate, plate_solution, contact, summary);

@@ -71,6 +71,9 @@ namespace PlateOnHalfspace
     /** M over all cells (the plate's weak settlement when cells are out). */
     SparsityPattern      full_mass_sparsity;
     SparseMatrix<double> full_mass;
+    /** T^T of full_mass (foundation_space.h, positive pressure basis). */
+    SparsityPattern      full_tested_sparsity;
+    SparseMatrix<double> full_tested_mass;
     bool                 partial_foundation = false;
   };
 } // namespace PlateOnHalfspace

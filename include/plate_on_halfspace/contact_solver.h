@@ -23,10 +23,23 @@ namespace PlateOnHalfspace
   /** The state of the foundation after a contact solve (foundation nodes). */
   struct ContactState
   {
-    Vector<double>    w;   ///< plate deflection at the foundation nodes
-    Vector<double>    q;   ///< contact pressure, compression positive
-    Vector<double>    gap; ///< F q - B w: soil surface minus plate
+    Vector<double> w; ///< plate deflection at the foundation nodes
+    Vector<double> q; ///< nodal contact pressure, compression positive
+    /**
+     * The pressure's coefficients in the basis of the contact conditions
+     * (foundation_operator.h; equal to q unless the positive serendipity
+     * basis is used): what complementarity, tensile_nodes and the
+     * foundation operator's nodal_forces() refer to.
+     */
+    Vector<double> pressure_coefficients;
+    Vector<double> gap; ///< F q - B w: soil surface minus plate
+    /** Where the pressure acts: the active set and every node with q > 0. */
     std::vector<bool> in_contact;
+    /**
+     * The solver's active set (coefficients free to carry pressure): what
+     * the next cycle's iteration starts from.
+     */
+    std::vector<bool> active_set;
     std::vector<bool> cell_in_foundation; ///< element exclusion's cell set
     unsigned int      iterations = 0;
     bool              converged  = false;
@@ -73,6 +86,14 @@ namespace PlateOnHalfspace
           const std::vector<bool>        &initial_contact) const;
 
   private:
+    /** solve() in the contact basis: q holds the coefficients. */
+    ContactState
+    solve_in_contact_basis(const LAPACKFullMatrix<double> &plate_stiffness,
+                           const Vector<double>           &plate_load,
+                           FoundationOperator             &foundation,
+                           const FoundationSpace          &space,
+                           const std::vector<bool> &initial_contact) const;
+
     /** One coupled solve on the foundation's current contact set. */
     void
     solve_coupled(const LAPACKFullMatrix<double> &plate_stiffness,

@@ -15,6 +15,10 @@
  *   pressures on the contact set C       q_C = F_CC^{-1} b_C,  q = 0 off C,
  *   nodal forces on the plate            Q = M q   (the paper's E q),
  *   foundation stiffness                 S = M_{:,C} F_CC^{-1} B_{C,:}.
+ * With serendipity elements the Galerkin variant states the contact
+ * conditions in the positive pressure basis of foundation_space.h: q are
+ * its coefficients, F = T^T A T, B = T^T M, the forces M T q, and
+ * nodal_pressure() gives the nodal values T q.
  * Units: q force/length^2, w and s length (galerkin s: length^3).
  */
 #ifndef plate_on_halfspace_foundation_operator_h
@@ -83,9 +87,16 @@ namespace PlateOnHalfspace
     virtual bool
     is_symmetric() const = 0;
 
-    /** Nodal forces Q = M q on the plate. */
+    /** Nodal forces Q = M q (M T q in the positive basis) on the plate. */
     void
     nodal_forces(const Vector<double> &q, Vector<double> &forces) const;
+
+    /**
+     * Nodal pressures (the values at the foundation nodes) of the pressure
+     * with coefficients @p q: T q in the positive basis, else q itself.
+     */
+    void
+    nodal_pressure(const Vector<double> &q, Vector<double> &values) const;
 
     /** Gap g = F q - B w (>= 0 where the plate is above the soil). */
     void
@@ -139,6 +150,38 @@ namespace PlateOnHalfspace
                       const std::vector<bool> &cell_in_foundation);
 
     /**
+     * State the pressure in the positive basis of @p space where it has
+     * one (foundation_space.h): sets T and the couplings T^T M and M T.
+     * Call after build_mass_matrix().
+     */
+    void
+    use_positive_pressure_basis(const FoundationSpace &space);
+
+    /** F <- T^T F T in place (nothing without the positive basis). */
+    void
+    transform_flexibility(LAPACKFullMatrix<double> &flexibility) const;
+
+    /** @p tested = T^T @p matrix (a copy without the positive basis). */
+    void
+    transform_tests(const SparseMatrix<double> &matrix,
+                    SparsityPattern            &sparsity,
+                    SparseMatrix<double>       &tested) const;
+
+    /** B of the Galerkin variant: T^T M (M without the positive basis). */
+    const SparseMatrix<double> &
+    test_coupling() const
+    {
+      return positive_basis ? tested_mass : mass;
+    }
+
+    /** The forces' matrix: M T (M without the positive basis). */
+    const SparseMatrix<double> &
+    force_coupling() const
+    {
+      return positive_basis ? force_mass : mass;
+    }
+
+    /**
      * Store the contact set (restricted to supported nodes) and factorise
      * F_CC of the dense @p flexibility: Cholesky if @p symmetric, else LU.
      * Throws ExcMessage(@p failure) if the factorisation fails.
@@ -168,6 +211,12 @@ namespace PlateOnHalfspace
     std::vector<unsigned int> contact_index;  ///< the nodes of C
     LAPACKFullMatrix<double>  contact_factor; ///< factor of F_CC
     double                    contact_block_rcond = 1.;
+
+    bool                 positive_basis = false;
+    SparsityPattern      transform_sparsity, tested_sparsity, force_sparsity;
+    SparseMatrix<double> transform;   ///< T: nodal values from coefficients
+    SparseMatrix<double> tested_mass; ///< T^T M
+    SparseMatrix<double> force_mass;  ///< M T
   };
 
   /**

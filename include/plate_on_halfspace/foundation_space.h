@@ -93,6 +93,28 @@ namespace PlateOnHalfspace
     assemble_mass_matrix(const std::vector<bool> &cell_in_foundation,
                          SparsityPattern         &sparsity,
                          SparseMatrix<double>    &matrix) const;
+
+    /**
+     * The pressure basis of the contact conditions (formulation.md,
+     * "Tensionless contact"): q_h = sum_i qt_i psit_i with nodal values
+     * q = T qt. A serendipity corner function has a negative integral
+     * (-1/12 of a square cell), so nodal conditions q_i >= 0 let a
+     * non-negative set of nodal pressures carry a net tension, and a
+     * tensionless plate then stays in contact where it should lift off.
+     * The basis psit_c = psi_c + alpha (psi_m1 + psi_m2 + ...) for a vertex
+     * node c (the mid-side nodes m of the edges that end at c) and
+     * psit_m = (1 - 2 alpha) psi_m for a mid-side node (Popp, Gee, Wall &
+     * Wohlmuth's transformation of quadratic serendipity multipliers,
+     * alpha = 1/5) spans the same space and has positive integrals:
+     * -1/3 + 8 alpha/3 of a cell's area at an interior vertex of a uniform
+     * mesh, -1/12 + 2 alpha/3 at a plate corner. T maps qt >= 0 to q >= 0.
+     * Returns false (and leaves @p transform empty) when the space has no
+     * serendipity cells (the 9-node Lagrange functions have positive
+     * integrals already); otherwise fills @p transform (n x n) with T.
+     */
+    bool
+    positive_pressure_transform(SparsityPattern      &sparsity,
+                                SparseMatrix<double> &transform) const;
   };
 } // namespace PlateOnHalfspace
 

@@ -155,7 +155,7 @@ main()
         std::accumulate(mw.begin(), mw.end(), 0.) / (16. * scale),
         mean_exact,
         1e-5);
-  a.foundation->nodal_forces(a.state.q, forces);
+  a.foundation->nodal_forces(a.state.pressure_coefficients, forces);
   check("hanging mesh: contact force",
         std::accumulate(forces.begin(), forces.end(), 0.),
         1600.,
