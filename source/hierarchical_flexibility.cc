@@ -5,6 +5,7 @@
 #include <plate_on_halfspace/cell_pair_quadrature.h>
 #include <plate_on_halfspace/hierarchical_flexibility.h>
 
+#include <dlfcn.h>
 #include <hmat/hmat.h>
 
 #include <algorithm>
@@ -44,6 +45,42 @@ namespace PlateOnHalfspace
       }();
       return interface;
     }
+
+    /**
+     * One BLAS thread while it lives. hmat-oss calls BLAS on many small
+     * blocks; OpenBLAS's pthreads busy-wait between such calls, which on
+     * this 2-core machine made the H-Cholesky 5 times and the product 4
+     * times slower (5373 nodes: 10.6 s against 1.9 s) whenever anything
+     * else ran. hmat-oss's own switch for this is compiled out of Debian's
+     * build, so look OpenBLAS's up at run time (absent with another BLAS:
+     * then nothing to do). The dense LAPACK paths keep their threads.
+     */
+    class SingleThreadedBlas
+    {
+    public:
+      SingleThreadedBlas()
+        : set_threads(reinterpret_cast<void (*)(int)>(
+            dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+        , get_threads(reinterpret_cast<int (*)()>(
+            dlsym(RTLD_DEFAULT, "openblas_get_num_threads")))
+      {
+        if (set_threads != nullptr && get_threads != nullptr)
+          {
+            previous = get_threads();
+            set_threads(1);
+          }
+      }
+      ~SingleThreadedBlas()
+      {
+        if (set_threads != nullptr && get_threads != nullptr)
+          set_threads(previous);
+      }
+
+    private:
+      void (*const set_threads)(int);
+      int (*const get_threads)();
+      int previous = 1;
+    };
 
     /** Throw the message of a failed hmat-oss call @p what. */
     void
@@ -629,7 +666,11 @@ namespace PlateOnHalfspace
     assembly.lower_symmetric = 1;
     assembly.factorization   = hmat_factorization_none;
     assembly.progress        = nullptr; // no progress bar on stdout
-    const int status         = hmat().assemble_generic(matrix, &assembly);
+    int status;
+    {
+      const SingleThreadedBlas single_threaded_blas;
+      status = hmat().assemble_generic(matrix, &assembly);
+    }
     hmat_delete_compression(compression);
     AssertThrow(context.error.empty(),
                 ExcMessage("Foundation operator/Storage = hierarchical: "
@@ -717,7 +758,8 @@ namespace PlateOnHalfspace
     AssertDimension(src.size(), n_nodes);
     std::vector<double> x(n_nodes), y(n_nodes, 0.);
     to_hmat_order(src.data(), x.data());
-    const double one = 1., zero = 0.;
+    const double             one = 1., zero = 0.;
+    const SingleThreadedBlas single_threaded_blas;
     check_hmat(hmat().gemm_dense(
                  'N', 'N', 'L', &one, matrix, x.data(), &zero, y.data(), 1),
                "the product with the flexibility");
@@ -747,7 +789,11 @@ namespace PlateOnHalfspace
     hmat_factorization_context_init(&context);
     context.factorization = hmat_factorization_llt;
     context.progress      = nullptr;
-    const int status      = hmat().factorize_generic(factor, &context);
+    int status;
+    {
+      const SingleThreadedBlas single_threaded_blas;
+      status = hmat().factorize_generic(factor, &context);
+    }
     if (status != 0)
       {
         hmat().destroy(factor);
@@ -816,6 +862,7 @@ namespace PlateOnHalfspace
     for (unsigned int c = 0; c < n_rhs; ++c)
       for (unsigned int k = 0; k < n_nodes; ++k)
         ordered[k + std::size_t(c) * n_nodes] = rhs(hmat_to_node[k], c);
+    const SingleThreadedBlas single_threaded_blas;
     check_hmat(hmat().solve_dense(factor, ordered.data(), n_rhs),
                "the solve with the H-Cholesky factor");
     AssertThrow(all_finite(ordered.data(), ordered.size()),

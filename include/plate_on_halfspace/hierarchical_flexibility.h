@@ -145,11 +145,16 @@ namespace PlateOnHalfspace
       return factor != nullptr;
     }
 
-    /** Bytes held: the H-matrix, its factor and the permutation. */
+    /** Bytes of the stored entries of the H-matrix and its factor, and of
+     *  the permutation (hmat-oss's tree nodes are not counted). */
     std::size_t
     memory_consumption() const;
 
-    /** Stored entries of A's H-matrix over n² (1 = dense). */
+    /**
+     * Stored entries of A's H-matrix over n². The storage is lower
+     * symmetric (diagonal blocks and the blocks below them), so a matrix
+     * without low-rank blocks gives about 0.5.
+     */
     double
     compression_ratio() const;
 
