@@ -140,7 +140,7 @@ main(int argc, char **argv)
              dense_cholesky = NAN, dense_mb = NAN;
       if (n <= max_dense)
         {
-          BoussinesqGalerkinOperator dense(alpha, order);
+          BoussinesqGalerkinOperator dense(alpha, order, false); // the plain A
           timer.restart();
           dense.build(space, {});
           dense_build = timer.wall_time();

@@ -10,9 +10,11 @@ namespace PlateOnHalfspace
 {
   BoussinesqGalerkinOperator::BoussinesqGalerkinOperator(
     const double       alpha,
-    const unsigned int singular_order)
+    const unsigned int singular_order,
+    const bool         positive_pressure_basis)
     : alpha(alpha)
     , singular_order(singular_order)
+    , positive_pressure_basis(positive_pressure_basis)
   {}
 
   void
@@ -101,7 +103,8 @@ namespace PlateOnHalfspace
 
     // The contact conditions in the positive pressure basis
     // (foundation_space.h): A <- T^T A T, M <- T^T M.
-    use_positive_pressure_basis(space);
+    if (positive_pressure_basis)
+      use_positive_pressure_basis(space);
     transform_flexibility(flexibility);
     if (partial_foundation)
       {

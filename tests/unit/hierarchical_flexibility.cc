@@ -98,7 +98,9 @@ namespace
   LAPACKFullMatrix<double>
   dense_flexibility(const Scene &scene)
   {
-    BoussinesqGalerkinOperator dense(scene.alpha, scene.singular_order);
+    BoussinesqGalerkinOperator dense(scene.alpha,
+                                     scene.singular_order,
+                                     false); // the plain A
     dense.build(scene.space, {});
     return dense.flexibility_matrix();
   }
