@@ -580,7 +580,8 @@ namespace PlateOnHalfspace
   IterativeContactSolver::solve(const MindlinPlate              &plate,
                                 const FoundationOperator        &foundation,
                                 const PreconditionedFlexibility &flexibility,
-                                const std::vector<bool> &initial_contact) const
+                                const std::vector<bool> &initial_contact,
+                                Vector<double>          *plate_solution) const
   {
     const FoundationSpace &space = plate.get_foundation_space();
     const unsigned int     n     = space.n_nodes();
@@ -664,15 +665,15 @@ namespace PlateOnHalfspace
       if (!cg.converged)
         {
           std::ostringstream message;
-          message << "The conjugate gradients on the contact pressures did "
-                     "not converge: relative residual "
-                  << std::scientific << std::setprecision(2)
-                  << cg.relative_residual << " after " << cg.iterations
-                  << " iterations (tolerance " << control.tolerance
-                  << "). Raise the iteration limit; a plate far more "
-                     "flexible than the soil (characteristic length well "
-                     "below the element size) needs the direct contact "
-                     "solver.";
+          message
+            << "The conjugate gradients on the contact pressures did "
+               "not converge: relative residual "
+            << std::scientific << std::setprecision(2) << cg.relative_residual
+            << " after " << cg.iterations << " iterations (tolerance "
+            << control.tolerance
+            << "). A plate far more flexible than the soil (characteristic "
+               "length well below the element size) needs Contact/"
+               "Solver = direct.";
           AssertThrow(false, ExcMessage(message.str()));
         }
 
@@ -686,6 +687,11 @@ namespace PlateOnHalfspace
       inverse.solve(f, u);
       for (unsigned int j = 0; j < motions.size(); ++j)
         u.add(alpha[j], motions[j]);
+      if (plate_solution != nullptr)
+        {
+          *plate_solution = u;
+          plate.get_constraints().distribute(*plate_solution);
+        }
       state.w = to_foundation(u);
       for (const double v : state.w)
         AssertThrow(std::isfinite(v), ExcMessage(mechanism_message));

@@ -158,7 +158,10 @@ namespace PlateOnHalfspace
      * on the plate's foundation space with every cell in the foundation;
      * only its mass matrix, supported nodes and plate settlement B w = M w
      * are used, never its dense blocks) with the half-space @p flexibility.
-     * @p initial_contact (may be empty) seeds the contact set.
+     * @p initial_contact (may be empty) seeds the contact set. If
+     * @p plate_solution is given, it receives the plate's full solution
+     * vector (w, beta_x, beta_y at every DoF, constraints distributed), as
+     * MindlinPlate::expand() would give it from the returned w.
      *
      * Throws ExcMessage if the contact set cannot carry the plate, or if
      * the conjugate gradients do not reach the tolerance within
@@ -168,7 +171,8 @@ namespace PlateOnHalfspace
     solve(const MindlinPlate              &plate,
           const FoundationOperator        &foundation,
           const PreconditionedFlexibility &flexibility,
-          const std::vector<bool>         &initial_contact) const;
+          const std::vector<bool>         &initial_contact,
+          Vector<double>                  *plate_solution = nullptr) const;
 
   private:
     const Parameters::Contact      contact;

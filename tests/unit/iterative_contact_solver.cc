@@ -171,6 +171,43 @@ main()
           true,
           60);
 
+  // Through the application (Contact/Solver = iterative, default CG
+  // tolerance 1e-10) over two adaptive cycles: the same summaries.
+  {
+    const std::string adaptive =
+      galerkin_active_set + "subsection Adaptivity\n set Cycles = 2\nend\n";
+    const auto direct = solve_scene("example2.prm", adaptive);
+    const auto iterative =
+      solve_scene("example2.prm",
+                  adaptive +
+                    "subsection Contact\n set Solver = iterative\nend\n");
+    double worst = 0;
+    for (unsigned int c = 0; c < 2; ++c)
+      {
+        const CycleSummary &a = direct->summaries()[c],
+                           &b = iterative->summaries()[c];
+        AssertThrow(a.contact_nodes == b.contact_nodes &&
+                      a.contact_iterations == b.contact_iterations,
+                    ExcMessage("contact sets differ"));
+        const auto difference = [&worst](const double x, const double y) {
+          worst = std::max(worst, std::abs(x - y) / std::abs(x));
+        };
+        difference(a.contact_force, b.contact_force);
+        difference(a.max_w, b.max_w);
+        difference(a.max_q, b.max_q);
+        difference(a.max_mx, b.max_mx);
+        for (unsigned int p = 0; p < a.probes.size(); ++p)
+          {
+            difference(a.probes[p].w, b.probes[p].w);
+            difference(a.probes[p].mx, b.probes[p].mx);
+          }
+      }
+    deallog << "application, Contact/Solver = iterative, 2 cycles: same "
+               "contact sets, summaries and probes to 1e-7: "
+            << (worst <= 1e-7 ? "ok" : "FAILED") << std::endl;
+    AssertThrow(worst <= 1e-7, ExcMessage(std::to_string(worst)));
+  }
+
   // A CG that cannot reach the tolerance fails loudly.
   const auto expect_error = [](const std::string              &name,
                                const PlateOnHalfspaceProblem  &problem,
