@@ -158,14 +158,26 @@ namespace PlateOnHalfspace
       TimerOutput::Scope scope(timer_output, "contact solve");
       if (iterative)
         {
-          const DenseGalerkinFlexibility flexibility(*foundation_operator);
-          const IterativeContactSolver   solver(parameters.contact,
+          // A half-space operator that provides products and an
+          // approximate inverse itself (a hierarchical matrix) is used as
+          // it is; the dense Galerkin operator gets a Cholesky factor of A.
+          std::unique_ptr<DenseGalerkinFlexibility> dense;
+          const auto                               *flexibility =
+            dynamic_cast<const PreconditionedFlexibility *>(
+              foundation_operator.get());
+          if (flexibility == nullptr)
+            {
+              dense = std::make_unique<DenseGalerkinFlexibility>(
+                *foundation_operator);
+              flexibility = dense.get();
+            }
+          const IterativeContactSolver solver(parameters.contact,
                                               parameters.foundation.tensionless,
                                               ConjugateGradientControl(),
                                               verbosity,
                                               log);
           contact = solver.solve(
-            plate, *foundation_operator, flexibility, seed, &plate_solution);
+            plate, *foundation_operator, *flexibility, seed, &plate_solution);
         }
       else
         {

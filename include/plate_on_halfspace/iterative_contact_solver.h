@@ -69,7 +69,9 @@ namespace PlateOnHalfspace
    * formulation.md, SPD; units of FoundationOperator::apply) with an
    * approximate inverse, all the IterativeContactSolver needs of the
    * half-space. A dense operator and a hierarchical matrix (H-Cholesky of
-   * the full F) both provide it.
+   * the full F) both provide it. The application (Contact/Solver =
+   * iterative) uses a FoundationOperator that also derives from this class
+   * as it is, and wraps any other in DenseGalerkinFlexibility.
    */
   class PreconditionedFlexibility
   {
