@@ -54,7 +54,11 @@ namespace PlateOnHalfspace
     std::size_t
     memory_consumption() const override;
 
-    /** The assembled A on all nodes (for tests). */
+    /**
+     * The flexibility on all nodes in the contact basis: the assembled A,
+     * T^T A T in the positive pressure basis (foundation_operator.h); what
+     * apply() multiplies by.
+     */
     const LAPACKFullMatrix<double> &
     flexibility_matrix() const
     {
