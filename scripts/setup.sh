@@ -9,10 +9,11 @@ scene=${2:-parameters/example2-bonded.prm}
 cd "$(dirname "$0")/.."
 
 # deal.II 9.4 (with Trilinos, UMFPACK, LAPACK), OpenBLAS (not optional: the
-# reference BLAS makes every dense factorisation ~20x slower), numdiff (the
-# deal.II test macros need it), nlohmann-json (summary.json), gnuplot (plots).
-packages="cmake make g++ perl libdeal.ii-dev libopenblas0-pthread numdiff
-          nlohmann-json3-dev gnuplot-nox python3"
+# reference BLAS makes every dense factorisation ~20x slower), hmat-oss (the
+# hierarchical-matrix flexibility), numdiff (the deal.II test macros need
+# it), nlohmann-json (summary.json), gnuplot (plots).
+packages="cmake make g++ perl libdeal.ii-dev libopenblas0-pthread
+          libhmat-oss-dev numdiff nlohmann-json3-dev gnuplot-nox python3"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" \

@@ -8,40 +8,13 @@
 
 namespace PlateOnHalfspace
 {
-  namespace
-  {
-    /**
-     * A cell against its own mirror image: block(i, k) couples node
-     * rows[i] with node columns[k], the same nodes in another order. The
-     * integral is symmetric in the two nodes, the quadrature only nearly:
-     * average each entry with its transpose, so that A stays exactly
-     * symmetric.
-     */
-    void
-    symmetrise_self_image_block(const std::vector<unsigned int> &rows,
-                                const std::vector<unsigned int> &columns,
-                                FullMatrix<double>              &block)
-    {
-      const auto position = [](const std::vector<unsigned int> &list,
-                               const unsigned int               node) {
-        return static_cast<unsigned int>(
-          std::find(list.begin(), list.end(), node) - list.begin());
-      };
-      FullMatrix<double> symmetric(block.m(), block.n());
-      for (unsigned int i = 0; i < block.m(); ++i)
-        for (unsigned int k = 0; k < block.n(); ++k)
-          symmetric(i, k) =
-            0.5 * (block(i, k) + block(position(rows, columns[k]),
-                                       position(columns, rows[i])));
-      block = symmetric;
-    }
-  } // namespace
-
   BoussinesqGalerkinOperator::BoussinesqGalerkinOperator(
     const double       alpha,
-    const unsigned int singular_order)
+    const unsigned int singular_order,
+    const bool         positive_pressure_basis)
     : alpha(alpha)
     , singular_order(singular_order)
+    , positive_pressure_basis(positive_pressure_basis)
   {}
 
   void
@@ -130,7 +103,8 @@ namespace PlateOnHalfspace
 
     // The contact conditions in the positive pressure basis
     // (foundation_space.h): A <- T^T A T, M <- T^T M.
-    use_positive_pressure_basis(space);
+    if (positive_pressure_basis)
+      use_positive_pressure_basis(space);
     transform_flexibility(flexibility);
     if (partial_foundation)
       {

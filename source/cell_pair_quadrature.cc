@@ -35,6 +35,25 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
+  void
+  symmetrise_self_image_block(const std::vector<unsigned int> &rows,
+                              const std::vector<unsigned int> &columns,
+                              FullMatrix<double>              &block)
+  {
+    const auto position = [](const std::vector<unsigned int> &list,
+                             const unsigned int               node) {
+      return static_cast<unsigned int>(
+        std::find(list.begin(), list.end(), node) - list.begin());
+    };
+    FullMatrix<double> symmetric(block.m(), block.n());
+    for (unsigned int i = 0; i < block.m(); ++i)
+      for (unsigned int k = 0; k < block.n(); ++k)
+        symmetric(i, k) =
+          0.5 * (block(i, k) +
+                 block(position(rows, columns[k]), position(columns, rows[i])));
+    block = symmetric;
+  }
+
   CellPairIntegrator::SingularRule::SingularRule(const Point<2> &split,
                                                  const QDuffy   &duffy)
     : at_split(q2_shape_values(split))
@@ -223,7 +242,7 @@ namespace PlateOnHalfspace
     FullMatrix<double> &block) const
   {
     block.reinit(cell_data[k].nodes.size(), cell_data[l].nodes.size());
-    if (k == l || touching(k, l))
+    if (singular_pair(k, l))
       {
         // The rule is not symmetric in the roles of the two cells (outer
         // Gauss on one, inner Duffy on the other): average both orders, so

@@ -232,13 +232,19 @@ namespace PlateOnHalfspace
     summary.contact_area_fraction = contact_area / area;
     // Nodes in contact on the whole plate: a node of the computed part
     // stands for its distinct mirror images.
+    // The same for the nodes whose pressure coefficient is tensile.
     summary.contact_nodes = 0;
+    summary.tensile_nodes = 0;
     for (unsigned int i = 0; i < space.n_nodes(); ++i)
-      if (contact.in_contact[i])
-        summary.contact_nodes +=
+      {
+        const unsigned int images =
           space.symmetry.images(space.node_locations[i]).size();
+        if (contact.in_contact[i])
+          summary.contact_nodes += images;
+        if (contact.pressure_coefficients[i] < 0)
+          summary.tensile_nodes += images;
+      }
     summary.complementarity_violation = contact.complementarity_violation;
-    summary.tensile_nodes             = contact.tensile_nodes;
     summary.max_penetration           = contact.max_penetration;
     summary.contact_iterations        = contact.iterations;
     summary.converged                 = contact.converged;

@@ -24,9 +24,14 @@ namespace PlateOnHalfspace
      * @param alpha (1 - nu0^2)/(pi E0).
      * @param singular_order Gauss points per direction for the outer rule
      *   and the Duffy rule of coincident and touching pairs.
+     * @param positive_pressure_basis state the contact conditions in the
+     *   positive basis of foundation_space.h (the program always does;
+     *   false keeps the plain A, e.g. to compare with another assembly
+     *   of A).
      */
     BoussinesqGalerkinOperator(const double       alpha,
-                               const unsigned int singular_order);
+                               const unsigned int singular_order,
+                               const bool positive_pressure_basis = true);
 
     void
     build(const FoundationSpace   &space,
@@ -68,6 +73,7 @@ namespace PlateOnHalfspace
   private:
     const double       alpha;
     const unsigned int singular_order;
+    const bool         positive_pressure_basis;
     /** Settlement of the whole plate from pressures on the foundation cells. */
     LAPACKFullMatrix<double> flexibility;
     /** A over foundation cells only; used when some cells are excluded. */

@@ -18,6 +18,19 @@
 namespace PlateOnHalfspace
 {
   /**
+   * A cell against its own mirror image (a symmetric scene,
+   * mirror_symmetry.h): @p block (i, k) couples node @p rows[i] with node
+   * @p columns[k], the same nodes in another order. The integral is
+   * symmetric in the two nodes, the quadrature only nearly: average each
+   * entry with its transpose, so that A stays exactly symmetric (the dense
+   * and the hierarchical Galerkin operators both use this).
+   */
+  void
+  symmetrise_self_image_block(const std::vector<unsigned int> &rows,
+                              const std::vector<unsigned int> &columns,
+                              FullMatrix<double>              &block);
+
+  /**
    * For every cell of a list of FoundationSpace cells (a space's cells,
    * and for a symmetric scene their mirror images): its foundation nodes and
    * the node shape functions psi_a = sum_i T_ai phi_i (the Q2 functions phi
@@ -48,6 +61,17 @@ namespace PlateOnHalfspace
     nodes(const unsigned int c) const
     {
       return cell_data[c].nodes;
+    }
+
+    /**
+     * Whether integrate_inverse_distance() treats cells @p k and @p l as a
+     * singular pair (the same cell, or touching): the expensive pairs,
+     * which a caller may want to integrate once and keep.
+     */
+    bool
+    singular_pair(const unsigned int k, const unsigned int l) const
+    {
+      return k == l || touching(k, l);
     }
 
     /**
