@@ -413,6 +413,18 @@ namespace PlateOnHalfspace
                         Patterns::Double(0, 1),
                         "element exclusion: relative change of the "
                         "displacement norm that ends the iteration.");
+      prm.declare_entry(
+        "Solver",
+        "direct",
+        Patterns::Selection("direct|iterative"),
+        "How each contact set is solved: direct (the plate condensed onto "
+        "the foundation nodes into a dense matrix, factorised by LAPACK) or "
+        "iterative (conjugate gradients on the contact pressures with the "
+        "sparse plate stiffness and the half-space preconditioned by its "
+        "inverse; no dense coupled matrix; needs Discretization/Flexibility "
+        "= galerkin and Contact/Method = active set; coupled_matrix_rcond "
+        "is not estimated and reads 1; a plate far more flexible than the "
+        "soil needs direct).");
       prm.leave_subsection();
     }
 
@@ -424,6 +436,8 @@ namespace PlateOnHalfspace
                                                             Method::element_exclusion);
       max_iterations = prm.get_integer("Max iterations");
       tolerance      = prm.get_double("Tolerance");
+      solver =
+        (prm.get("Solver") == "iterative" ? Solver::iterative : Solver::direct);
       prm.leave_subsection();
       require(tolerance > 0,
               "Contact/Tolerance must lie in (0, 1]" + got(tolerance) + ".");
@@ -647,6 +661,17 @@ namespace PlateOnHalfspace
               "Discretization/Flexibility = collocation needs axis-aligned "
               "rectangular cells (the paper's closed-form integral); use "
               "galerkin for Plate/Shape = disk.");
+    if (contact.solver == Parameters::Contact::Solver::iterative)
+      {
+        require(discretization.flexibility ==
+                  Parameters::Discretization::Flexibility::galerkin,
+                "Contact/Solver = iterative needs the symmetric half-space "
+                "operator, Discretization/Flexibility = galerkin.");
+        require(!foundation.tensionless ||
+                  contact.method == Parameters::Contact::Method::active_set,
+                "Contact/Solver = iterative needs Contact/Method = active "
+                "set (element exclusion rebuilds the operator).");
+      }
   }
 
   void

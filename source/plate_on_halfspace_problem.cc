@@ -2,6 +2,7 @@
 
 #include <deal.II/numerics/solution_transfer.h>
 
+#include <plate_on_halfspace/iterative_contact_solver.h>
 #include <plate_on_halfspace/memory_guard.h>
 #include <plate_on_halfspace/mesh_refinement.h>
 #include <plate_on_halfspace/plate_mesh.h>
@@ -152,10 +153,14 @@ namespace PlateOnHalfspace
     check_dense_foundation_memory(summary.n_foundation_dofs);
     LAPACKFullMatrix<double> plate_stiffness;
     Vector<double>           plate_load;
-    {
-      TimerOutput::Scope scope(timer_output, "condense plate");
-      plate.condense(plate_stiffness, plate_load);
-    }
+    // The iterative solver works on the sparse plate: no condensation.
+    const bool iterative =
+      parameters.contact.solver == Parameters::Contact::Solver::iterative;
+    if (!iterative)
+      {
+        TimerOutput::Scope scope(timer_output, "condense plate");
+        plate.condense(plate_stiffness, plate_load);
+      }
     summary.assembly_time_s = setup_time_s + phase.wall_time();
     phase.restart();
     {
@@ -165,18 +170,44 @@ namespace PlateOnHalfspace
     summary.foundation_time_s = phase.wall_time();
     phase.restart();
 
-    const ContactSolver solver(parameters.contact,
-                               parameters.foundation.tensionless,
-                               verbosity,
-                               log);
     {
       TimerOutput::Scope scope(timer_output, "contact solve");
-      contact = solver.solve(plate_stiffness,
-                             plate_load,
-                             *foundation_operator,
-                             plate.get_foundation_space(),
-                             seed);
-      plate.expand(contact.w, plate_solution);
+      if (iterative)
+        {
+          // A half-space operator that provides products and an
+          // approximate inverse itself (a hierarchical matrix) is used as
+          // it is; the dense Galerkin operator gets a Cholesky factor of A.
+          std::unique_ptr<DenseGalerkinFlexibility> dense;
+          const auto                               *flexibility =
+            dynamic_cast<const PreconditionedFlexibility *>(
+              foundation_operator.get());
+          if (flexibility == nullptr)
+            {
+              dense = std::make_unique<DenseGalerkinFlexibility>(
+                *foundation_operator);
+              flexibility = dense.get();
+            }
+          const IterativeContactSolver solver(parameters.contact,
+                                              parameters.foundation.tensionless,
+                                              ConjugateGradientControl(),
+                                              verbosity,
+                                              log);
+          contact = solver.solve(
+            plate, *foundation_operator, *flexibility, seed, &plate_solution);
+        }
+      else
+        {
+          const ContactSolver solver(parameters.contact,
+                                     parameters.foundation.tensionless,
+                                     verbosity,
+                                     log);
+          contact = solver.solve(plate_stiffness,
+                                 plate_load,
+                                 *foundation_operator,
+                                 plate.get_foundation_space(),
+                                 seed);
+          plate.expand(contact.w, plate_solution);
+        }
       pressure_field = plate.foundation_field_to_solution(contact.q);
     }
     summary.solve_time_s = phase.wall_time();

@@ -59,7 +59,11 @@ namespace PlateOnHalfspace
     std::size_t
     memory_consumption() const override;
 
-    /** The assembled A on all nodes (T^T A T in the positive basis). */
+    /**
+     * The flexibility on all nodes in the contact basis: the assembled A,
+     * T^T A T in the positive pressure basis (foundation_operator.h); what
+     * apply() multiplies by.
+     */
     const LAPACKFullMatrix<double> &
     flexibility_matrix() const
     {

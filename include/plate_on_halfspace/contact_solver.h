@@ -14,6 +14,7 @@
 #include <plate_on_halfspace/parameters.h>
 
 #include <ostream>
+#include <set>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -57,6 +58,126 @@ namespace PlateOnHalfspace
      * solve (condition_estimate.h).
      */
     double coupled_rcond = 1;
+
+    /**
+     * One linear solve of an iterative contact solver
+     * (iterative_contact_solver.h); empty for the direct ContactSolver.
+     */
+    struct LinearSolve
+    {
+      unsigned int contact_iteration = 0; ///< 1, 2, ... of the active set
+      unsigned int contact_nodes     = 0; ///< size of the contact set
+      unsigned int iterations        = 0; ///< conjugate gradient iterations
+      /** Achieved |residual| / |settlement| on the contact set
+       *  (recomputed, not the recursive estimate). */
+      double relative_residual = 0;
+    };
+    /** One entry per contact iteration (iterative solvers only). */
+    std::vector<LinearSolve> linear_solves;
+  };
+
+  /**
+   * Whether the nodes flagged in @p in_contact can carry a plate: at least
+   * three of them (with their mirror images), not on one line
+   * (formulation.md: fewer than three non-collinear supporting points make
+   * the plate a mechanism).
+   */
+  bool
+  contact_set_supports_plate(const FoundationSpace   &space,
+                             const std::vector<bool> &in_contact);
+
+  /**
+   * Fill complementarity_violation, tensile_nodes and max_penetration of
+   * @p state from its q and gap (which must be set), with @p plate_settlement
+   * = B w giving the gap's scale and @p supported the nodes under the
+   * foundation (the only ones whose gap is constrained).
+   */
+  void
+  evaluate_contact_conditions(const Vector<double>    &plate_settlement,
+                              const std::vector<bool> &supported,
+                              ContactState            &state);
+
+  /**
+   * The set update of the primal-dual active set method (formulation.md,
+   * "Tensionless contact"; deal.II step-41): C = {i : q_i + c g_i > 0}.
+   * On C the gap is zero and off C the pressure is, so the test reads
+   * q_i < 0 on C and g_i < 0 (penetration) off C; c only balances the units.
+   * If a full step returns to a set seen before (a cycle), it falls back to
+   * Murty's least-index rule, one status change per step, which terminates
+   * for the SPD Galerkin problem. Every step keeps a set that carries the
+   * plate (contact_set_supports_plate()): a full step that would leave a
+   * mechanism takes every entry, then the exits in order while the rest
+   * still carries the plate; a single pivot is the least index whose change
+   * keeps the set carrying. Shared by the direct and the iterative contact
+   * solvers so that both walk the same sequence of sets.
+   */
+  class ActiveSetUpdate
+  {
+  public:
+    /**
+     * Start from the @p supported nodes, restricted to @p initial_contact
+     * (e.g. the previous cycle's set) if that has the right size and can
+     * carry the plate.
+     */
+    ActiveSetUpdate(const FoundationSpace   &space,
+                    const std::vector<bool> &supported,
+                    const std::vector<bool> &initial_contact);
+
+    /** The current contact set. */
+    const std::vector<bool> &
+    contact_set() const
+    {
+      return active;
+    }
+
+    /** Size of the current contact set. */
+    unsigned int
+    n_contact_nodes() const;
+
+    /**
+     * Count the violated conditions of the solution (@p q, @p gap) on the
+     * current set and prepare the next set; signs below @p q_tolerance and
+     * @p g_tolerance are taken for rounding. Returns the number of changes.
+     */
+    unsigned int
+    find_violations(const Vector<double> &q,
+                    const Vector<double> &gap,
+                    const double          q_tolerance,
+                    const double          g_tolerance);
+
+    /**
+     * Record the current set; if the full step find_violations() prepared
+     * returns to a set seen before (a cycle), switch to single pivots and
+     * return true.
+     */
+    bool
+    detect_cycle();
+
+    /**
+     * Move to the next set: the full step find_violations() prepared, or
+     * one status change once single pivots are on, kept to a set that
+     * carries the plate (see the class documentation). Throws ExcMessage
+     * if no change keeps the plate carried (a load at the edge of a
+     * weightless plate).
+     */
+    void
+    advance();
+
+    /** Whether the least-index fallback is on. */
+    bool
+    single_pivots() const
+    {
+      return single_pivot_mode;
+    }
+
+  private:
+    const FoundationSpace      &space;
+    std::vector<bool>           supported;
+    std::vector<bool>           active;
+    std::vector<bool>           next;
+    std::vector<unsigned int>   changes; ///< violated entries, least first
+    std::set<std::vector<bool>> visited;
+    bool                        single_pivot_mode = false;
   };
 
   /**

@@ -118,11 +118,37 @@ namespace PlateOnHalfspace
       return node_supported;
     }
 
-    /** The mass matrix M (the paper's E). */
+    /**
+     * The mass matrix M (the paper's E) of the nodal values; the contact
+     * conditions use test_coupling() and force_coupling().
+     */
     const SparseMatrix<double> &
     mass_matrix() const
     {
       return mass;
+    }
+
+    /**
+     * B of the Galerkin variant over the foundation cells: T^T M (M without
+     * the positive basis). It tests the plate's deflection with the
+     * pressure basis: plate_settlement() when every cell is in the
+     * foundation.
+     */
+    const SparseMatrix<double> &
+    test_coupling() const
+    {
+      return positive_basis ? tested_mass : mass;
+    }
+
+    /**
+     * The forces' matrix: M T (M without the positive basis), the nodal
+     * forces M T q of pressure coefficients q (nodal_forces()); the
+     * transpose of test_coupling().
+     */
+    const SparseMatrix<double> &
+    force_coupling() const
+    {
+      return positive_basis ? force_mass : mass;
     }
 
     /**
@@ -166,20 +192,6 @@ namespace PlateOnHalfspace
     transform_tests(const SparseMatrix<double> &matrix,
                     SparsityPattern            &sparsity,
                     SparseMatrix<double>       &tested) const;
-
-    /** B of the Galerkin variant: T^T M (M without the positive basis). */
-    const SparseMatrix<double> &
-    test_coupling() const
-    {
-      return positive_basis ? tested_mass : mass;
-    }
-
-    /** The forces' matrix: M T (M without the positive basis). */
-    const SparseMatrix<double> &
-    force_coupling() const
-    {
-      return positive_basis ? force_mass : mass;
-    }
 
     /**
      * Store the contact set (restricted to supported nodes) and factorise

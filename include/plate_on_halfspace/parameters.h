@@ -154,9 +154,16 @@ namespace PlateOnHalfspace
         active_set,
         element_exclusion
       };
+      /** How each contact set's coupled problem is solved. */
+      enum class Solver
+      {
+        direct,   ///< ContactSolver: dense condensed plate + LAPACK
+        iterative ///< IterativeContactSolver: sparse plate + CG
+      };
       Method       method;
       unsigned int max_iterations;
       double       tolerance;
+      Solver       solver;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -60,6 +60,14 @@ main()
   check("collocation on a disk",
         "subsection Plate\n set Shape = disk\nend\n"
         "subsection Discretization\n set Flexibility = collocation\nend\n");
+  check("iterative solver with collocation",
+        "subsection Loads\n set Uniform pressure = 1\nend\n"
+        "subsection Discretization\n set Flexibility = collocation\nend\n"
+        "subsection Contact\n set Solver = iterative\nend\n");
+  check("iterative solver with element exclusion",
+        "subsection Loads\n set Uniform pressure = 1\nend\n"
+        "subsection Contact\n set Solver = iterative\n"
+        " set Method = element exclusion\nend\n");
   check("missing mesh file",
         "subsection Plate\n set Shape = mesh file\n"
         " set Mesh file = no-such-file.msh\nend\n");

@@ -1,0 +1,263 @@
+// The iterative contact solver (iterative_contact_solver.h: projected
+// preconditioned conjugate gradients on the contact pressures, sparse plate,
+// no dense coupled matrix) against the direct ContactSolver on the same
+// plate and half-space operator:
+//  - the flexible square as a thin concrete slab (t = 0.1 m, E = 30 GPa:
+//    characteristic length l = 0.46 m on a 4 m square; bonded, Galerkin,
+//    8 x 8 cells),
+//  - the paper's example 2 on a tensionless half-space (Galerkin, active
+//    set): the ends lift off,
+//  - the rigid disk under an eccentric load e = 0.4 a > a/3 (tensionless):
+//    the far side lifts off,
+//  - example 2 on a quarter (Symmetry = xy: only w = 1 is a rigid motion)
+//    and the eccentric disk on a half (Symmetry = y: w = 1 and x).
+// The scenes use the serendipity element, so both solvers state contact in
+// the positive pressure basis (foundation_operator.h): q = T qt. Same w,
+// nodal q and coefficients qt to 1e-8 relative to their largest values, the
+// same active set, reported contact (where q > 0) and number of active-set
+// steps, equilibrium (sum of the nodal forces M T qt = applied load) to
+// 1e-10, the contact conditions to 1e-8, and the CG iteration counts below a
+// bound. Then the failures: the shipped flexible square
+// (D = 1e-13 kNm, 1e13 times more flexible than the soil at its scale: the
+// pressures cannot resolve the soil's settlement) and a CG limited to one
+// iteration must throw the solver's error, not return an inaccurate answer.
+
+#include <plate_on_halfspace/iterative_contact_solver.h>
+#include <plate_on_halfspace/plate_on_halfspace_problem.h>
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+
+#include "../tests.h"
+
+#include "../test_tools.h"
+
+using namespace PlateOnHalfspace;
+using namespace TestTools;
+
+namespace
+{
+  double
+  relative_difference(const Vector<double> &a, const Vector<double> &b)
+  {
+    Vector<double> difference(a);
+    difference -= b;
+    return difference.linfty_norm() / b.linfty_norm();
+  }
+
+  ContactState
+  solve_iteratively(const PlateOnHalfspaceProblem  &problem,
+                    const bool                      tensionless,
+                    const ConjugateGradientControl &control)
+  {
+    Parameters::Contact contact;
+    contact.method         = Parameters::Contact::Method::active_set;
+    contact.max_iterations = 100;
+    contact.tolerance      = 1e-10;
+    std::ostringstream             log;
+    const DenseGalerkinFlexibility flexibility(problem.foundation());
+    const IterativeContactSolver solver(contact, tensionless, control, 0, log);
+    return solver.solve(problem.plate(), problem.foundation(), flexibility, {});
+  }
+
+  void
+  compare(const std::string &name,
+          const std::string &scene,
+          const std::string &extra,
+          const bool         tensionless,
+          const unsigned int cg_iteration_bound)
+  {
+    const auto               problem = solve_scene(scene, extra);
+    const ContactState      &direct  = problem->contact_state();
+    ConjugateGradientControl control;
+    control.tolerance = 1e-12;
+    const ContactState iterated =
+      solve_iteratively(*problem, tensionless, control);
+
+    const unsigned int n_contact =
+      std::count(iterated.in_contact.begin(), iterated.in_contact.end(), true);
+    const unsigned int n_active =
+      std::count(iterated.active_set.begin(), iterated.active_set.end(), true);
+    deallog << name << ": " << iterated.in_contact.size()
+            << " foundation nodes, " << n_contact << " in contact (" << n_active
+            << " in the active set), " << iterated.iterations
+            << " contact iterations" << std::endl;
+    AssertThrow(iterated.converged, ExcMessage("not converged"));
+    const bool same_set = (iterated.in_contact == direct.in_contact) &&
+                          (iterated.active_set == direct.active_set) &&
+                          (iterated.iterations == direct.iterations);
+    deallog << "  same contact set and iterations as the direct solver: "
+            << (same_set ? "ok" : "FAILED") << std::endl;
+    AssertThrow(same_set, ExcMessage("contact set differs"));
+
+    const double dw = relative_difference(iterated.w, direct.w);
+    const double dq = relative_difference(iterated.q, direct.q);
+    const double dc = relative_difference(iterated.pressure_coefficients,
+                                          direct.pressure_coefficients);
+    deallog << "  w, q and the pressure coefficients as the direct solver's "
+               "to 1e-8: "
+            << (dw <= 1e-8 && dq <= 1e-8 && dc <= 1e-8 ? "ok" : "FAILED")
+            << std::endl;
+    AssertThrow(dw <= 1e-8 && dq <= 1e-8 && dc <= 1e-8,
+                ExcMessage("w differs by " + std::to_string(dw) + ", q by " +
+                           std::to_string(dq) + ", the coefficients by " +
+                           std::to_string(dc)));
+    // the nodal q are the coefficients' values (T qt)
+    Vector<double> nodal_q;
+    problem->foundation().nodal_pressure(iterated.pressure_coefficients,
+                                         nodal_q);
+    AssertThrow(relative_difference(nodal_q, iterated.q) == 0.,
+                ExcMessage("q is not the nodal pressure of the coefficients"));
+
+    Vector<double> forces;
+    problem->foundation().nodal_forces(iterated.pressure_coefficients, forces);
+    const double contact_force =
+      std::accumulate(forces.begin(), forces.end(), 0.);
+    const double applied     = problem->plate().applied_load();
+    const double equilibrium = std::abs(contact_force - applied) / applied;
+    deallog << "  equilibrium to 1e-10: "
+            << (equilibrium <= 1e-10 ? "ok" : "FAILED") << std::endl;
+    AssertThrow(equilibrium <= 1e-10, ExcMessage("equilibrium"));
+    if (tensionless)
+      {
+        const bool exact = iterated.complementarity_violation <= 1e-8 &&
+                           iterated.tensile_nodes == 0;
+        deallog << "  contact conditions to 1e-8: " << (exact ? "ok" : "FAILED")
+                << std::endl;
+        AssertThrow(exact, ExcMessage("contact conditions"));
+      }
+
+    AssertThrow(iterated.linear_solves.size() == iterated.iterations,
+                ExcMessage("one linear solve per contact iteration"));
+    for (const auto &solve : iterated.linear_solves)
+      {
+        const bool ok = solve.iterations <= cg_iteration_bound &&
+                        solve.relative_residual <= control.tolerance;
+        std::ostringstream tolerance;
+        tolerance << control.tolerance;
+        deallog << "  contact iteration " << solve.contact_iteration
+                << ": conjugate gradient iterations at most "
+                << cg_iteration_bound << ", relative residual at most "
+                << tolerance.str() << ": " << (ok ? "ok" : "FAILED")
+                << std::endl;
+        AssertThrow(ok,
+                    ExcMessage(std::to_string(solve.iterations) +
+                               " iterations, residual " +
+                               std::to_string(solve.relative_residual)));
+      }
+  }
+} // namespace
+
+int
+main()
+{
+  initlog();
+  const std::string galerkin_active_set =
+    "subsection Discretization\n set Flexibility = galerkin\nend\n"
+    "subsection Contact\n set Method = active set\nend\n";
+  const std::string eccentric_disk =
+    "subsection Foundation\n set Contact = tensionless\nend\n"
+    "subsection Loads\n set Point loads = 0.4,0,1000\nend\n"
+    "subsection Adaptivity\n set Cycles = 1\nend\n";
+
+  compare("thin slab on the flexible square, bonded, 8x8",
+          "flexible-square.prm",
+          "subsection Plate\n set Thickness = 0.1\n"
+          " set Young's modulus = 3e7\nend\n"
+          "subsection Discretization\n set Flexibility = galerkin\n"
+          " set Subdivisions x = 8\n set Subdivisions y = 8\nend\n",
+          false,
+          40);
+  compare(
+    "example 2, tensionless", "example2.prm", galerkin_active_set, true, 60);
+  compare("rigid disk, e = 0.4 a, tensionless",
+          "rigid-disk.prm",
+          eccentric_disk,
+          true,
+          60);
+  compare("example 2, tensionless, quarter",
+          "example2.prm",
+          galerkin_active_set +
+            "subsection Discretization\n set Symmetry = xy\nend\n",
+          true,
+          60);
+  compare("rigid disk, e = 0.4 a, tensionless, half",
+          "rigid-disk.prm",
+          eccentric_disk +
+            "subsection Discretization\n set Symmetry = y\nend\n",
+          true,
+          60);
+
+  // Through the application (Contact/Solver = iterative, default CG
+  // tolerance 1e-10) over two adaptive cycles: the same summaries.
+  {
+    const std::string adaptive =
+      galerkin_active_set + "subsection Adaptivity\n set Cycles = 2\nend\n";
+    const auto direct = solve_scene("example2.prm", adaptive);
+    const auto iterative =
+      solve_scene("example2.prm",
+                  adaptive +
+                    "subsection Contact\n set Solver = iterative\nend\n");
+    double worst = 0;
+    for (unsigned int c = 0; c < 2; ++c)
+      {
+        const CycleSummary &a = direct->summaries()[c],
+                           &b = iterative->summaries()[c];
+        AssertThrow(a.contact_nodes == b.contact_nodes &&
+                      a.contact_iterations == b.contact_iterations,
+                    ExcMessage("contact sets differ"));
+        const auto difference = [&worst](const double x, const double y) {
+          worst = std::max(worst, std::abs(x - y) / std::abs(x));
+        };
+        difference(a.contact_force, b.contact_force);
+        difference(a.max_w, b.max_w);
+        difference(a.max_q, b.max_q);
+        difference(a.max_mx, b.max_mx);
+        for (unsigned int p = 0; p < a.probes.size(); ++p)
+          {
+            difference(a.probes[p].w, b.probes[p].w);
+            difference(a.probes[p].mx, b.probes[p].mx);
+          }
+      }
+    deallog << "application, Contact/Solver = iterative, 2 cycles: same "
+               "contact sets, summaries and probes to 1e-7: "
+            << (worst <= 1e-7 ? "ok" : "FAILED") << std::endl;
+    AssertThrow(worst <= 1e-7, ExcMessage(std::to_string(worst)));
+  }
+
+  // A CG that cannot reach the tolerance fails loudly.
+  const auto expect_error = [](const std::string              &name,
+                               const PlateOnHalfspaceProblem  &problem,
+                               const bool                      tensionless,
+                               const ConjugateGradientControl &control) {
+    try
+      {
+        solve_iteratively(problem, tensionless, control);
+        deallog << name << ": no error: FAILED" << std::endl;
+        AssertThrow(false, ExcMessage("no error"));
+      }
+    catch (const ExceptionBase &error)
+      {
+        const std::string message = short_error_message(error);
+        const std::string expected =
+          "The conjugate gradients on the contact pressures did not converge";
+        const bool clear = message.find(expected) == 0;
+        deallog << name << ": error '" << expected
+                << "': " << (clear ? "ok" : "FAILED") << std::endl;
+        AssertThrow(clear, ExcMessage(message));
+      }
+  };
+  ConjugateGradientControl one_iteration;
+  one_iteration.max_iterations = 1;
+  expect_error("example 2, one CG iteration",
+               *solve_scene("example2.prm", galerkin_active_set),
+               true,
+               one_iteration);
+  expect_error("flexible square (D = 1e-13 kNm), bonded",
+               *solve_scene("flexible-square.prm",
+                            "subsection Discretization\n"
+                            " set Flexibility = galerkin\nend\n"),
+               false,
+               ConjugateGradientControl());
+}
