@@ -6,6 +6,7 @@
 #include <plate_on_halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/condition_estimate.h>
 #include <plate_on_halfspace/foundation_operator.h>
+#include <plate_on_halfspace/hierarchical_galerkin_operator.h>
 
 namespace PlateOnHalfspace
 {
@@ -217,7 +218,13 @@ namespace PlateOnHalfspace
       boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
                                       parameters.foundation.poissons_ratio);
     // Storage = auto and dense both mean the dense LAPACK operators; the
-    // parameter parser rejects the compressed storage this version lacks.
+    // parameter parser allows hierarchical only with the Galerkin operator
+    // and the iterative contact solver.
+    if (parameters.foundation_operator.storage == "hierarchical")
+      return std::make_unique<HierarchicalGalerkinOperator>(
+        alpha,
+        parameters.discretization.singular_quadrature_order,
+        parameters.foundation_operator.tolerance);
     if (parameters.discretization.flexibility ==
         Parameters::Discretization::Flexibility::galerkin)
       return std::make_unique<BoussinesqGalerkinOperator>(

@@ -220,13 +220,15 @@ namespace PlateOnHalfspace
       prm.declare_entry("Storage",
                         "auto",
                         Patterns::Selection("auto|dense|hierarchical"),
-                        "How the dense half-space blocks are stored: dense "
-                        "(LAPACK), hierarchical (compressed) or auto.");
+                        "How the half-space block is stored: dense (LAPACK), "
+                        "hierarchical (an H-matrix of hmat-oss, compressed "
+                        "to Tolerance; needs Contact/Solver = iterative and "
+                        "Flexibility = galerkin) or auto (= dense).");
       prm.declare_entry("Tolerance",
                         "1e-6",
                         Patterns::Double(0, 1),
-                        "Relative accuracy of compressed blocks "
-                        "(Storage = hierarchical).");
+                        "Relative accuracy of the compressed blocks and of "
+                        "the H-Cholesky factor (Storage = hierarchical).");
       prm.leave_subsection();
     }
 
@@ -237,9 +239,6 @@ namespace PlateOnHalfspace
       storage   = prm.get("Storage");
       tolerance = prm.get_double("Tolerance");
       prm.leave_subsection();
-      require(storage != "hierarchical",
-              "Foundation operator/Storage = hierarchical is not available "
-              "in this version; use dense or auto (= dense).");
       require(tolerance > 0,
               "Foundation operator/Tolerance must lie in (0, 1]" +
                 got(tolerance) + ".");
@@ -661,6 +660,11 @@ namespace PlateOnHalfspace
               "Discretization/Flexibility = collocation needs axis-aligned "
               "rectangular cells (the paper's closed-form integral); use "
               "galerkin for Plate/Shape = disk.");
+    if (foundation_operator.storage == "hierarchical")
+      require(contact.solver == Parameters::Contact::Solver::iterative,
+              "Foundation operator/Storage = hierarchical needs Contact/"
+              "Solver = iterative (the direct solver forms the dense block "
+              "the hierarchical matrix avoids).");
     if (contact.solver == Parameters::Contact::Solver::iterative)
       {
         require(discretization.flexibility ==

@@ -150,7 +150,8 @@ namespace PlateOnHalfspace
           << summary.n_dofs << " dofs, " << summary.n_foundation_dofs
           << " foundation nodes" << std::endl;
 
-    check_dense_foundation_memory(summary.n_foundation_dofs);
+    if (parameters.foundation_operator.storage != "hierarchical")
+      check_dense_foundation_memory(summary.n_foundation_dofs);
     LAPACKFullMatrix<double> plate_stiffness;
     Vector<double>           plate_load;
     // The iterative solver works on the sparse plate: no condensation.

@@ -1,0 +1,138 @@
+// Foundation operator/Storage = hierarchical (the H-matrix Galerkin
+// operator, hierarchical_galerkin_operator.h) with Contact/Solver =
+// iterative against the dense Galerkin operator with the same solver:
+// - example 2 made tensionless (Galerkin, active set; quarter, two global
+//   cycles) and the rigid disk bonded (quarter, two adaptive cycles): the
+//   same contact set, and every probe's w, Mx and q within 10 times the
+//   tolerance of the dense answer relative to the field's scale (max |w|,
+//   max |Mx|, max q) at the default tolerance 1e-6 (measured: 3.6e-8 for
+//   example 2, 1.9e-6 for the stiff disk, whose rigid-body answer
+//   amplifies the product error);
+// - a tolerance sweep on example 2: the difference from dense falls with
+//   the tolerance;
+// - an absurd tolerance (1) and the direct solver are refused with clear
+//   messages.
+
+#include <plate_on_halfspace/input_checks.h>
+#include <plate_on_halfspace/plate_on_halfspace_problem.h>
+
+#include "../tests.h"
+
+#include "../test_tools.h"
+
+using namespace PlateOnHalfspace;
+using namespace TestTools;
+
+namespace
+{
+  std::unique_ptr<PlateOnHalfspaceProblem>
+  solve(const std::string &scene,
+        const std::string &extra,
+        const std::string &storage,
+        const double       tolerance)
+  {
+    std::ostringstream settings;
+    settings << extra << "subsection Discretization\n set Symmetry = xy\n"
+             << " set Flexibility = galerkin\nend\n"
+             << "subsection Contact\n set Solver = iterative\nend\n"
+             << "subsection Foundation operator\n set Storage = " << storage
+             << "\n set Tolerance = " << tolerance << "\nend\n";
+    return solve_scene(scene, settings.str());
+  }
+
+  /** Largest difference of the probes, relative to each field's scale. */
+  double
+  probe_difference(const CycleSummary &a, const CycleSummary &b)
+  {
+    const double w_scale = std::max(std::abs(a.max_w), std::abs(a.min_w));
+    const double m_scale = std::max(std::abs(a.max_mx), std::abs(a.min_mx));
+    const double q_scale = std::max(std::abs(a.max_q), std::abs(a.min_q));
+    double       largest = 0;
+    for (unsigned int p = 0; p < a.probes.size(); ++p)
+      largest = std::max({largest,
+                          std::abs(a.probes[p].w - b.probes[p].w) / w_scale,
+                          std::abs(a.probes[p].mx - b.probes[p].mx) / m_scale,
+                          std::abs(a.probes[p].q - b.probes[p].q) / q_scale});
+    return largest;
+  }
+
+  void
+  compare(const std::string &label,
+          const std::string &scene,
+          const std::string &extra)
+  {
+    const auto dense             = solve(scene, extra, "dense", 1e-6);
+    const auto hierarchical      = solve(scene, extra, "hierarchical", 1e-6);
+    const CycleSummary &d        = dense->summaries().back();
+    const CycleSummary &h        = hierarchical->summaries().back();
+    const bool          same_set = dense->contact_state().active_set ==
+                          hierarchical->contact_state().active_set;
+    const double difference = probe_difference(d, h);
+    deallog << label << ": " << h.n_foundation_dofs << " foundation nodes, "
+            << h.foundation_storage << " storage uses "
+            << (h.foundation_memory_bytes < d.foundation_memory_bytes ? "less" :
+                                                                        "more")
+            << " memory than dense; same contact set: "
+            << (same_set ? "yes" : "NO") << "; probes within 1e-5 of dense: "
+            << (difference <= 1e-5 ? "ok" : "FAILED") << std::endl;
+    AssertThrow(same_set && difference <= 1e-5 &&
+                  h.foundation_storage == "hierarchical",
+                ExcMessage(label + ": differs from dense"));
+  }
+} // namespace
+
+int
+main()
+{
+  initlog();
+  const std::string example2 =
+    "subsection Adaptivity\n set Cycles = 2\n set Refinement = global\nend\n"
+    "subsection Contact\n set Method = active set\nend\n";
+  compare("example 2, tensionless", "example2.prm", example2);
+  compare("rigid disk, bonded",
+          "rigid-disk.prm",
+          "subsection Adaptivity\n set Cycles = 2\nend\n");
+
+  // tolerance sweep
+  const auto   dense    = solve("example2.prm", example2, "dense", 1e-6);
+  double       previous = 1;
+  unsigned int falls    = 0;
+  for (const double tolerance : {1e-2, 1e-4, 1e-6, 1e-8})
+    {
+      const double difference = probe_difference(
+        dense->summaries().back(),
+        solve("example2.prm", example2, "hierarchical", tolerance)
+          ->summaries()
+          .back());
+      falls += (difference < previous);
+      previous = difference;
+    }
+  deallog << "tolerance 1e-2 ... 1e-8: the difference from dense falls at "
+             "every step: "
+          << (falls == 4 ? "ok" : "FAILED") << std::endl;
+  AssertThrow(falls == 4, ExcMessage("tolerance sweep"));
+
+  // refusals
+  for (const auto &[label, extra] :
+       std::vector<std::pair<std::string, std::string>>{
+         {"tolerance 1",
+          "subsection Foundation operator\n set Storage = hierarchical\n"
+          " set Tolerance = 1\nend\n"
+          "subsection Discretization\n set Flexibility = galerkin\nend\n"
+          "subsection Contact\n set Solver = iterative\nend\n"},
+         {"direct solver",
+          "subsection Foundation operator\n set Storage = hierarchical\n"
+          "end\n"}})
+    try
+      {
+        solve_scene("rigid-disk.prm", extra);
+        AssertThrow(false, ExcMessage(label + " was not refused"));
+      }
+    catch (const ExcMessage &error)
+      {
+        const std::string message = short_error_message(error);
+        AssertThrow(message.find("Foundation operator/") != std::string::npos,
+                    ExcMessage(label + ": unclear message: " + message));
+        deallog << label << ": refused: " << message << std::endl;
+      }
+}
