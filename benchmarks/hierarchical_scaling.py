@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""Scale: the hierarchical foundation operator with the iterative contact
+solver against the dense operator with the direct solver (issue 6).
+
+    python3 benchmarks/hierarchical_scaling.py build/plate-on-halfspace [MAX_LEVEL [DENSE_MAX_LEVEL]]
+
+Scenes: parameters/example2.prm made Galerkin + active set (tensionless,
+lifts off) and parameters/example2-bonded.prm (bonded), both solved on a
+quarter (symmetry xy), refined globally: Initial refinements = 0 ...
+MAX_LEVEL (default 4) gives 96, 341, 1281, 4961, 19521, 77441 foundation
+DOFs. The dense path runs up to DENSE_MAX_LEVEL (default 3: its 7 n^2
+doubles are 21 GB at level 4). Per run: n, the time split of summary.json
+(plate assembly; foundation operator = H-matrix assembly with ACA+
+compression and H-Cholesky, or dense assembly and Cholesky/condensation;
+contact solve = all active-set iterations; total), the peak memory of the
+process (getrusage of the child), CG iterations where reported, and the
+largest difference of the probes from the dense answer relative to each
+field's scale. Fits the growth exponent of the total time of each path
+over its runs with n >= 1000. Writes output/benchmarks/hierarchical_scaling
+.{md,csv,png}. A benchmark, not a test: timings depend on the machine.
+"""
+
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SCENES = {
+    "tensionless": ("parameters/example2.prm",
+                    "subsection Discretization\n set Flexibility = galerkin\n"
+                    "end\nsubsection Contact\n set Method = active set\nend\n"),
+    "bonded": ("parameters/example2-bonded.prm",
+               "subsection Discretization\n set Flexibility = galerkin\n"
+               "end\n"),
+}
+PATHS = {
+    "hierarchical": "subsection Foundation operator\n set Storage = "
+                    "hierarchical\nend\nsubsection Contact\n set Solver = "
+                    "iterative\nend\n",
+    "dense": "subsection Foundation operator\n set Storage = dense\nend\n"
+             "subsection Contact\n set Solver = direct\nend\n",
+}
+
+
+def run(executable, scene, path, level, out):
+    directory = os.path.join(out, "runs", f"{scene}-{path}-{level}")
+    os.makedirs(directory, exist_ok=True)
+    prm = os.path.join(directory, "scene.prm")
+    base, extra = SCENES[scene]
+    with open(prm, "w") as f:
+        f.write(f"include {os.path.join(ROOT, base)}\n"
+                f"set Output directory = {directory}\n{extra}{PATHS[path]}"
+                "subsection Discretization\n set Symmetry = xy\n"
+                f" set Initial refinements = {level}\nend\n"
+                "subsection Adaptivity\n set Cycles = 1\n"
+                " set Max cells = 10000000\nend\n"
+                "subsection Output\n set VTU = false\n set Verbosity = 1\n"
+                "end\n")
+    start = time.time()
+    log = open(os.path.join(directory, "log.txt"), "w")
+    process = subprocess.Popen([executable, prm], stdout=log,
+                               stderr=subprocess.STDOUT)
+    _, status, usage = os.wait4(process.pid, 0)
+    wall = time.time() - start
+    if status != 0:
+        print(f"  {scene} {path} level {level}: failed, see {directory}")
+        return None
+    summary = json.load(open(os.path.join(directory, "summary.json")))
+    c = summary["cycles"][-1]
+    text = open(os.path.join(directory, "log.txt")).read()
+    cg = [int(t.split()[0]) for t in text.split("conjugate gradients ")[1:]]
+    return {"scene": scene, "path": path, "level": level,
+            "n": c["n_foundation_dofs"], "assembly": c["assembly_time_s"],
+            "foundation": c["foundation_time_s"], "solve": c["solve_time_s"],
+            "total": wall, "peak_MB": usage.ru_maxrss / 1024.,
+            "contact_its": c["contact_iterations"],
+            "cg": "/".join(map(str, cg)), "cycle": c}
+
+
+def difference(a, b):
+    scales = {"w": max(abs(a["max_w"]), abs(a["min_w"])),
+              "Mx": max(abs(a["max_Mx"]), abs(a["min_Mx"])),
+              "q": max(abs(a["max_q"]), abs(a["min_q"]))}
+    return max(abs(pa[k] - pb[k]) / scales[k]
+               for pa, pb in zip(a["probes"], b["probes"]) for k in scales)
+
+
+def slope(rows):
+    points = [(math.log(r["n"]), math.log(r["total"])) for r in rows
+              if r["n"] >= 1000]
+    if len(points) < 2:
+        return None
+    mx = sum(p[0] for p in points) / len(points)
+    my = sum(p[1] for p in points) / len(points)
+    return sum((x - mx) * (y - my) for x, y in points) / \
+        sum((x - mx) ** 2 for x, _ in points)
+
+
+def main():
+    if len(sys.argv) < 2:
+        print(__doc__)
+        sys.exit(2)
+    executable = os.path.abspath(sys.argv[1])
+    max_level = int(sys.argv[2]) if len(sys.argv) > 2 else 4
+    dense_max = int(sys.argv[3]) if len(sys.argv) > 3 else 3
+    out = os.path.join(ROOT, "output", "benchmarks")
+    os.makedirs(out, exist_ok=True)
+    rows = []
+    for scene in SCENES:
+        for level in range(max_level + 1):
+            dense = run(executable, scene, "dense", level, out) \
+                if level <= dense_max else None
+            hier = run(executable, scene, "hierarchical", level, out)
+            for r in (dense, hier):
+                if r:
+                    r["difference"] = difference(dense["cycle"], r["cycle"]) \
+                        if dense else None
+                    rows.append(r)
+                    print(f"{scene:11s} {r['path']:12s} n = {r['n']:6d}: "
+                          f"total {r['total']:8.2f} s, foundation "
+                          f"{r['foundation']:8.2f} s, solve {r['solve']:7.2f}"
+                          f" s, peak {r['peak_MB']:7.0f} MB", flush=True)
+    lines = ["# Hierarchical against dense", "",
+             "Command: `python3 benchmarks/hierarchical_scaling.py "
+             f"build/plate-on-halfspace {max_level} {dense_max}`", "",
+             "| scene | path | n | plate assembly [s] | foundation operator "
+             "[s] | contact solve [s] | total [s] | peak memory [MB] | "
+             "contact its | CG its per contact it | probes vs dense |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        d = "-" if r["difference"] is None else f"{r['difference']:.1e}"
+        lines.append(f"| {r['scene']} | {r['path']} | {r['n']} | "
+                     f"{r['assembly']:.2f} | {r['foundation']:.2f} | "
+                     f"{r['solve']:.2f} | {r['total']:.2f} | "
+                     f"{r['peak_MB']:.0f} | {r['contact_its']} | "
+                     f"{r['cg'] or '-'} | {d} |")
+    lines += ["", "Growth exponent of the total time (least squares over "
+              "n >= 1000):", ""]
+    for scene in SCENES:
+        for path in PATHS:
+            s = slope([r for r in rows if r["scene"] == scene and
+                       r["path"] == path])
+            lines.append(f"- {scene}, {path}: "
+                         f"{'-' if s is None else f'{s:.2f}'}")
+    with open(os.path.join(out, "hierarchical_scaling.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    with open(os.path.join(out, "hierarchical_scaling.csv"), "w",
+              newline="") as f:
+        keys = [k for k in rows[0] if k != "cycle"]
+        writer = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
+        writer.writeheader()
+        writer.writerows(rows)
+    data = os.path.join(out, "hierarchical_scaling.dat")
+    series = [(s, p) for s in SCENES for p in PATHS]
+    with open(data, "w") as f:
+        for s, p in series:
+            f.write(f'"{s}, {p}"\n')
+            for r in rows:
+                if r["scene"] == s and r["path"] == p:
+                    f.write(f"{r['n']} {r['total']} {r['peak_MB']}\n")
+            f.write("\n\n")
+    script = [
+        "set terminal pngcairo size 1100,450 font ',10'",
+        f"set output '{os.path.join(out, 'hierarchical_scaling.png')}'",
+        "set multiplot layout 1,2", "set logscale xy", "set grid",
+        "set key top left", "set xlabel 'foundation DOFs n'",
+        "set ylabel 'wall time [s]'", "set title 'total time'",
+        "plot " + ", ".join(f"'{data}' index {i} using 1:2 with linespoints "
+                            f"title '{s}, {p}'"
+                            for i, (s, p) in enumerate(series)),
+        "set ylabel 'peak memory [MB]'", "set title 'peak memory'",
+        "plot " + ", ".join(f"'{data}' index {i} using 1:3 with linespoints "
+                            f"title '{s}, {p}'"
+                            for i, (s, p) in enumerate(series)),
+        "unset multiplot"]
+    subprocess.run(["gnuplot"], input="\n".join(script), text=True)
+    print(f"wrote {out}/hierarchical_scaling.md, .csv, .png")
+
+
+if __name__ == "__main__":
+    main()
