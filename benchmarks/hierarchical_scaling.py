@@ -2,7 +2,7 @@
 """Scale: the hierarchical foundation operator with the iterative contact
 solver against the dense operator with the direct solver (issue 6).
 
-    python3 benchmarks/hierarchical_scaling.py build/plate-on-halfspace [MAX_LEVEL [DENSE_MAX_LEVEL]]
+    python3 benchmarks/hierarchical_scaling.py build/plate-on-halfspace [MAX_LEVEL [DENSE_MAX_LEVEL [SCENE]]]
 
 Scenes: parameters/example2.prm made Galerkin + active set (tensionless,
 lifts off) and parameters/example2-bonded.prm (bonded), both solved on a
@@ -17,7 +17,8 @@ process (getrusage of the child), CG iterations where reported, and the
 largest difference of the probes from the dense answer relative to each
 field's scale. Fits the growth exponent of the total time of each path
 over its runs with n >= 1000. Writes output/benchmarks/hierarchical_scaling
-.{md,csv,png}. A benchmark, not a test: timings depend on the machine.
+.{md,csv,png} (with -SCENE before the suffix when only SCENE, tensionless
+or bonded, is run). A benchmark, not a test: timings depend on the machine.
 """
 
 import csv
@@ -107,10 +108,16 @@ def main():
     executable = os.path.abspath(sys.argv[1])
     max_level = int(sys.argv[2]) if len(sys.argv) > 2 else 4
     dense_max = int(sys.argv[3]) if len(sys.argv) > 3 else 3
+    only = sys.argv[4] if len(sys.argv) > 4 else None
+    if only is not None and only not in SCENES:
+        print(__doc__)
+        sys.exit(2)
+    scenes = [only] if only else list(SCENES)
+    name = "hierarchical_scaling" + (f"-{only}" if only else "")
     out = os.path.join(ROOT, "output", "benchmarks")
     os.makedirs(out, exist_ok=True)
     rows = []
-    for scene in SCENES:
+    for scene in scenes:
         for level in range(max_level + 1):
             dense = run(executable, scene, "dense", level, out) \
                 if level <= dense_max else None
@@ -126,7 +133,8 @@ def main():
                           f" s, peak {r['peak_MB']:7.0f} MB", flush=True)
     lines = ["# Hierarchical against dense", "",
              "Command: `python3 benchmarks/hierarchical_scaling.py "
-             f"build/plate-on-halfspace {max_level} {dense_max}`", "",
+             f"build/plate-on-halfspace {max_level} {dense_max}"
+             f"{' ' + only if only else ''}`", "",
              "| scene | path | n | plate assembly [s] | foundation operator "
              "[s] | contact solve [s] | total [s] | peak memory [MB] | "
              "contact its | CG its per contact it | probes vs dense |",
@@ -140,23 +148,23 @@ def main():
                      f"{r['cg'] or '-'} | {d} |")
     lines += ["", "Growth exponent of the total time (least squares over "
               "n >= 1000):", ""]
-    for scene in SCENES:
+    for scene in scenes:
         for path in PATHS:
             s = slope([r for r in rows if r["scene"] == scene and
                        r["path"] == path])
             lines.append(f"- {scene}, {path}: "
                          f"{'-' if s is None else f'{s:.2f}'}")
-    with open(os.path.join(out, "hierarchical_scaling.md"), "w") as f:
+    with open(os.path.join(out, name + ".md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
-    with open(os.path.join(out, "hierarchical_scaling.csv"), "w",
+    with open(os.path.join(out, name + ".csv"), "w",
               newline="") as f:
         keys = [k for k in rows[0] if k != "cycle"]
         writer = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
         writer.writeheader()
         writer.writerows(rows)
-    data = os.path.join(out, "hierarchical_scaling.dat")
-    series = [(s, p) for s in SCENES for p in PATHS]
+    data = os.path.join(out, name + ".dat")
+    series = [(s, p) for s in scenes for p in PATHS]
     with open(data, "w") as f:
         for s, p in series:
             f.write(f'"{s}, {p}"\n')
@@ -166,7 +174,7 @@ def main():
             f.write("\n\n")
     script = [
         "set terminal pngcairo size 1100,450 font ',10'",
-        f"set output '{os.path.join(out, 'hierarchical_scaling.png')}'",
+        f"set output '{os.path.join(out, name + '.png')}'",
         "set multiplot layout 1,2", "set logscale xy", "set grid",
         "set key top left", "set xlabel 'foundation DOFs n'",
         "set ylabel 'wall time [s]'", "set title 'total time'",
@@ -179,7 +187,7 @@ def main():
                             for i, (s, p) in enumerate(series)),
         "unset multiplot"]
     subprocess.run(["gnuplot"], input="\n".join(script), text=True)
-    print(f"wrote {out}/hierarchical_scaling.md, .csv, .png")
+    print(f"wrote {out}/{name}.md, .csv, .png")
 
 
 if __name__ == "__main__":
