@@ -319,17 +319,21 @@ namespace PlateOnHalfspace
   {
     ContactState state = solve_in_contact_basis(
       plate_stiffness, plate_load, foundation, space, initial_contact);
+    express_in_nodal_values(foundation, state);
+    return state;
+  }
+
+  void
+  express_in_nodal_values(const FoundationOperator &foundation,
+                          ContactState             &state)
+  {
     state.pressure_coefficients = state.q;
     foundation.nodal_pressure(state.pressure_coefficients, state.q);
-    // Reported contact is where the pressure acts: in the positive basis a
-    // mid-side node whose own coefficient is zero still carries the
-    // pressure of its in-contact end nodes (q_m = alpha (qt_c0 + qt_c1)).
     state.active_set                = state.in_contact;
     const double pressure_tolerance = 1e-12 * max_abs(state.q);
     for (unsigned int i = 0; i < state.q.size(); ++i)
       if (state.q[i] > pressure_tolerance)
         state.in_contact[i] = true;
-    return state;
   }
 
   ContactState

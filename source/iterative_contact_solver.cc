@@ -595,13 +595,7 @@ namespace PlateOnHalfspace
     // active set, and the reported contact where the pressure acts.
     ContactState state = solve_in_contact_basis(
       plate, foundation, flexibility, initial_contact, plate_solution);
-    state.pressure_coefficients = state.q;
-    foundation.nodal_pressure(state.pressure_coefficients, state.q);
-    state.active_set                = state.in_contact;
-    const double pressure_tolerance = 1e-12 * max_abs(state.q);
-    for (unsigned int i = 0; i < state.q.size(); ++i)
-      if (state.q[i] > pressure_tolerance)
-        state.in_contact[i] = true;
+    express_in_nodal_values(foundation, state);
     return state;
   }
 

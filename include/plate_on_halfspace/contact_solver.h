@@ -98,6 +98,17 @@ namespace PlateOnHalfspace
                               ContactState            &state);
 
   /**
+   * Finish a solve done in the contact basis (q holds the coefficients):
+   * store them as pressure_coefficients, make q the nodal values, keep the
+   * active set, and report contact where the pressure acts (the active set
+   * and every node with q > 0: in the positive basis a mid-side node whose
+   * own coefficient is zero still carries q_m = alpha (qt_c0 + qt_c1)).
+   */
+  void
+  express_in_nodal_values(const FoundationOperator &foundation,
+                          ContactState             &state);
+
+  /**
    * The set update of the primal-dual active set method (formulation.md,
    * "Tensionless contact"; deal.II step-41): C = {i : q_i + c g_i > 0}.
    * On C the gap is zero and off C the pressure is, so the test reads
