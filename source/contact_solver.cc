@@ -128,6 +128,30 @@ namespace PlateOnHalfspace
   }
 
   bool
+  ActiveSetUpdate::step(const Vector<double> &q,
+                        const Vector<double> &gap,
+                        const double          q_tolerance,
+                        const double          g_tolerance,
+                        const unsigned int    iteration,
+                        const unsigned int    verbosity,
+                        std::ostream         &log)
+  {
+    const unsigned int n_changes =
+      find_violations(q, gap, q_tolerance, g_tolerance);
+    if (verbosity > 0)
+      log << "   contact iteration " << iteration << ": nodes in contact "
+          << n_contact_nodes() << ", changes " << n_changes
+          << (single_pivot_mode ? " (single pivots)" : "") << std::endl;
+    if (n_changes == 0)
+      return true;
+    if (detect_cycle() && verbosity > 0)
+      log << "   contact iteration " << iteration
+          << ": cycle detected, switching to single pivots" << std::endl;
+    advance();
+    return false;
+  }
+
+  bool
   ActiveSetUpdate::detect_cycle()
   {
     visited.insert(active);
@@ -455,23 +479,17 @@ namespace PlateOnHalfspace
         const double q_scale   = std::max(max_abs(state.q), 1e-300);
         const double gap_scale = std::max(max_abs(plate), 1e-300);
         // Tolerances below which a sign is rounding, not a violation.
-        const unsigned int n_changes = active_set.find_violations(
-          state.q, state.gap, 1e-12 * q_scale, 1e-12 * gap_scale);
-        if (verbosity > 0)
-          log << "   contact iteration " << state.iterations
-              << ": nodes in contact " << active_set.n_contact_nodes()
-              << ", changes " << n_changes
-              << (active_set.single_pivots() ? " (single pivots)" : "")
-              << std::endl;
-        if (n_changes == 0)
+        if (active_set.step(state.q,
+                            state.gap,
+                            1e-12 * q_scale,
+                            1e-12 * gap_scale,
+                            state.iterations,
+                            verbosity,
+                            log))
           {
             state.converged = true;
             break;
           }
-        if (active_set.detect_cycle() && verbosity > 0)
-          log << "   contact iteration " << state.iterations
-              << ": cycle detected, switching to single pivots" << std::endl;
-        active_set.advance();
       }
     state.iterations = std::min(state.iterations, contact.max_iterations);
     evaluate_conditions(foundation, state);

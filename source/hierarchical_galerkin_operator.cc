@@ -44,10 +44,6 @@ namespace PlateOnHalfspace
     use_positive_pressure_basis(space);
     flexibility.build(space, alpha, singular_order);
     flexibility.factorize();
-    contact_index.clear();
-    for (unsigned int i = 0; i < in_contact.size(); ++i)
-      if (in_contact[i])
-        contact_index.push_back(i);
   }
 
   void

@@ -759,23 +759,17 @@ namespace PlateOnHalfspace
         const double accuracy  = std::max(1e-12, control.tolerance);
         const double q_scale   = std::max(max_abs(state.q), 1e-300);
         const double gap_scale = std::max(max_abs(plate_settlement), 1e-300);
-        const unsigned int n_changes = active_set.find_violations(
-          state.q, state.gap, accuracy * q_scale, accuracy * gap_scale);
-        if (verbosity > 0)
-          log << "   contact iteration " << state.iterations
-              << ": nodes in contact " << active_set.n_contact_nodes()
-              << ", changes " << n_changes
-              << (active_set.single_pivots() ? " (single pivots)" : "")
-              << std::endl;
-        if (n_changes == 0)
+        if (active_set.step(state.q,
+                            state.gap,
+                            accuracy * q_scale,
+                            accuracy * gap_scale,
+                            state.iterations,
+                            verbosity,
+                            log))
           {
             state.converged = true;
             break;
           }
-        if (active_set.detect_cycle() && verbosity > 0)
-          log << "   contact iteration " << state.iterations
-              << ": cycle detected, switching to single pivots" << std::endl;
-        active_set.advance();
       }
     state.iterations = std::min(state.iterations, contact.max_iterations);
     evaluate_contact_conditions(plate_settlement,

@@ -141,14 +141,34 @@ namespace PlateOnHalfspace
       return active;
     }
 
+    /**
+     * One step after a solve on the current set with solution (@p q,
+     * @p gap): count the violated conditions (signs below @p q_tolerance
+     * and @p g_tolerance are rounding), log iteration @p iteration at
+     * @p verbosity > 0, and return true if none is violated (converged).
+     * Otherwise move to the next set: the full step, or one status change
+     * once a cycle has switched on single pivots, kept to a set that
+     * carries the plate (see the class documentation). Throws ExcMessage
+     * if no change keeps the plate carried (a load at the edge of a
+     * weightless plate).
+     */
+    bool
+    step(const Vector<double> &q,
+         const Vector<double> &gap,
+         const double          q_tolerance,
+         const double          g_tolerance,
+         const unsigned int    iteration,
+         const unsigned int    verbosity,
+         std::ostream         &log);
+
+  private:
     /** Size of the current contact set. */
     unsigned int
     n_contact_nodes() const;
 
     /**
-     * Count the violated conditions of the solution (@p q, @p gap) on the
-     * current set and prepare the next set; signs below @p q_tolerance and
-     * @p g_tolerance are taken for rounding. Returns the number of changes.
+     * Count the violated conditions of (@p q, @p gap) on the current set
+     * and prepare the full step. Returns the number of changes.
      */
     unsigned int
     find_violations(const Vector<double> &q,
@@ -164,24 +184,10 @@ namespace PlateOnHalfspace
     bool
     detect_cycle();
 
-    /**
-     * Move to the next set: the full step find_violations() prepared, or
-     * one status change once single pivots are on, kept to a set that
-     * carries the plate (see the class documentation). Throws ExcMessage
-     * if no change keeps the plate carried (a load at the edge of a
-     * weightless plate).
-     */
+    /** Move to the next set (see step()). */
     void
     advance();
 
-    /** Whether the least-index fallback is on. */
-    bool
-    single_pivots() const
-    {
-      return single_pivot_mode;
-    }
-
-  private:
     const FoundationSpace      &space;
     std::vector<bool>           supported;
     std::vector<bool>           active;
