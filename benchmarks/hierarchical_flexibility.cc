@@ -120,7 +120,8 @@ main(int argc, char **argv)
       const unsigned int n = space.n_nodes();
 
       HierarchicalFlexibility::Settings settings;
-      settings.tolerance = tolerance;
+      settings.tolerance        = tolerance;
+      settings.factor_tolerance = tolerance; // the exact H-Cholesky
       HierarchicalFlexibility hierarchical(settings);
       Timer                   timer;
       hierarchical.build(space, alpha, order);

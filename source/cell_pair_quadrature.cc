@@ -100,19 +100,26 @@ namespace PlateOnHalfspace
                                          graded_rule(singular_order) :
                                          Quadrature<2>(QGauss<2>(order));
             Table               table;
+            table.n_functions = data.nodes.size();
+            std::vector<double> values;
             for (unsigned int q = 0; q < rule.size(); ++q)
               {
                 const Point<2> &p = rule.point(q);
-                table.points.push_back(cell.geometry.map(p));
-                table.weights.push_back(rule.weight(q) *
-                                        cell.geometry.jacobian_determinant(p));
-                std::vector<double> values;
+                const Point<2>  x = cell.geometry.map(p);
+                const double    JxW =
+                  rule.weight(q) * cell.geometry.jacobian_determinant(p);
+                table.x.push_back(x[0]);
+                table.y.push_back(x[1]);
+                table.weights.push_back(JxW);
                 node_shape_values(c, p, values);
-                table.values.push_back(values);
+                for (const double v : values)
+                  table.weighted_values.push_back(JxW * v);
               }
             data.tables.push_back(table);
           }
       }
+    for (const Point<2> &p : outer_rule.get_points())
+      graded_phi.push_back(q2_shape_values(p));
   }
 
   void
@@ -146,48 +153,100 @@ namespace PlateOnHalfspace
   }
 
   void
-  CellPairIntegrator::integrate_regular(const Table        &outer,
-                                        const Table        &inner,
-                                        FullMatrix<double> &block) const
+  CellPairIntegrator::integrate_regular(const Table             &outer,
+                                        const Table             &inner,
+                                        FullMatrix<double>      &block,
+                                        const std::vector<bool> &rows,
+                                        const std::vector<bool> &columns) const
   {
-    const unsigned int na = outer.values[0].size(), nb = inner.values[0].size();
-    // t(p, b) = sum_q W_q psi_b(y_q) / |x_p - y_q|, then
-    // block(a, b) = sum_p W_p psi_a(x_p) t(p, b).
-    std::vector<double> t(nb);
-    for (unsigned int p = 0; p < outer.points.size(); ++p)
+    const unsigned int n_p = outer.x.size(), n_q = inner.x.size();
+    const unsigned int na = outer.n_functions, nb = inner.n_functions;
+    // G(p, q) = 1 / |x_p - y_q| (at most 25 x 25 points); a plain loop
+    // over flat arrays, which the compiler vectorises.
+    std::array<double, 625> G;
+    Assert(n_p * n_q <= G.size(), ExcInternalError());
+    for (unsigned int p = 0; p < n_p; ++p)
       {
-        std::fill(t.begin(), t.end(), 0.);
-        for (unsigned int q = 0; q < inner.points.size(); ++q)
+        const double  xp = outer.x[p], yp = outer.y[p];
+        double *const g = G.data() + p * n_q;
+        for (unsigned int q = 0; q < n_q; ++q)
           {
-            const double kernel =
-              inner.weights[q] / outer.points[p].distance(inner.points[q]);
-            for (unsigned int b = 0; b < nb; ++b)
-              t[b] += kernel * inner.values[q][b];
-          }
-        for (unsigned int a = 0; a < na; ++a)
-          {
-            const double wa = outer.weights[p] * outer.values[p][a];
-            for (unsigned int b = 0; b < nb; ++b)
-              block(a, b) += wa * t[b];
+            const double dx = xp - inner.x[q], dy = yp - inner.y[q];
+            g[q] = 1. / std::sqrt(dx * dx + dy * dy);
           }
       }
+    std::array<unsigned int, 9> a_list, b_list;
+    unsigned int                n_a = 0, n_b = 0;
+    for (unsigned int a = 0; a < na; ++a)
+      if (rows.empty() || rows[a])
+        a_list[n_a++] = a;
+    for (unsigned int b = 0; b < nb; ++b)
+      if (columns.empty() || columns[b])
+        b_list[n_b++] = b;
+    // block(a, b) = sum_p sum_q U(p, a) G(p, q) V(q, b) with U, V the
+    // weighted shape values: contract G with the side that has fewer
+    // wanted functions first.
+    const double          *U = outer.weighted_values.data();
+    const double          *V = inner.weighted_values.data();
+    std::array<double, 25> s;
+    if (n_a <= n_b)
+      for (unsigned int i = 0; i < n_a; ++i)
+        {
+          const unsigned int a = a_list[i];
+          std::fill(s.begin(), s.begin() + n_q, 0.);
+          for (unsigned int p = 0; p < n_p; ++p)
+            {
+              const double  u = U[p * na + a];
+              const double *g = G.data() + p * n_q;
+              for (unsigned int q = 0; q < n_q; ++q)
+                s[q] += u * g[q];
+            }
+          for (unsigned int j = 0; j < n_b; ++j)
+            {
+              const unsigned int b   = b_list[j];
+              double             sum = 0;
+              for (unsigned int q = 0; q < n_q; ++q)
+                sum += s[q] * V[q * nb + b];
+              block(a, b) += sum;
+            }
+        }
+    else
+      for (unsigned int j = 0; j < n_b; ++j)
+        {
+          const unsigned int b = b_list[j];
+          for (unsigned int p = 0; p < n_p; ++p)
+            {
+              const double *g   = G.data() + p * n_q;
+              double        sum = 0;
+              for (unsigned int q = 0; q < n_q; ++q)
+                sum += g[q] * V[q * nb + b];
+              s[p] = sum;
+            }
+          for (unsigned int i = 0; i < n_a; ++i)
+            {
+              const unsigned int a   = a_list[i];
+              double             sum = 0;
+              for (unsigned int p = 0; p < n_p; ++p)
+                sum += U[p * na + a] * s[p];
+              block(a, b) += sum;
+            }
+        }
   }
 
   void
   CellPairIntegrator::integrate_singular(const unsigned int  k,
                                          const unsigned int  l,
-                                         FullMatrix<double> &block) const
+                                         FullMatrix<double> &q2_block) const
   {
+    q2_block.reinit(9, 9);
     const BilinearQuadrilateral &inner_cell = cells[l].geometry;
-    const Table       &outer = cell_data[k].tables.back(); // singular order
-    const unsigned int nb    = cell_data[l].nodes.size();
-    const auto        &v     = inner_cell.get_vertices();
+    const Table &outer = cell_data[k].tables.back(); // singular order
+    const auto  &v     = inner_cell.get_vertices();
     const std::vector<Point<2>> polygon = {v[0], v[1], v[3], v[2]};
-    const FullMatrix<double>   &T       = cell_data[l].node_from_q2;
     std::array<double, 9>       t;
-    for (unsigned int p = 0; p < outer.points.size(); ++p)
+    for (unsigned int p = 0; p < outer.x.size(); ++p)
       {
-        const Point<2> &x = outer.points[p];
+        const Point<2> x(outer.x[p], outer.y[p]);
         // The inner singularity sits at x's reference point in L; outside
         // L (touching pairs) the nearest point of the reference square is
         // the best place to concentrate the Duffy points. Coincident pairs
@@ -223,16 +282,66 @@ namespace PlateOnHalfspace
             for (unsigned int i = 0; i < 9; ++i)
               t[i] += kernel * (rule->phi[q][i] - rule->at_split[i]);
           }
-        // to the node shape functions psi_b = sum_i T_bi phi_i
-        for (unsigned int b = 0; b < nb; ++b)
+        for (unsigned int i = 0; i < 9; ++i)
           {
-            double tb = 0;
-            for (unsigned int i = 0; i < 9; ++i)
-              tb += T(b, i) * t[i];
-            for (unsigned int a = 0; a < outer.values[p].size(); ++a)
-              block(a, b) += outer.weights[p] * outer.values[p][a] * tb;
+            const double u = outer.weights[p] * graded_phi[p][i];
+            for (unsigned int j = 0; j < 9; ++j)
+              q2_block(i, j) += u * t[j];
           }
       }
+  }
+
+  std::array<long long, 16>
+  CellPairIntegrator::configuration(const unsigned int k,
+                                    const unsigned int l) const
+  {
+    const auto               &vk     = cells[k].geometry.get_vertices();
+    const auto               &vl     = cells[l].geometry.get_vertices();
+    const Point<2>            origin = vk[0];
+    const double              scale  = 1e9 / cell_data[k].diameter;
+    std::array<long long, 16> key;
+    for (unsigned int v = 0; v < 4; ++v)
+      for (unsigned int d = 0; d < 2; ++d)
+        {
+          key[2 * v + d]     = std::llround((vk[v][d] - origin[d]) * scale);
+          key[8 + 2 * v + d] = std::llround((vl[v][d] - origin[d]) * scale);
+        }
+    return key;
+  }
+
+  const FullMatrix<double> &
+  CellPairIntegrator::singular_q2_block(const unsigned int k,
+                                        const unsigned int l) const
+  {
+    const auto key = configuration(k, l);
+    {
+      const std::lock_guard<std::mutex> lock(singular_cache_mutex);
+      const auto                        found = singular_cache.find(key);
+      if (found != singular_cache.end())
+        return found->second;
+    }
+    // The rule is not symmetric in the roles of the two cells (outer Gauss
+    // on one, inner Duffy on the other): average both orders, so that A is
+    // exactly symmetric (its Cholesky factor reads one triangle), the block
+    // does not depend on which cell comes first, and a mirror-symmetric
+    // mesh gives a mirror-symmetric A.
+    FullMatrix<double> forward, backward;
+    integrate_singular(k, l, forward);
+    if (k == l)
+      backward = forward;
+    else
+      integrate_singular(l, k, backward);
+    const double       diameter = cell_data[k].diameter;
+    const double       unscale  = 1. / (diameter * diameter * diameter);
+    FullMatrix<double> normalised(9, 9);
+    for (unsigned int i = 0; i < 9; ++i)
+      for (unsigned int j = 0; j < 9; ++j)
+        normalised(i, j) = 0.5 * (forward(i, j) + backward(j, i)) * unscale;
+    // std::map never moves its elements: the reference stays valid while
+    // other threads insert (a concurrent first computation of the same
+    // configuration keeps the first result).
+    const std::lock_guard<std::mutex> lock(singular_cache_mutex);
+    return singular_cache.emplace(key, std::move(normalised)).first->second;
   }
 
   void
@@ -241,36 +350,50 @@ namespace PlateOnHalfspace
     const unsigned int  l,
     FullMatrix<double> &block) const
   {
-    block.reinit(cell_data[k].nodes.size(), cell_data[l].nodes.size());
+    integrate_inverse_distance(k, l, block, {}, {});
+  }
+
+  void
+  CellPairIntegrator::integrate_inverse_distance(
+    const unsigned int       k,
+    const unsigned int       l,
+    FullMatrix<double>      &block,
+    const std::vector<bool> &rows,
+    const std::vector<bool> &columns) const
+  {
+    const CellData &dk = cell_data[k], &dl = cell_data[l];
+    block.reinit(dk.nodes.size(), dl.nodes.size());
     if (singular_pair(k, l))
       {
-        // The rule is not symmetric in the roles of the two cells (outer
-        // Gauss on one, inner Duffy on the other): average both orders, so
-        // that A is exactly symmetric (its Cholesky factor reads one
-        // triangle), the block does not depend on which cell comes first,
-        // and a mirror-symmetric mesh gives a mirror-symmetric A.
-        integrate_singular(k, l, block);
-        FullMatrix<double> swapped(cell_data[l].nodes.size(),
-                                   cell_data[k].nodes.size());
-        if (k == l)
-          swapped = block;
-        else
-          integrate_singular(l, k, swapped);
-        for (unsigned int a = 0; a < block.m(); ++a)
-          for (unsigned int b = 0; b < block.n(); ++b)
-            block(a, b) = 0.5 * (block(a, b) + swapped(b, a));
+        // to the node shape functions: block = T_k B T_l^T
+        const FullMatrix<double> &q2_block = singular_q2_block(k, l);
+        const double       scale = dk.diameter * dk.diameter * dk.diameter;
+        FullMatrix<double> right(9, dl.nodes.size()); // B T_l^T
+        for (unsigned int i = 0; i < 9; ++i)
+          for (unsigned int b = 0; b < dl.nodes.size(); ++b)
+            {
+              double sum = 0;
+              for (unsigned int j = 0; j < 9; ++j)
+                sum += q2_block(i, j) * dl.node_from_q2(b, j);
+              right(i, b) = sum * scale;
+            }
+        for (unsigned int a = 0; a < dk.nodes.size(); ++a)
+          for (unsigned int b = 0; b < dl.nodes.size(); ++b)
+            {
+              double sum = 0;
+              for (unsigned int i = 0; i < 9; ++i)
+                sum += dk.node_from_q2(a, i) * right(i, b);
+              block(a, b) = sum;
+            }
         return;
       }
     const double separation =
-      cell_data[k].centre.distance(cell_data[l].centre) /
-      std::max(cell_data[k].diameter, cell_data[l].diameter);
+      dk.centre.distance(dl.centre) / std::max(dk.diameter, dl.diameter);
     // Round away the last digits: on a uniform mesh many pairs sit exactly
     // on a threshold, and rounding must not send a pair and its mirror
     // image to different rules.
     const double       rounded = std::round(separation * 1e6) * 1e-6;
     const unsigned int rule    = (rounded < 2.5 ? 2 : rounded < 20 ? 1 : 0);
-    integrate_regular(cell_data[k].tables[rule],
-                      cell_data[l].tables[rule],
-                      block);
+    integrate_regular(dk.tables[rule], dl.tables[rule], block, rows, columns);
   }
 } // namespace PlateOnHalfspace

@@ -1,5 +1,6 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/thread_management.h>
+#include <deal.II/base/timer.h>
 
 #include <plate_on_halfspace/boussinesq_collocation_operator.h>
 #include <plate_on_halfspace/boussinesq_galerkin_operator.h>
@@ -123,6 +124,7 @@ namespace PlateOnHalfspace
     const bool                      symmetric,
     const std::string              &failure)
   {
+    const Timer timer;
     AssertDimension(requested.size(), node_supported.size());
     contact_index.clear();
     for (unsigned int i = 0; i < requested.size(); ++i)
@@ -153,6 +155,7 @@ namespace PlateOnHalfspace
       }
     contact_block_rcond =
       reciprocal_condition_number(contact_factor, l1_norm, symmetric);
+    times.factorization = timer.wall_time();
   }
 
   void

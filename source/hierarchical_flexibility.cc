@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/thread_management.h>
+#include <deal.II/base/timer.h>
 
 #include <plate_on_halfspace/cell_pair_quadrature.h>
 #include <plate_on_halfspace/hierarchical_flexibility.h>
@@ -11,10 +12,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <sstream>
 #include <string>
-#include <unordered_map>
 
 namespace PlateOnHalfspace
 {
@@ -192,6 +191,7 @@ namespace PlateOnHalfspace
         const auto        add_range =
           [&](const std::size_t begin, const std::size_t end, double *target) {
             FullMatrix<double> block;
+            std::vector<bool>  rows, columns;
             for (std::size_t pair = begin; pair < end; ++pair)
               add_pair(row_cells[pair / column_cells.size()],
                        column_cells[pair % column_cells.size()],
@@ -199,7 +199,9 @@ namespace PlateOnHalfspace
                        column_position,
                        n_rows,
                        target,
-                       block);
+                       block,
+                       rows,
+                       columns);
           };
         // Below this many pairs the tasks cost more than they save.
         const std::size_t  parallel_threshold = 64;
@@ -234,51 +236,47 @@ namespace PlateOnHalfspace
       const unsigned int                     n_copies;
       const double                           alpha;
       std::vector<std::vector<unsigned int>> cells_of_node;
-      /**
-       * The singular pairs (coincident or touching cells, with their
-       * Duffy rules the costly ones), integrated once: hmat-oss asks for
-       * the near-field blocks by node clusters, and a cell pair straddling
-       * cluster boundaries is needed by several of them.
-       */
-      std::unordered_map<std::uint64_t, unsigned int> singular_index;
-      std::vector<FullMatrix<double>>                 singular_blocks;
-
-      std::uint64_t
-      key(const unsigned int first, const unsigned int image) const
-      {
-        return std::uint64_t(first) * (std::uint64_t(n_computed) * n_copies) +
-               image;
-      }
 
       /**
        * The integral of the computed cell @p first (rows) against the
        * image @p r of the computed cell @p other >= first (columns), as
        * the dense build uses it: a cell against its own image is
-       * symmetrised.
+       * symmetrised. Only the wanted @p rows and @p columns of a
+       * separated pair are integrated.
        */
       void
-      pair_integral(const unsigned int  first,
-                    const unsigned int  r,
-                    const unsigned int  other,
-                    FullMatrix<double> &block) const
+      pair_integral(const unsigned int       first,
+                    const unsigned int       r,
+                    const unsigned int       other,
+                    FullMatrix<double>      &block,
+                    const std::vector<bool> &rows,
+                    const std::vector<bool> &columns) const
       {
         const unsigned int image = r * n_computed + other;
-        integrator.integrate_inverse_distance(first, image, block);
         if (first == other && r > 0)
-          symmetrise_self_image_block(integrator.nodes(first),
-                                      integrator.nodes(image),
-                                      block);
+          {
+            integrator.integrate_inverse_distance(first, image, block);
+            symmetrise_self_image_block(integrator.nodes(first),
+                                        integrator.nodes(image),
+                                        block);
+          }
+        else
+          integrator.integrate_inverse_distance(
+            first, image, block, rows, columns);
       }
 
       /**
-       * Fill singular_blocks. Touching cells share a foundation node (a
-       * common vertex, or across a hanging node the constrained vertex's
-       * expansion), also a cell and the image of a cell next to a mirror
-       * plane, so the candidates of a cell are the cells sharing one of
-       * its nodes. The pairs are independent: integrate them in parallel.
+       * Integrate the singular pairs (coincident or touching cells, with
+       * their Duffy rules the costly ones) once, in parallel, into the
+       * integrator's cache of configurations: hmat-oss asks for the
+       * near-field blocks one by one from a single thread. Touching cells
+       * share a foundation node (a common vertex, or across a hanging node
+       * the constrained vertex's expansion), also a cell and the image of
+       * a cell next to a mirror plane, so the candidates of a cell are the
+       * cells sharing one of its nodes.
        */
       void
-      integrate_singular_pairs()
+      integrate_singular_pairs() const
       {
         std::vector<std::array<unsigned int, 3>> pairs; // first, r, other
         for (unsigned int first = 0; first < n_computed; ++first)
@@ -291,23 +289,18 @@ namespace PlateOnHalfspace
                   if (integrator.singular_pair(first, r * n_computed + other))
                     pairs.push_back({{first, r, other}});
           }
-        singular_blocks.resize(pairs.size());
         const unsigned int       n_tasks = MultithreadInfo::n_threads();
         Threads::TaskGroup<void> tasks;
         for (unsigned int t = 0; t < n_tasks; ++t)
           tasks += Threads::new_task([&, t]() {
+            FullMatrix<double> block;
             for (std::size_t p = pairs.size() * t / n_tasks;
                  p < pairs.size() * (t + 1) / n_tasks;
                  ++p)
-              pair_integral(pairs[p][0],
-                            pairs[p][1],
-                            pairs[p][2],
-                            singular_blocks[p]);
+              pair_integral(
+                pairs[p][0], pairs[p][1], pairs[p][2], block, {}, {});
           });
         tasks.join_all();
-        for (unsigned int p = 0; p < pairs.size(); ++p)
-          singular_index[key(pairs[p][0],
-                             pairs[p][1] * n_computed + pairs[p][2])] = p;
       }
 
       /**
@@ -323,22 +316,38 @@ namespace PlateOnHalfspace
                const ColumnPosition &column_position,
                const unsigned int    n_rows,
                double               *out,
-               FullMatrix<double>   &block) const
+               FullMatrix<double>   &block,
+               std::vector<bool>    &rows,
+               std::vector<bool>    &columns) const
       {
         const unsigned int first = std::min(K, L), other = std::max(K, L);
+        const bool         transposed = K > L;
+        // The functions of the two cells whose entries are asked for.
+        const auto wanted = [&](const std::vector<unsigned int> &nodes,
+                                const bool                       row_side,
+                                std::vector<bool>               &mask) {
+          mask.resize(nodes.size());
+          bool any = false;
+          for (unsigned int a = 0; a < nodes.size(); ++a)
+            {
+              mask[a] = (row_side ? row_position(nodes[a]) :
+                                    column_position(nodes[a])) >= 0;
+              any     = any || mask[a];
+            }
+          return any;
+        };
+        if (!wanted(integrator.nodes(first), !transposed, rows))
+          return;
         for (unsigned int r = 0; r < n_copies; ++r)
           {
-            const unsigned int image  = r * n_computed + other;
-            const auto         cached = singular_index.find(key(first, image));
-            const FullMatrix<double> *integral = &block;
-            if (cached != singular_index.end())
-              integral = &singular_blocks[cached->second];
-            else
-              pair_integral(first, r, other, block);
+            const unsigned int image = r * n_computed + other;
+            if (!wanted(integrator.nodes(image), transposed, columns))
+              continue;
+            pair_integral(first, r, other, block, rows, columns);
             scatter(integrator.nodes(first),
                     integrator.nodes(image),
-                    *integral,
-                    K > L,
+                    block,
+                    transposed,
                     row_position,
                     column_position,
                     n_rows,
@@ -386,6 +395,8 @@ namespace PlateOnHalfspace
     {
       const EntryIntegrator *entries;
       std::string            error;
+      /** Wall time spent integrating entries inside the callbacks. */
+      double integration_time = 0;
     };
 
     /** What hmat-oss's prepare callback hands to the compute callback. */
@@ -483,6 +494,7 @@ namespace PlateOnHalfspace
                            void *values)
     {
       const BlockRequest &request = *static_cast<BlockRequest *>(data);
+      const Timer         timer;
       try
         {
           compute_block(request,
@@ -491,6 +503,7 @@ namespace PlateOnHalfspace
                         column_begin,
                         n_columns,
                         static_cast<double *>(values));
+          request.context->integration_time += timer.wall_time();
         }
       catch (const std::exception &e)
         {
@@ -535,6 +548,7 @@ namespace PlateOnHalfspace
     tree   = nullptr;
     hmat_to_node.clear();
     n_nodes        = 0;
+    times          = Times();
     row_error      = 0;
     solve_residual = 0;
   }
@@ -563,11 +577,13 @@ namespace PlateOnHalfspace
     const unsigned int                        singular_order)
   {
     release();
+    Timer timer;
     n_nodes = node_locations.size();
     AssertThrow(n_nodes > 0 && n_copies > 0,
                 ExcMessage("HierarchicalFlexibility: no foundation nodes."));
     const EntryIntegrator entries(
       cells, n_copies, n_nodes, alpha, singular_order);
+    times.integration             = timer.wall_time();
     const unsigned int n_computed = cells.size() / n_copies;
 
     // The cluster tree. Points: the nodes, then the vertices of the
@@ -667,10 +683,15 @@ namespace PlateOnHalfspace
     assembly.factorization   = hmat_factorization_none;
     assembly.progress        = nullptr; // no progress bar on stdout
     int status;
+    timer.restart();
     {
       const SingleThreadedBlas single_threaded_blas;
       status = hmat().assemble_generic(matrix, &assembly);
     }
+    // ACA+ interleaves the entries it asks for with its own algebra: what
+    // the callbacks did not spend is the compression's.
+    times.integration += context.integration_time;
+    times.compression = timer.wall_time() - context.integration_time;
     hmat_delete_compression(compression);
     AssertThrow(context.error.empty(),
                 ExcMessage("Foundation operator/Storage = hierarchical: "
@@ -690,6 +711,7 @@ namespace PlateOnHalfspace
     // sampled rows against the exactly integrated ones, so that a
     // tolerance too coarse for this mesh stops here with a message rather
     // than giving a wrong answer later. Rows spread over the numbering.
+    timer.restart();
     const unsigned int        n_samples = std::min<unsigned int>(n_nodes, 4);
     std::vector<unsigned int> all_nodes(n_nodes);
     for (unsigned int j = 0; j < n_nodes; ++j)
@@ -717,6 +739,7 @@ namespace PlateOnHalfspace
           difference[j] = row[j] - exact[j];
         row_error = std::max(row_error, norm(difference) / norm(exact));
       }
+    times.integration += timer.wall_time();
     std::ostringstream measured;
     measured << row_error;
     // The compressed blocks are far-field entries, much smaller than the
@@ -777,6 +800,7 @@ namespace PlateOnHalfspace
     AssertThrow(matrix != nullptr,
                 ExcMessage("HierarchicalFlexibility::factorize before "
                            "build()."));
+    const Timer timer;
     if (factor != nullptr)
       hmat().destroy(factor);
     // hmat-oss factorises in place; the product keeps the original.
@@ -784,7 +808,17 @@ namespace PlateOnHalfspace
     AssertThrow(factor != nullptr,
                 ExcMessage("Foundation operator/Storage = hierarchical: "
                            "hmat-oss could not copy the H-matrix."));
-    hmat().set_low_rank_epsilon(factor, settings.tolerance);
+    // The factor only preconditions conjugate gradients, whose answer
+    // does not depend on it: recompress it more coarsely than A (first the
+    // copy, then every update of the factorisation). At n = 4961 a factor
+    // at 1e-3 instead of 1e-6 took a quarter of the time and the same CG
+    // iterations (388 against 389, benchmarks/hierarchical_scaling.py).
+    const double factor_tolerance =
+      std::max(settings.tolerance, settings.factor_tolerance);
+    hmat().set_low_rank_epsilon(factor, factor_tolerance);
+    if (factor_tolerance > settings.tolerance)
+      check_hmat(hmat().truncate(factor),
+                 "the recompression of the copy to factorise");
     hmat_factorization_context_t context;
     hmat_factorization_context_init(&context);
     context.factorization = hmat_factorization_llt;
@@ -833,6 +867,7 @@ namespace PlateOnHalfspace
                                "of " +
                                measured.str() + "." + tolerance_advice));
       }
+    times.factorization = timer.wall_time();
   }
 
   void

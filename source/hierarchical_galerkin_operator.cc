@@ -44,6 +44,8 @@ namespace PlateOnHalfspace
     use_positive_pressure_basis(space);
     flexibility.build(space, alpha, singular_order);
     flexibility.factorize();
+    times.compression   = flexibility.build_times().compression;
+    times.factorization = flexibility.build_times().factorization;
   }
 
   void

@@ -169,6 +169,15 @@ namespace PlateOnHalfspace
       foundation_operator->build(plate.get_foundation_space(), {});
     }
     summary.foundation_time_s = phase.wall_time();
+    {
+      const auto &times = foundation_operator->build_times();
+      summary.foundation_compression_time_s   = times.compression;
+      summary.foundation_factorization_time_s = times.factorization;
+      summary.foundation_integration_time_s =
+        std::max(0.,
+                 summary.foundation_time_s - times.compression -
+                   times.factorization);
+    }
     phase.restart();
 
     {

@@ -283,37 +283,41 @@ namespace PlateOnHalfspace
     for (const CycleSummary &c : cycles)
       {
         nlohmann::ordered_json j;
-        j["cycle"]                     = c.cycle;
-        j["n_cells"]                   = c.n_cells;
-        j["n_dofs"]                    = c.n_dofs;
-        j["n_foundation_dofs"]         = c.n_foundation_dofs;
-        j["contact_iterations"]        = c.contact_iterations;
-        j["contact_nodes"]             = c.contact_nodes;
-        j["contact_area_fraction"]     = c.contact_area_fraction;
-        j["applied_load"]              = c.applied_load;
-        j["contact_force"]             = c.contact_force;
-        j["complementarity_violation"] = c.complementarity_violation;
-        j["tensile_nodes"]             = c.tensile_nodes;
-        j["max_penetration"]           = c.max_penetration;
-        j["max_w"]                     = c.max_w;
-        j["min_w"]                     = c.min_w;
-        j["max_q"]                     = c.max_q;
-        j["min_q"]                     = c.min_q;
-        j["max_Mx"]                    = c.max_mx;
-        j["min_Mx"]                    = c.min_mx;
-        j["max_My"]                    = c.max_my;
-        j["min_My"]                    = c.min_my;
-        j["wall_time_s"]               = c.wall_time_s;
-        j["assembly_time_s"]           = c.assembly_time_s;
-        j["foundation_time_s"]         = c.foundation_time_s;
-        j["solve_time_s"]              = c.solve_time_s;
-        j["output_time_s"]             = c.output_time_s;
-        j["foundation_storage"]        = c.foundation_storage;
-        j["foundation_memory_bytes"]   = c.foundation_memory_bytes;
-        j["converged"]                 = c.converged;
-        j["coupled_matrix_rcond"]      = c.coupled_matrix_rcond;
-        j["foundation_block_rcond"]    = c.foundation_block_rcond;
-        j["probes"]                    = nlohmann::ordered_json::array();
+        j["cycle"]                         = c.cycle;
+        j["n_cells"]                       = c.n_cells;
+        j["n_dofs"]                        = c.n_dofs;
+        j["n_foundation_dofs"]             = c.n_foundation_dofs;
+        j["contact_iterations"]            = c.contact_iterations;
+        j["contact_nodes"]                 = c.contact_nodes;
+        j["contact_area_fraction"]         = c.contact_area_fraction;
+        j["applied_load"]                  = c.applied_load;
+        j["contact_force"]                 = c.contact_force;
+        j["complementarity_violation"]     = c.complementarity_violation;
+        j["tensile_nodes"]                 = c.tensile_nodes;
+        j["max_penetration"]               = c.max_penetration;
+        j["max_w"]                         = c.max_w;
+        j["min_w"]                         = c.min_w;
+        j["max_q"]                         = c.max_q;
+        j["min_q"]                         = c.min_q;
+        j["max_Mx"]                        = c.max_mx;
+        j["min_Mx"]                        = c.min_mx;
+        j["max_My"]                        = c.max_my;
+        j["min_My"]                        = c.min_my;
+        j["wall_time_s"]                   = c.wall_time_s;
+        j["assembly_time_s"]               = c.assembly_time_s;
+        j["foundation_time_s"]             = c.foundation_time_s;
+        j["foundation_integration_time_s"] = c.foundation_integration_time_s;
+        j["foundation_compression_time_s"] = c.foundation_compression_time_s;
+        j["foundation_factorization_time_s"] =
+          c.foundation_factorization_time_s;
+        j["solve_time_s"]            = c.solve_time_s;
+        j["output_time_s"]           = c.output_time_s;
+        j["foundation_storage"]      = c.foundation_storage;
+        j["foundation_memory_bytes"] = c.foundation_memory_bytes;
+        j["converged"]               = c.converged;
+        j["coupled_matrix_rcond"]    = c.coupled_matrix_rcond;
+        j["foundation_block_rcond"]  = c.foundation_block_rcond;
+        j["probes"]                  = nlohmann::ordered_json::array();
         for (const PointValues &p : c.probes)
           j["probes"].push_back({{"x", p.location[0]},
                                  {"y", p.location[1]},

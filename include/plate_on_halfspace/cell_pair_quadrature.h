@@ -13,6 +13,8 @@
 #include <plate_on_halfspace/foundation_space.h>
 
 #include <array>
+#include <map>
+#include <mutex>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -41,7 +43,10 @@ namespace PlateOnHalfspace
    *    outer Gauss rule of the singular order on K; for each outer point x
    *    the inner integral over L uses QSplit(QDuffy) split at x's reference
    *    point in L (clamped onto L when x lies outside), whose Duffy collapse
-   *    cancels the 1/r singularity on any straight-sided quadrilateral;
+   *    cancels the 1/r singularity on any straight-sided quadrilateral.
+   *    These are integrated in the Q2 basis once per configuration up to
+   *    translation and scale (configuration()), so a mesh of congruent
+   *    cells integrates a handful of them;
    *  - separated pairs: tensor Gauss rules, 5, 3 or 2 points per direction
    *    for centre distances below 2.5, below 20 and from 20 cell diameters
    *    on. The thresholds scale with the cells, so the relative quadrature
@@ -71,7 +76,11 @@ namespace PlateOnHalfspace
     bool
     singular_pair(const unsigned int k, const unsigned int l) const
     {
-      return k == l || touching(k, l);
+      // Cells whose centres lie further apart than their diameters added
+      // cannot touch: most pairs are decided without the vertex tests.
+      return k == l || (cell_data[k].centre.distance(cell_data[l].centre) <=
+                          cell_data[k].diameter + cell_data[l].diameter &&
+                        touching(k, l));
     }
 
     /**
@@ -83,13 +92,32 @@ namespace PlateOnHalfspace
                                const unsigned int  l,
                                FullMatrix<double> &block) const;
 
+    /**
+     * The same, but only the entries (a, b) with @p rows[a] and
+     * @p columns[b] are wanted (the others are left zero or hold the
+     * integral): a hierarchical matrix's compression asks for single rows
+     * and columns, and a separated pair then costs little more than its
+     * kernel evaluations. Empty masks mean all.
+     */
+    void
+    integrate_inverse_distance(const unsigned int       k,
+                               const unsigned int       l,
+                               FullMatrix<double>      &block,
+                               const std::vector<bool> &rows,
+                               const std::vector<bool> &columns) const;
+
   private:
-    /** Node shape functions of one cell on one Gauss rule. */
+    /**
+     * Node shape functions of one cell on one Gauss rule, stored flat so
+     * that the kernel loops vectorise.
+     */
     struct Table
     {
-      std::vector<Point<2>>            points;  ///< physical
-      std::vector<double>              weights; ///< JxW
-      std::vector<std::vector<double>> values;  ///< [q][a]
+      std::vector<double> x, y;    ///< physical points
+      std::vector<double> weights; ///< JxW
+      /** JxW_q psi_a(x_q) at [q * n_functions + a]. */
+      std::vector<double> weighted_values;
+      unsigned int        n_functions = 0;
     };
 
     /**
@@ -124,14 +152,36 @@ namespace PlateOnHalfspace
     touching(const unsigned int k, const unsigned int l) const;
 
     void
-    integrate_regular(const Table        &outer,
-                      const Table        &inner,
-                      FullMatrix<double> &block) const;
+    integrate_regular(const Table             &outer,
+                      const Table             &inner,
+                      FullMatrix<double>      &block,
+                      const std::vector<bool> &rows,
+                      const std::vector<bool> &columns) const;
 
+    /**
+     * The singular pair (k, l) in the Q2 basis of the two cells (9 x 9,
+     * symmetrised over the order of the cells), from the cache of
+     * congruent configurations or integrated and cached.
+     */
+    const FullMatrix<double> &
+    singular_q2_block(const unsigned int k, const unsigned int l) const;
+
+    /** One order of the singular rule: outer Gauss on k, inner Duffy on l
+     *  (9 x 9, Q2 basis). */
     void
     integrate_singular(const unsigned int  k,
                        const unsigned int  l,
-                       FullMatrix<double> &block) const;
+                       FullMatrix<double> &q2_block) const;
+
+    /**
+     * The configuration of the pair (k, l) up to translation and scale:
+     * the vertices of both cells relative to k's first vertex over k's
+     * diameter, rounded to 1e-9. Congruent pairs (a uniform mesh's
+     * neighbours, an adaptive mesh's scaled copies, mirror images) share
+     * one key and one integral, which scales with the diameter cubed.
+     */
+    std::array<long long, 16>
+    configuration(const unsigned int k, const unsigned int l) const;
 
     const std::vector<FoundationSpace::Cell> &cells;
     const unsigned int                        singular_order;
@@ -142,6 +192,15 @@ namespace PlateOnHalfspace
     const QDuffy duffy;
     /** Inner rules of coincident pairs, one per outer point. */
     std::vector<SingularRule> coincident_rules;
+    /** The Q2 shape values at the points of the graded outer rule. */
+    std::vector<std::array<double, 9>> graded_phi;
+    /**
+     * Singular Q2 blocks by configuration() over the diameter cubed. A
+     * cache of what is integrated, filled from concurrent callers.
+     */
+    mutable std::map<std::array<long long, 16>, FullMatrix<double>>
+                       singular_cache;
+    mutable std::mutex singular_cache_mutex;
   };
 } // namespace PlateOnHalfspace
 

@@ -161,6 +161,24 @@ namespace PlateOnHalfspace
       return contact_block_rcond;
     }
 
+    /**
+     * Wall times (seconds) of the parts of the last build() that are not
+     * integration: compressing the flexibility (hierarchical storage) and
+     * factorising it (the dense F_CC of all nodes in contact, or the
+     * H-Cholesky factor of A). The rest of build() integrates.
+     */
+    struct BuildTimes
+    {
+      double compression   = 0;
+      double factorization = 0;
+    };
+
+    const BuildTimes &
+    build_times() const
+    {
+      return times;
+    }
+
     /** "dense" or the name of a compressed storage. */
     virtual std::string
     storage_name() const = 0;
@@ -223,6 +241,7 @@ namespace PlateOnHalfspace
     std::vector<unsigned int> contact_index;  ///< the nodes of C
     LAPACKFullMatrix<double>  contact_factor; ///< factor of F_CC
     double                    contact_block_rcond = 1.;
+    BuildTimes                times;
 
     bool                 positive_basis = false;
     SparsityPattern      transform_sparsity, tested_sparsity, force_sparsity;

@@ -71,6 +71,14 @@ namespace PlateOnHalfspace
        * operator/Tolerance.
        */
       double tolerance = 1e-6;
+      /**
+       * Relative accuracy of the recompressions in the H-Cholesky factor
+       * when it is coarser than @p tolerance (the larger of the two is
+       * used): the factor preconditions conjugate gradients, which reach
+       * their own tolerance whatever it is; solve() is then accurate to
+       * about this, not to @p tolerance.
+       */
+      double factor_tolerance = 1e-3;
       /** Largest number of nodes in a leaf of the cluster tree. */
       unsigned int leaf_size = 48;
       /** Hackbusch's eta: admissible when min diameter <= eta distance. */
@@ -116,7 +124,8 @@ namespace PlateOnHalfspace
 
     /**
      * H-Cholesky factorisation A ≈ L L^T of a copy of A (the product keeps
-     * using A), with every recompression at the tolerance. Checks the
+     * using A), with every recompression at the larger of the tolerance
+     * and the factor tolerance. Checks the
      * factor by solving for a known vector; throws if hmat-oss reports a
      * failure (A not positive definite at this tolerance) or the factor
      * does not reproduce the vector.
@@ -183,6 +192,24 @@ namespace PlateOnHalfspace
       return row_error;
     }
 
+    /** Wall times of build() and factorize(), in seconds. */
+    struct Times
+    {
+      /** Integrating entries: the singular cell pairs once, every entry
+       *  ACA+ and the near field ask for, the sampled rows of the check. */
+      double integration = 0;
+      /** ACA+'s own algebra during the assembly (the rest of it). */
+      double compression = 0;
+      /** The H-Cholesky factorisation and its check. */
+      double factorization = 0;
+    };
+
+    const Times &
+    build_times() const
+    {
+      return times;
+    }
+
     /**
      * ||A x - b|| / ||b|| of the factor's solve of a known b (measured by
      * factorize(); A the H-matrix).
@@ -206,6 +233,7 @@ namespace PlateOnHalfspace
     hmat_matrix_struct *factor         = nullptr;
     double              row_error      = 0;
     double              solve_residual = 0;
+    Times               times;
 
     void
     release();

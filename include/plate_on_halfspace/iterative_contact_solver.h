@@ -148,6 +148,11 @@ namespace PlateOnHalfspace
      * settlement there (the scale of the contact conditions).
      */
     double tolerance = 1e-10;
+    /**
+     * The same target while the active set is still changing (the solves
+     * before the last); the last set is always solved to tolerance.
+     */
+    double changing_set_tolerance = 1e-4;
   };
 
   /**

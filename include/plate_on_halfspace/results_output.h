@@ -43,8 +43,14 @@ namespace PlateOnHalfspace
     double       max_mx = 0, min_mx = 0, max_my = 0, min_my = 0;
     /** Wall time of the cycle and its parts: plate assembly (setup,
      *  loads, condensation), half-space operator, contact solve, output. */
-    double      wall_time_s = 0, assembly_time_s = 0, foundation_time_s = 0;
-    double      solve_time_s = 0, output_time_s = 0;
+    double wall_time_s = 0, assembly_time_s = 0, foundation_time_s = 0;
+    double solve_time_s = 0, output_time_s = 0;
+    /** The half-space operator's time split: integration, compression
+     *  (hierarchical storage), factorisation (FoundationOperator::
+     *  BuildTimes); they add up to foundation_time_s. */
+    double      foundation_integration_time_s   = 0;
+    double      foundation_compression_time_s   = 0;
+    double      foundation_factorization_time_s = 0;
     std::string foundation_storage;
     std::size_t foundation_memory_bytes = 0;
     bool        converged               = true;

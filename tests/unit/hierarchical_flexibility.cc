@@ -121,6 +121,9 @@ namespace
   {
     HierarchicalFlexibility::Settings settings;
     settings.tolerance = tolerance;
+    // The factor at the same tolerance, so that the solve is compared
+    // with dense (by default the factor, a preconditioner, is coarser).
+    settings.factor_tolerance = tolerance;
     HierarchicalFlexibility hierarchical(settings);
     hierarchical.build(scene.space, scene.alpha, scene.singular_order);
     hierarchical.factorize();
