@@ -278,7 +278,7 @@ namespace PlateOnHalfspace
       void
       integrate_singular_pairs() const
       {
-        std::vector<std::array<unsigned int, 3>> pairs; // first, r, other
+        std::vector<std::pair<unsigned int, unsigned int>> pairs;
         for (unsigned int first = 0; first < n_computed; ++first)
           {
             std::vector<unsigned int> neighbours =
@@ -287,20 +287,9 @@ namespace PlateOnHalfspace
               if (other >= first)
                 for (unsigned int r = 0; r < n_copies; ++r)
                   if (integrator.singular_pair(first, r * n_computed + other))
-                    pairs.push_back({{first, r, other}});
+                    pairs.emplace_back(first, r * n_computed + other);
           }
-        const unsigned int       n_tasks = MultithreadInfo::n_threads();
-        Threads::TaskGroup<void> tasks;
-        for (unsigned int t = 0; t < n_tasks; ++t)
-          tasks += Threads::new_task([&, t]() {
-            FullMatrix<double> block;
-            for (std::size_t p = pairs.size() * t / n_tasks;
-                 p < pairs.size() * (t + 1) / n_tasks;
-                 ++p)
-              pair_integral(
-                pairs[p][0], pairs[p][1], pairs[p][2], block, {}, {});
-          });
-        tasks.join_all();
+        integrator.integrate_singular_pairs(pairs);
       }
 
       /**

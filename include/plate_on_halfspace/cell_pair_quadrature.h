@@ -84,6 +84,16 @@ namespace PlateOnHalfspace
     }
 
     /**
+     * Integrate the singular pairs (k, l) of @p pairs into the cache of
+     * configurations, in parallel, each new configuration from its first
+     * pair in the list (so the result does not depend on the threads).
+     * Callers that integrate pairs concurrently call this first.
+     */
+    void
+    integrate_singular_pairs(
+      const std::vector<std::pair<unsigned int, unsigned int>> &pairs) const;
+
+    /**
      * block(a,b) = ∫_{cell k} ∫_{cell l} psi_a(x) psi_b(y) / |x - y| dy dx,
      * a over the nodes of k, b over those of l.
      */
@@ -137,10 +147,14 @@ namespace PlateOnHalfspace
     {
       std::vector<unsigned int> nodes;
       FullMatrix<double>        node_from_q2; ///< T, n_nodes x 9
-      std::vector<Table>        tables;       ///< one per rule in orders
+      std::vector<Table>        tables; ///< the first n_stored_rules rules
       Point<2>                  centre;
       double                    diameter;
     };
+
+    /** The node shape functions of cell @p c on @p rule. */
+    Table
+    make_table(const unsigned int c, const Quadrature<2> &rule) const;
 
     /** psi(p) of cell @p c at the reference point @p p. */
     void
@@ -166,6 +180,11 @@ namespace PlateOnHalfspace
     const FullMatrix<double> &
     singular_q2_block(const unsigned int k, const unsigned int l) const;
 
+    /** The symmetrised Q2 block of (k, l) over k's diameter cubed. */
+    FullMatrix<double>
+    normalised_singular_q2_block(const unsigned int k,
+                                 const unsigned int l) const;
+
     /** One order of the singular rule: outer Gauss on k, inner Duffy on l
      *  (9 x 9, Q2 basis). */
     void
@@ -185,9 +204,12 @@ namespace PlateOnHalfspace
 
     const std::vector<FoundationSpace::Cell> &cells;
     const unsigned int                        singular_order;
-    /** Gauss orders of the tables; 0: the graded singular-pair rule. */
-    std::vector<unsigned int> orders;
-    std::vector<CellData>     cell_data;
+    /** Gauss rules of 2, 3 and 5 points per direction, then the graded
+     *  outer rule of the singular pairs. */
+    const std::array<Quadrature<2>, 4> rules;
+    /** How many of the rules each cell keeps tabulated. */
+    static constexpr unsigned int n_stored_rules = 2;
+    std::vector<CellData>         cell_data;
     /** The Duffy rule on the reference triangle, singular at vertex 0. */
     const QDuffy duffy;
     /** Inner rules of coincident pairs, one per outer point. */
