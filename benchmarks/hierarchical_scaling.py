@@ -1,23 +1,30 @@
 #!/usr/bin/env python3
 """Scale: the hierarchical foundation operator with the iterative contact
-solver against the dense operator with the direct solver (issue 6).
+solver against the dense operator (issue 6).
 
-    python3 benchmarks/hierarchical_scaling.py build/plate-on-halfspace [MAX_LEVEL [DENSE_MAX_LEVEL [SCENE]]]
+    python3 benchmarks/hierarchical_scaling.py build/plate-on-halfspace [MAX_N [DIRECT_MAX_N [DENSE_MAX_N [SCENE]]]]
 
 Scenes: parameters/example2.prm made Galerkin + active set (tensionless,
 lifts off) and parameters/example2-bonded.prm (bonded), both solved on a
-quarter (symmetry xy), refined globally: Initial refinements = 0 ...
-MAX_LEVEL (default 4) gives 96, 341, 1281, 4961, 19521, 77441 foundation
-DOFs. The dense path runs up to DENSE_MAX_LEVEL (default 3: its 7 n^2
-doubles are 21 GB at level 4). Per run: n, the time split of summary.json
-(plate assembly; foundation operator = H-matrix assembly with ACA+
-compression and H-Cholesky, or dense assembly and Cholesky/condensation;
-contact solve = all active-set iterations; total), the peak memory of the
-process (getrusage of the child), CG iterations where reported, and the
-largest difference of the probes from the dense answer relative to each
-field's scale. Fits the growth exponent of the total time of each path
-over its runs with n >= 1000. Writes output/benchmarks/hierarchical_scaling
-.{md,csv,png} (with -SCENE before the suffix when only SCENE, tensionless
+quarter (symmetry xy) of a uniform mesh whose Subdivisions give about
+1e3, 3e3, 1e4, 2e4, 5e4 and 1e5 foundation DOFs (N x N serendipity cells on
+the quarter: n = 3 N^2 + 4 N + 1), up to MAX_N (default 100000). Paths:
+  hierarchical     Storage = hierarchical, Solver = iterative (all sizes);
+  dense            Storage = dense, Solver = direct (LAPACK on the condensed
+                   coupled matrix), up to DIRECT_MAX_N (default 3500: its
+                   seven n^2 doubles and n^3 time);
+  dense-iterative  Storage = dense, Solver = iterative (LAPACK Cholesky of
+                   the dense flexibility as the preconditioner, three n^2
+                   doubles), up to DENSE_MAX_N (default 21000).
+Per run: n, the time split of summary.json (plate assembly; foundation
+operator: integration, compression, factorisation; contact solve = all
+active-set iterations; total wall time), the peak memory of the process
+(getrusage of the child), active-set and CG iterations, and the largest
+difference of the probes from the dense answer (direct if run, else
+dense-iterative) relative to each field's scale. Fits the growth exponent of
+the total time of each path over n >= 1e4 for hierarchical (the issue's
+range) and n >= 1e3 for the dense paths. Writes output/benchmarks/
+hierarchical_scaling.{md,csv,png} (with -SCENE when only SCENE, tensionless
 or bonded, is run). A benchmark, not a test: timings depend on the machine.
 """
 
@@ -44,11 +51,20 @@ PATHS = {
                     "iterative\nend\n",
     "dense": "subsection Foundation operator\n set Storage = dense\nend\n"
              "subsection Contact\n set Solver = direct\nend\n",
+    "dense-iterative": "subsection Foundation operator\n set Storage = "
+                       "dense\nend\nsubsection Contact\n set Solver = "
+                       "iterative\nend\n",
 }
+# Cells per side of the quarter: n = 3 N^2 + 4 N + 1 foundation DOFs.
+CELLS = [18, 32, 57, 81, 128, 182]
 
 
-def run(executable, scene, path, level, out):
-    directory = os.path.join(out, "runs", f"{scene}-{path}-{level}")
+def n_of(cells):
+    return 3 * cells * cells + 4 * cells + 1
+
+
+def run(executable, scene, path, cells, out):
+    directory = os.path.join(out, "runs", f"{scene}-{path}-{cells}")
     os.makedirs(directory, exist_ok=True)
     prm = os.path.join(directory, "scene.prm")
     base, extra = SCENES[scene]
@@ -56,7 +72,9 @@ def run(executable, scene, path, level, out):
         f.write(f"include {os.path.join(ROOT, base)}\n"
                 f"set Output directory = {directory}\n{extra}{PATHS[path]}"
                 "subsection Discretization\n set Symmetry = xy\n"
-                f" set Initial refinements = {level}\nend\n"
+                " set Initial refinements = 0\n"
+                f" set Subdivisions x = {2 * cells}\n"
+                f" set Subdivisions y = {2 * cells}\nend\n"
                 "subsection Adaptivity\n set Cycles = 1\n"
                 " set Max cells = 10000000\nend\n"
                 "subsection Output\n set VTU = false\n set Verbosity = 1\n"
@@ -68,18 +86,22 @@ def run(executable, scene, path, level, out):
     _, status, usage = os.wait4(process.pid, 0)
     wall = time.time() - start
     if status != 0:
-        print(f"  {scene} {path} level {level}: failed, see {directory}")
+        print(f"  {scene} {path} n = {n_of(cells)}: failed, see {directory}")
         return None
     summary = json.load(open(os.path.join(directory, "summary.json")))
     c = summary["cycles"][-1]
     text = open(os.path.join(directory, "log.txt")).read()
     cg = [int(t.split()[0]) for t in text.split("conjugate gradients ")[1:]]
-    return {"scene": scene, "path": path, "level": level,
+    return {"scene": scene, "path": path, "cells": cells,
             "n": c["n_foundation_dofs"], "assembly": c["assembly_time_s"],
-            "foundation": c["foundation_time_s"], "solve": c["solve_time_s"],
+            "foundation": c["foundation_time_s"],
+            "integration": c["foundation_integration_time_s"],
+            "compression": c["foundation_compression_time_s"],
+            "factorization": c["foundation_factorization_time_s"],
+            "solve": c["solve_time_s"],
             "total": wall, "peak_MB": usage.ru_maxrss / 1024.,
             "contact_its": c["contact_iterations"],
-            "cg": "/".join(map(str, cg)), "cycle": c}
+            "cg": sum(cg) if cg else None, "cycle": c}
 
 
 def difference(a, b):
@@ -90,9 +112,9 @@ def difference(a, b):
                for pa, pb in zip(a["probes"], b["probes"]) for k in scales)
 
 
-def slope(rows):
+def slope(rows, smallest):
     points = [(math.log(r["n"]), math.log(r["total"])) for r in rows
-              if r["n"] >= 1000]
+              if r["n"] >= smallest]
     if len(points) < 2:
         return None
     mx = sum(p[0] for p in points) / len(points)
@@ -106,9 +128,10 @@ def main():
         print(__doc__)
         sys.exit(2)
     executable = os.path.abspath(sys.argv[1])
-    max_level = int(sys.argv[2]) if len(sys.argv) > 2 else 4
-    dense_max = int(sys.argv[3]) if len(sys.argv) > 3 else 3
-    only = sys.argv[4] if len(sys.argv) > 4 else None
+    max_n = int(sys.argv[2]) if len(sys.argv) > 2 else 100000
+    direct_max = int(sys.argv[3]) if len(sys.argv) > 3 else 3500
+    dense_max = int(sys.argv[4]) if len(sys.argv) > 4 else 21000
+    only = sys.argv[5] if len(sys.argv) > 5 else None
     if only is not None and only not in SCENES:
         print(__doc__)
         sys.exit(2)
@@ -116,44 +139,65 @@ def main():
     name = "hierarchical_scaling" + (f"-{only}" if only else "")
     out = os.path.join(ROOT, "output", "benchmarks")
     os.makedirs(out, exist_ok=True)
+    limits = {"hierarchical": max_n, "dense": direct_max,
+              "dense-iterative": dense_max}
     rows = []
     for scene in scenes:
-        for level in range(max_level + 1):
-            dense = run(executable, scene, "dense", level, out) \
-                if level <= dense_max else None
-            hier = run(executable, scene, "hierarchical", level, out)
-            for r in (dense, hier):
+        for cells in CELLS:
+            if n_of(cells) > max_n * 1.01:
+                continue
+            results = {}
+            for path in ("dense", "dense-iterative", "hierarchical"):
+                if n_of(cells) <= limits[path] * 1.01:
+                    results[path] = run(executable, scene, path, cells, out)
+            reference = results.get("dense") or results.get("dense-iterative")
+            for path, r in results.items():
                 if r:
-                    r["difference"] = difference(dense["cycle"], r["cycle"]) \
-                        if dense else None
+                    r["difference"] = difference(reference["cycle"],
+                                                 r["cycle"]) \
+                        if reference else None
                     rows.append(r)
-                    print(f"{scene:11s} {r['path']:12s} n = {r['n']:6d}: "
-                          f"total {r['total']:8.2f} s, foundation "
-                          f"{r['foundation']:8.2f} s, solve {r['solve']:7.2f}"
-                          f" s, peak {r['peak_MB']:7.0f} MB", flush=True)
+                    print(f"{scene:11s} {path:15s} n = {r['n']:6d}: total "
+                          f"{r['total']:8.2f} s (foundation "
+                          f"{r['foundation']:7.2f} s, solve "
+                          f"{r['solve']:7.2f} s), peak {r['peak_MB']:7.0f} MB",
+                          flush=True)
     lines = ["# Hierarchical against dense", "",
              "Command: `python3 benchmarks/hierarchical_scaling.py "
-             f"build/plate-on-halfspace {max_level} {dense_max}"
+             f"build/plate-on-halfspace {max_n} {direct_max} {dense_max}"
              f"{' ' + only if only else ''}`", "",
-             "| scene | path | n | plate assembly [s] | foundation operator "
-             "[s] | contact solve [s] | total [s] | peak memory [MB] | "
-             "contact its | CG its per contact it | probes vs dense |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| scene | path | n | plate assembly [s] | integration [s] | "
+             "compression [s] | factorisation [s] | contact solve [s] | "
+             "total [s] | peak memory [MB] | active-set its | CG its | "
+             "probes vs dense |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         d = "-" if r["difference"] is None else f"{r['difference']:.1e}"
         lines.append(f"| {r['scene']} | {r['path']} | {r['n']} | "
-                     f"{r['assembly']:.2f} | {r['foundation']:.2f} | "
+                     f"{r['assembly']:.2f} | {r['integration']:.2f} | "
+                     f"{r['compression']:.2f} | {r['factorization']:.2f} | "
                      f"{r['solve']:.2f} | {r['total']:.2f} | "
                      f"{r['peak_MB']:.0f} | {r['contact_its']} | "
-                     f"{r['cg'] or '-'} | {d} |")
-    lines += ["", "Growth exponent of the total time (least squares over "
-              "n >= 1000):", ""]
+                     f"{r['cg'] if r['cg'] is not None else '-'} | {d} |")
+    lines += ["", "Growth exponent of the total time (least squares; "
+              "hierarchical over n >= 1e4, dense over n >= 1e3):", ""]
     for scene in scenes:
         for path in PATHS:
             s = slope([r for r in rows if r["scene"] == scene and
-                       r["path"] == path])
+                       r["path"] == path],
+                      10000 if path == "hierarchical" else 1000)
             lines.append(f"- {scene}, {path}: "
                          f"{'-' if s is None else f'{s:.2f}'}")
+    lines += ["", "Hierarchical against the fastest dense path at the same "
+              "n (total time):", ""]
+    for scene in scenes:
+        for h in [r for r in rows if r["scene"] == scene and
+                  r["path"] == "hierarchical"]:
+            dense = [r["total"] for r in rows if r["scene"] == scene and
+                     r["n"] == h["n"] and r["path"] != "hierarchical"]
+            if dense:
+                lines.append(f"- {scene}, n = {h['n']}: "
+                             f"{min(dense) / h['total']:.1f} x faster")
     with open(os.path.join(out, name + ".md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))

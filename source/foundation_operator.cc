@@ -215,15 +215,15 @@ namespace PlateOnHalfspace
   }
 
   std::unique_ptr<FoundationOperator>
-  create_foundation_operator(const SceneParameters &parameters)
+  create_foundation_operator(const SceneParameters &parameters,
+                             const std::string     &storage)
   {
     const double alpha =
       boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
                                       parameters.foundation.poissons_ratio);
-    // Storage = auto and dense both mean the dense LAPACK operators; the
-    // parameter parser allows hierarchical only with the Galerkin operator
+    // SceneParameters allows hierarchical only with the Galerkin operator
     // and the iterative contact solver.
-    if (parameters.foundation_operator.storage == "hierarchical")
+    if (storage == "hierarchical")
       return std::make_unique<HierarchicalGalerkinOperator>(
         alpha,
         parameters.discretization.singular_quadrature_order,

@@ -22,9 +22,11 @@ namespace PlateOnHalfspace
   } // namespace
 
   std::size_t
-  dense_foundation_bytes(const std::size_t n_foundation_nodes)
+  dense_foundation_bytes(const std::size_t n_foundation_nodes,
+                         const bool        iterative)
   {
-    return 7 * n_foundation_nodes * n_foundation_nodes * sizeof(double);
+    return (iterative ? 3 : 7) * n_foundation_nodes * n_foundation_nodes *
+           sizeof(double);
   }
 
   std::size_t
@@ -67,20 +69,24 @@ namespace PlateOnHalfspace
   }
 
   void
-  check_dense_foundation_memory(const std::size_t n_foundation_nodes)
+  check_dense_foundation_memory(const std::size_t n_foundation_nodes,
+                                const bool        iterative)
   {
-    const std::size_t needed    = dense_foundation_bytes(n_foundation_nodes);
+    const std::size_t needed =
+      dense_foundation_bytes(n_foundation_nodes, iterative);
     const std::size_t available = available_memory_bytes();
     AssertThrow(
       available == 0 || needed <= available,
       dealii::ExcMessage(
         "The dense foundation block of " + std::to_string(n_foundation_nodes) +
         " nodes needs about " + std::to_string(needed) + " bytes (" +
-        gigabytes(needed) + ", 7 n^2 doubles), but only " +
-        std::to_string(available) + " bytes (" + gigabytes(available) +
+        gigabytes(needed) + (iterative ? ", 3" : ", 7") +
+        " n^2 doubles), but only " + std::to_string(available) + " bytes (" +
+        gigabytes(available) +
         ") are available. Reduce the node count: Discretization/Subdivisions "
         "x and y, Discretization/Initial refinements, Adaptivity/Max cells "
         "or Adaptivity/Cycles (memory grows with the square of the nodes; "
-        "Discretization/Symmetry, where available, quarters it)."));
+        "Discretization/Symmetry, where available, quarters it), or use "
+        "Foundation operator/Storage = hierarchical."));
   }
 } // namespace PlateOnHalfspace

@@ -222,13 +222,28 @@ namespace PlateOnHalfspace
                         Patterns::Selection("auto|dense|hierarchical"),
                         "How the half-space block is stored: dense (LAPACK), "
                         "hierarchical (an H-matrix of hmat-oss, compressed "
-                        "to Tolerance; needs Contact/Solver = iterative and "
-                        "Flexibility = galerkin) or auto (= dense).");
+                        "to Tolerance; needs Contact/Solver = iterative or "
+                        "auto, Flexibility = galerkin and, on a tensionless "
+                        "foundation, Contact/Method = active set) or auto: "
+                        "hierarchical in the cycles with at least "
+                        "Hierarchical from foundation nodes where the scene "
+                        "allows it (the conditions above, Contact/Solver not "
+                        "direct), dense otherwise.");
       prm.declare_entry("Tolerance",
                         "1e-6",
                         Patterns::Double(0, 1),
-                        "Relative accuracy of the compressed blocks and of "
-                        "the H-Cholesky factor (Storage = hierarchical).");
+                        "Relative accuracy of the compressed blocks "
+                        "(Storage = hierarchical); the H-Cholesky factor, "
+                        "which only preconditions, is recompressed at the "
+                        "larger of this and 1e-3.");
+      prm.declare_entry("Hierarchical from",
+                        "3000",
+                        Patterns::Integer(0),
+                        "Storage = auto: the number of foundation nodes from "
+                        "which a cycle uses the hierarchical operator (below "
+                        "it the dense one, exact and fast enough; at 4961 "
+                        "nodes dense took 60 s and 1.2 GB, hierarchical 5 s "
+                        "and 0.27 GB on example 2).");
       prm.leave_subsection();
     }
 
@@ -236,8 +251,9 @@ namespace PlateOnHalfspace
     FoundationOperator::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Foundation operator");
-      storage   = prm.get("Storage");
-      tolerance = prm.get_double("Tolerance");
+      storage           = prm.get("Storage");
+      tolerance         = prm.get_double("Tolerance");
+      hierarchical_from = prm.get_integer("Hierarchical from");
       prm.leave_subsection();
       require(tolerance > 0,
               "Foundation operator/Tolerance must lie in (0, 1]" +
@@ -414,9 +430,11 @@ namespace PlateOnHalfspace
                         "displacement norm that ends the iteration.");
       prm.declare_entry(
         "Solver",
-        "direct",
-        Patterns::Selection("direct|iterative"),
-        "How each contact set is solved: direct (the plate condensed onto "
+        "auto",
+        Patterns::Selection("auto|direct|iterative"),
+        "How each contact set is solved: auto (iterative with the "
+        "hierarchical half-space operator, direct with a dense one), direct "
+        "(the plate condensed onto "
         "the foundation nodes into a dense matrix, factorised by LAPACK) or "
         "iterative (conjugate gradients on the contact pressures with the "
         "sparse plate stiffness and the half-space preconditioned by its "
@@ -435,8 +453,10 @@ namespace PlateOnHalfspace
                                                             Method::element_exclusion);
       max_iterations = prm.get_integer("Max iterations");
       tolerance      = prm.get_double("Tolerance");
-      solver =
-        (prm.get("Solver") == "iterative" ? Solver::iterative : Solver::direct);
+      const std::string name = prm.get("Solver");
+      solver                 = (name == "iterative" ? Solver::iterative :
+                                name == "direct"    ? Solver::direct :
+                                                      Solver::automatic);
       prm.leave_subsection();
       require(tolerance > 0,
               "Contact/Tolerance must lie in (0, 1]" + got(tolerance) + ".");
@@ -661,10 +681,22 @@ namespace PlateOnHalfspace
               "rectangular cells (the paper's closed-form integral); use "
               "galerkin for Plate/Shape = disk.");
     if (foundation_operator.storage == "hierarchical")
-      require(contact.solver == Parameters::Contact::Solver::iterative,
-              "Foundation operator/Storage = hierarchical needs Contact/"
-              "Solver = iterative (the direct solver forms the dense block "
-              "the hierarchical matrix avoids).");
+      {
+        require(contact.solver != Parameters::Contact::Solver::direct,
+                "Foundation operator/Storage = hierarchical needs Contact/"
+                "Solver = iterative or auto (the direct solver forms the "
+                "dense block the hierarchical matrix avoids).");
+        require(discretization.flexibility ==
+                  Parameters::Discretization::Flexibility::galerkin,
+                "Foundation operator/Storage = hierarchical needs the "
+                "symmetric half-space operator, Discretization/Flexibility "
+                "= galerkin.");
+        require(!foundation.tensionless ||
+                  contact.method == Parameters::Contact::Method::active_set,
+                "Foundation operator/Storage = hierarchical needs Contact/"
+                "Method = active set (element exclusion rebuilds the "
+                "operator).");
+      }
     if (contact.solver == Parameters::Contact::Solver::iterative)
       {
         require(discretization.flexibility ==
@@ -676,6 +708,33 @@ namespace PlateOnHalfspace
                 "Contact/Solver = iterative needs Contact/Method = active "
                 "set (element exclusion rebuilds the operator).");
       }
+  }
+
+  std::string
+  SceneParameters::foundation_storage(
+    const unsigned int n_foundation_nodes) const
+  {
+    if (foundation_operator.storage != "auto")
+      return foundation_operator.storage;
+    const bool allowed =
+      discretization.flexibility ==
+        Parameters::Discretization::Flexibility::galerkin &&
+      (!foundation.tensionless ||
+       contact.method == Parameters::Contact::Method::active_set) &&
+      contact.solver != Parameters::Contact::Solver::direct;
+    return (allowed &&
+            n_foundation_nodes >= foundation_operator.hierarchical_from) ?
+             "hierarchical" :
+             "dense";
+  }
+
+  bool
+  SceneParameters::iterative_contact_solver(
+    const unsigned int n_foundation_nodes) const
+  {
+    return contact.solver == Parameters::Contact::Solver::iterative ||
+           (contact.solver == Parameters::Contact::Solver::automatic &&
+            foundation_storage(n_foundation_nodes) == "hierarchical");
   }
 
   void

@@ -49,7 +49,6 @@ namespace PlateOnHalfspace
           std::make_unique<MindlinPlate>(parameters.plate,
                                          parameters.discretization);
         mindlin_plate->set_mirror_symmetry(symmetry);
-        foundation_operator = create_foundation_operator(parameters);
         {
           TimerOutput::Scope scope(timer_output, "plate setup");
           Timer              setup_timer;
@@ -150,13 +149,18 @@ namespace PlateOnHalfspace
           << summary.n_dofs << " dofs, " << summary.n_foundation_dofs
           << " foundation nodes" << std::endl;
 
-    if (parameters.foundation_operator.storage != "hierarchical")
-      check_dense_foundation_memory(summary.n_foundation_dofs);
+    // Storage = auto and Solver = auto are decided for this cycle's mesh.
+    const std::string storage =
+      parameters.foundation_storage(summary.n_foundation_dofs);
+    const bool iterative =
+      parameters.iterative_contact_solver(summary.n_foundation_dofs);
+    if (!foundation_operator || foundation_operator->storage_name() != storage)
+      foundation_operator = create_foundation_operator(parameters, storage);
+    if (storage != "hierarchical")
+      check_dense_foundation_memory(summary.n_foundation_dofs, iterative);
     LAPACKFullMatrix<double> plate_stiffness;
     Vector<double>           plate_load;
     // The iterative solver works on the sparse plate: no condensation.
-    const bool iterative =
-      parameters.contact.solver == Parameters::Contact::Solver::iterative;
     if (!iterative)
       {
         TimerOutput::Scope scope(timer_output, "condense plate");

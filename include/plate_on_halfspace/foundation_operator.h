@@ -252,10 +252,12 @@ namespace PlateOnHalfspace
 
   /**
    * Make the operator the scene asks for (Discretization/Flexibility and
-   * Foundation operator/Storage).
+   * Foundation operator/Tolerance) with @p storage, "dense" or
+   * "hierarchical" (SceneParameters::foundation_storage()).
    */
   std::unique_ptr<FoundationOperator>
-  create_foundation_operator(const SceneParameters &parameters);
+  create_foundation_operator(const SceneParameters &parameters,
+                             const std::string     &storage);
 } // namespace PlateOnHalfspace
 
 #endif

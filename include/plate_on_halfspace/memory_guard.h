@@ -18,10 +18,14 @@ namespace PlateOnHalfspace
    * half-space flexibility F, the factor of its contact block, the
    * condensed plate K̄, the coupled matrix K̄ + S and the right-hand sides
    * M_{C,:} of S (foundation_operator.h, contact_solver.h), plus the second
-   * flexibility that element exclusion keeps: seven n x n doubles.
+   * flexibility that element exclusion keeps: seven n x n doubles. With
+   * the iterative contact solver (@p iterative) three: F, the factor of
+   * F_CC of all nodes that build() makes, and the Cholesky factor that
+   * preconditions the conjugate gradients.
    */
   std::size_t
-  dense_foundation_bytes(const std::size_t n_foundation_nodes);
+  dense_foundation_bytes(const std::size_t n_foundation_nodes,
+                         const bool        iterative = false);
 
   /**
    * Bytes the run may use: MemAvailable of /proc/meminfo, or the
@@ -38,7 +42,8 @@ namespace PlateOnHalfspace
    * exceeds available_memory_bytes().
    */
   void
-  check_dense_foundation_memory(const std::size_t n_foundation_nodes);
+  check_dense_foundation_memory(const std::size_t n_foundation_nodes,
+                                const bool        iterative = false);
 } // namespace PlateOnHalfspace
 
 #endif

@@ -69,6 +69,8 @@ namespace PlateOnHalfspace
     {
       std::string storage; ///< auto | dense | hierarchical
       double      tolerance;
+      /** Storage = auto: hierarchical from this many foundation nodes. */
+      unsigned int hierarchical_from;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -157,8 +159,9 @@ namespace PlateOnHalfspace
       /** How each contact set's coupled problem is solved. */
       enum class Solver
       {
-        direct,   ///< ContactSolver: dense condensed plate + LAPACK
-        iterative ///< IterativeContactSolver: sparse plate + CG
+        direct,    ///< ContactSolver: dense condensed plate + LAPACK
+        iterative, ///< IterativeContactSolver: sparse plate + CG
+        automatic  ///< iterative with hierarchical storage, else direct
       };
       Method       method;
       unsigned int max_iterations;
@@ -250,6 +253,19 @@ namespace PlateOnHalfspace
     declare_parameters(ParameterHandler &prm);
     void
     parse_parameters(ParameterHandler &prm);
+
+    /**
+     * The storage of the half-space operator in a cycle with
+     * @p n_foundation_nodes nodes: "dense" or "hierarchical" (Foundation
+     * operator/Storage, with auto resolved).
+     */
+    std::string
+    foundation_storage(const unsigned int n_foundation_nodes) const;
+
+    /** Whether such a cycle solves contact iteratively (Contact/Solver,
+     *  with auto resolved). */
+    bool
+    iterative_contact_solver(const unsigned int n_foundation_nodes) const;
 
     /** Declare, read @p filename, parse and check. Throws on bad input. */
     void

@@ -71,8 +71,9 @@ main()
   check("missing mesh file",
         "subsection Plate\n set Shape = mesh file\n"
         " set Mesh file = no-such-file.msh\nend\n");
-  check("compressed storage",
-        "subsection Foundation operator\n set Storage = hierarchical\nend\n");
+  check("compressed storage with the direct solver",
+        "subsection Foundation operator\n set Storage = hierarchical\nend\n"
+        "subsection Contact\n set Solver = direct\nend\n");
   check("unstable element",
         "subsection Discretization\n set Element = lagrange\n"
         " set Shear integration = reduced\nend\n");

@@ -49,7 +49,7 @@ namespace
     LAPACKFullMatrix<double> stiffness;
     Vector<double>           load;
     result.plate->condense(stiffness, load);
-    result.foundation = create_foundation_operator(parameters);
+    result.foundation = create_foundation_operator(parameters, "dense");
     result.foundation->build(result.plate->get_foundation_space(), {});
     std::ostringstream  log;
     const ContactSolver solver(parameters.contact, false, 0, log);

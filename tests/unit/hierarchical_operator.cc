@@ -10,6 +10,9 @@
 //   amplifies the product error);
 // - a tolerance sweep on example 2: the difference from dense falls with
 //   the tolerance;
+// - Storage = auto (with Contact/Solver = auto) picks dense below
+//   Foundation operator/Hierarchical from and hierarchical from it on,
+//   cycle by cycle, and stays dense for the paper's collocation operator;
 // - an absurd tolerance (1) and the direct solver are refused with clear
 //   messages.
 
@@ -112,6 +115,43 @@ main()
           << (falls == 4 ? "ok" : "FAILED") << std::endl;
   AssertThrow(falls == 4, ExcMessage("tolerance sweep"));
 
+  // Storage = auto, Contact/Solver = auto: dense (and the direct solver)
+  // below Hierarchical from, hierarchical (and iterative) from it on, cycle
+  // by cycle; dense wherever the scene does not allow the hierarchical
+  // operator (the paper's collocation with element exclusion).
+  {
+    const auto automatic =
+      solve_scene("example2.prm",
+                  example2 +
+                    "subsection Discretization\n set Symmetry = xy\n"
+                    " set Flexibility = galerkin\nend\n"
+                    "subsection Foundation operator\n set Storage = auto\n"
+                    " set Hierarchical from = 200\nend\n");
+    const auto &cycles = automatic->summaries();
+    const bool  picks  = cycles[0].n_foundation_dofs < 200 &&
+                       cycles[0].foundation_storage == "dense" &&
+                       cycles[1].n_foundation_dofs >= 200 &&
+                       cycles[1].foundation_storage == "hierarchical";
+    const double difference =
+      probe_difference(dense->summaries().back(), cycles.back());
+    deallog << "Storage = auto, Hierarchical from = 200: cycle 0 ("
+            << cycles[0].n_foundation_dofs << " nodes) "
+            << cycles[0].foundation_storage << ", cycle 1 ("
+            << cycles[1].n_foundation_dofs << " nodes) "
+            << cycles[1].foundation_storage << ", probes within 1e-5 of "
+            << "dense: " << (picks && difference <= 1e-5 ? "ok" : "FAILED")
+            << std::endl;
+    AssertThrow(picks && difference <= 1e-5, ExcMessage("Storage = auto"));
+    const auto paper = solve_scene(
+      "example2.prm",
+      "subsection Foundation operator\n set Hierarchical from = 0\nend\n");
+    deallog << "Storage = auto with the paper's collocation and element "
+               "exclusion: "
+            << paper->summaries().back().foundation_storage << std::endl;
+    AssertThrow(paper->summaries().back().foundation_storage == "dense",
+                ExcMessage("Storage = auto with collocation"));
+  }
+
   // refusals
   for (const auto &[label, extra] :
        std::vector<std::pair<std::string, std::string>>{
@@ -122,7 +162,7 @@ main()
           "subsection Contact\n set Solver = iterative\nend\n"},
          {"direct solver",
           "subsection Foundation operator\n set Storage = hierarchical\n"
-          "end\n"}})
+          "end\nsubsection Contact\n set Solver = direct\nend\n"}})
     try
       {
         solve_scene("rigid-disk.prm", extra);
