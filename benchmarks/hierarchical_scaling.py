@@ -25,7 +25,7 @@ active-set iterations; total wall time), the peak memory of the process
 (getrusage of the child), active-set and CG iterations, and the largest
 difference of the probes from the dense answer (direct if run, else
 dense-iterative) relative to each field's scale. Fits the growth exponent of
-the total time of each path over n >= 1e4 for hierarchical (the issue's
+the total time of each path over n >= 9000 for hierarchical (9976 on: the issue's
 range) and n >= 1e3 for the dense paths. Writes output/benchmarks/
 hierarchical_scaling.{md,csv,png} (with -SCENE when only SCENE, tensionless
 or bonded, is run). A benchmark, not a test: timings depend on the machine.
