@@ -16,8 +16,8 @@ namespace PlateOnHalfspace
 
     const std::string needs_iterative_solver =
       "Foundation operator/Storage = hierarchical needs Contact/Solver = "
-      "iterative (the direct solver would form the dense foundation block "
-      "the hierarchical matrix avoids).";
+      "iterative or auto (the direct solver would form the dense foundation "
+      "block the hierarchical matrix avoids).";
   } // namespace
 
   HierarchicalGalerkinOperator::HierarchicalGalerkinOperator(

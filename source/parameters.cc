@@ -659,6 +659,35 @@ namespace PlateOnHalfspace
     Parameters::Verification::declare_parameters(prm);
   }
 
+  namespace
+  {
+    /**
+     * Why @p parameters cannot use the hierarchical half-space operator
+     * (the message of the first condition it breaks), or "" if it can:
+     * Storage = hierarchical is refused with this message, and Storage =
+     * auto stays dense.
+     */
+    std::string
+    hierarchical_storage_obstacle(const SceneParameters &parameters)
+    {
+      if (parameters.contact.solver == Parameters::Contact::Solver::direct)
+        return "Foundation operator/Storage = hierarchical needs Contact/"
+               "Solver = iterative or auto (the direct solver forms the "
+               "dense block the hierarchical matrix avoids).";
+      if (parameters.discretization.flexibility !=
+          Parameters::Discretization::Flexibility::galerkin)
+        return "Foundation operator/Storage = hierarchical needs the "
+               "symmetric half-space operator, Discretization/Flexibility "
+               "= galerkin.";
+      if (parameters.foundation.tensionless &&
+          parameters.contact.method != Parameters::Contact::Method::active_set)
+        return "Foundation operator/Storage = hierarchical needs Contact/"
+               "Method = active set (element exclusion rebuilds the "
+               "operator).";
+      return "";
+    }
+  } // namespace
+
   void
   SceneParameters::parse_parameters(ParameterHandler &prm)
   {
@@ -682,20 +711,8 @@ namespace PlateOnHalfspace
               "galerkin for Plate/Shape = disk.");
     if (foundation_operator.storage == "hierarchical")
       {
-        require(contact.solver != Parameters::Contact::Solver::direct,
-                "Foundation operator/Storage = hierarchical needs Contact/"
-                "Solver = iterative or auto (the direct solver forms the "
-                "dense block the hierarchical matrix avoids).");
-        require(discretization.flexibility ==
-                  Parameters::Discretization::Flexibility::galerkin,
-                "Foundation operator/Storage = hierarchical needs the "
-                "symmetric half-space operator, Discretization/Flexibility "
-                "= galerkin.");
-        require(!foundation.tensionless ||
-                  contact.method == Parameters::Contact::Method::active_set,
-                "Foundation operator/Storage = hierarchical needs Contact/"
-                "Method = active set (element exclusion rebuilds the "
-                "operator).");
+        const std::string obstacle = hierarchical_storage_obstacle(*this);
+        require(obstacle.empty(), obstacle);
       }
     if (contact.solver == Parameters::Contact::Solver::iterative)
       {
@@ -716,12 +733,7 @@ namespace PlateOnHalfspace
   {
     if (foundation_operator.storage != "auto")
       return foundation_operator.storage;
-    const bool allowed =
-      discretization.flexibility ==
-        Parameters::Discretization::Flexibility::galerkin &&
-      (!foundation.tensionless ||
-       contact.method == Parameters::Contact::Method::active_set) &&
-      contact.solver != Parameters::Contact::Solver::direct;
+    const bool allowed = hierarchical_storage_obstacle(*this).empty();
     return (allowed &&
             n_foundation_nodes >= foundation_operator.hierarchical_from) ?
              "hierarchical" :

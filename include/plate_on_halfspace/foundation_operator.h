@@ -162,10 +162,12 @@ namespace PlateOnHalfspace
     }
 
     /**
-     * Wall times (seconds) of the parts of the last build() that are not
+     * Wall times (seconds) of the parts of build() that are not
      * integration: compressing the flexibility (hierarchical storage) and
-     * factorising it (the dense F_CC of all nodes in contact, or the
-     * H-Cholesky factor of A). The rest of build() integrates.
+     * factorising it (the H-Cholesky factor of A, or the dense F_CC of all
+     * nodes in contact; for the dense operators the latest factorisation,
+     * so read it right after build(), before set_contact_nodes()). The
+     * rest of build() integrates.
      */
     struct BuildTimes
     {
