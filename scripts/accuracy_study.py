@@ -10,7 +10,7 @@ Each variant is the shipped scene (parameters/) with a few entries changed;
 every refinement cycle of a run is one point. Quantities of interest: the
 centre deflection w(0,0), the peak Mx (largest at the 2x2 Gauss points), the
 contact area fraction and q at an interior point. The reference is the exact
-value where one exists (references.md), otherwise a Richardson
+value where one exists (doc/verification.md), otherwise a Richardson
 extrapolation from the three finest globally refined runs of the default
 settings where they converge monotonically, otherwise the finest cycle of a
 separate, finer reference run (default settings, adaptive, more cycles);

@@ -2,10 +2,10 @@
 
 #include <deal.II/numerics/solution_transfer.h>
 
-#include <plate_on_halfspace/iterative_contact_solver.h>
-#include <plate_on_halfspace/memory_guard.h>
-#include <plate_on_halfspace/mesh_refinement.h>
-#include <plate_on_halfspace/plate_mesh.h>
+#include <plate_on_halfspace/contact/iterative_solver.h>
+#include <plate_on_halfspace/halfspace/memory_guard.h>
+#include <plate_on_halfspace/refinement/mesh_refinement.h>
+#include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 
 #include <cmath>

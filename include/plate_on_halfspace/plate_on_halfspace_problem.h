@@ -1,5 +1,5 @@
 /**
- * The application: the adaptive loop of formulation.md ("Adaptive
+ * The application: the adaptive loop of doc/formulation.md ("Adaptive
  * refinement") around the contact iteration, driven by a scene file
  * (step-41/42 and ASPECT are the models).
  */
@@ -13,12 +13,12 @@
 
 #include <deal.II/lac/vector.h>
 
-#include <plate_on_halfspace/contact_solver.h>
-#include <plate_on_halfspace/foundation_operator.h>
-#include <plate_on_halfspace/mindlin_plate.h>
-#include <plate_on_halfspace/mirror_symmetry.h>
-#include <plate_on_halfspace/parameters.h>
-#include <plate_on_halfspace/results_output.h>
+#include <plate_on_halfspace/contact/direct_solver.h>
+#include <plate_on_halfspace/halfspace/interface.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/scene/mirror_symmetry.h>
+#include <plate_on_halfspace/scene/parameters.h>
+#include <plate_on_halfspace/io/results_output.h>
 
 #include <memory>
 #include <optional>

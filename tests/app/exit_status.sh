@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The executable's contract (interfaces.md, "Commands"): exit 0 on success,
+# The executable's contract (doc/parameters.md, "Commands"): exit 0 on success,
 # non-zero with a one-line "Error: ..." on stderr for bad input, and a failed
 # run never destroys the results of an earlier one.
 # usage: exit_status.sh PROGRAM SCENE_DIRECTORY

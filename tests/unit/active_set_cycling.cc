@@ -15,7 +15,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 
-#include <plate_on_halfspace/contact_solver.h>
+#include <plate_on_halfspace/contact/direct_solver.h>
 
 #include "../tests.h"
 

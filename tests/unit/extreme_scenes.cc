@@ -14,7 +14,7 @@
 //   1e-6 ... 1e9 give deflections times the same factor (1e-12) and the
 //   same contact set;
 // - a 50 m x 1 m flexible slab (1:50, collocation): the closed-form
-//   settlement of the rectangle at its centre (formulation.md) to 1e-10;
+//   settlement of the rectangle at its centre (doc/formulation.md) to 1e-10;
 // - a point load 1e-6 off a node differs from the one on it by O(1e-6);
 // - a patch half off the plate: the part on it is applied (exactly, 1e-12)
 //   and scene_warnings() says so;
@@ -26,8 +26,8 @@
 //   for an eccentricity e < a/3, just lifts at e = a/3 (incipient lift-off),
 //   lifts more as e grows and almost entirely (contact < 0.1) at 0.95 a.
 
-#include <plate_on_halfspace/boussinesq_kernel.h>
-#include <plate_on_halfspace/input_checks.h>
+#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
+#include <plate_on_halfspace/scene/input_checks.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 
 #include "../tests.h"

@@ -1,5 +1,5 @@
 // Hanging nodes inside the plate and the dense foundation block
-// (formulation.md, "Adaptive refinement": only unconstrained w-DOFs carry
+// (doc/formulation.md, "Adaptive refinement": only unconstrained w-DOFs carry
 // foundation unknowns). The flexible square of parameters/flexible-square.prm
 // with the Galerkin operator on
 //  (a) a mesh with the cells x < 0 refined once (hanging nodes along x = 0),
@@ -16,9 +16,9 @@
 
 #include <deal.II/grid/grid_generator.h>
 
-#include <plate_on_halfspace/contact_solver.h>
-#include <plate_on_halfspace/foundation_operator.h>
-#include <plate_on_halfspace/mindlin_plate.h>
+#include <plate_on_halfspace/contact/direct_solver.h>
+#include <plate_on_halfspace/halfspace/interface.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
 
 #include <cmath>
 #include <numeric>

@@ -1,7 +1,7 @@
 // The reference value of parameters/infinite-plate-patch.prm, computed here
 // independently of the finite element code: the centre deflection of an
 // infinite Mindlin plate on a half-space under a uniform circular patch
-// (formulation.md, "Reference values"):
+// (doc/formulation.md, "Reference values"):
 //   w(0) = (P/(pi a)) Int_0^inf J1(k a) (1 + c k^2) /
 //          (D k^4 + (1 + c k^2) E* k / 2) dk,
 //   c = D/(k_s G t), E* = E0/(1 - nu0^2), k_s = 5/6.
@@ -10,7 +10,7 @@
 // alternating tail averaged (Euler's first step). Cross-checked against
 // mpmath (quadosc, 20 digits): 1.9231820006778574e-4. Also the Kirchhoff
 // limit (c = 0, a -> 0) against the exact point-load value P l^2/(3 sqrt 3 D)
-// (references.md).
+// (doc/verification.md).
 
 #include <deal.II/base/quadrature_lib.h>
 

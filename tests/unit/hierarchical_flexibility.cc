@@ -1,5 +1,5 @@
 // The hierarchical (H-matrix) Galerkin flexibility against the dense one
-// (formulation.md, "Default variant": A_ij = alpha ∫∫ φ_i φ_j / |x - y|),
+// (doc/formulation.md, "Default variant": A_ij = alpha ∫∫ φ_i φ_j / |x - y|),
 // which BoussinesqGalerkinOperator assembles entry by entry; the dense
 // matrix is the independent reference here.
 //  - three meshes large enough for admissible (low-rank) blocks: the
@@ -17,12 +17,12 @@
 
 #include <deal.II/grid/tria.h>
 
-#include <plate_on_halfspace/boussinesq_galerkin_operator.h>
-#include <plate_on_halfspace/boussinesq_kernel.h>
-#include <plate_on_halfspace/hierarchical_flexibility.h>
-#include <plate_on_halfspace/mindlin_plate.h>
-#include <plate_on_halfspace/mirror_symmetry.h>
-#include <plate_on_halfspace/plate_mesh.h>
+#include <plate_on_halfspace/halfspace/galerkin_operator.h>
+#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
+#include <plate_on_halfspace/halfspace/hierarchical_flexibility.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/scene/mirror_symmetry.h>
+#include <plate_on_halfspace/plate/plate_mesh.h>
 
 #include <cmath>
 #include <limits>

@@ -24,7 +24,7 @@
 // CG limited to one iteration must throw the solver's error, not return an
 // inaccurate answer.
 
-#include <plate_on_halfspace/iterative_contact_solver.h>
+#include <plate_on_halfspace/contact/iterative_solver.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 
 #include <algorithm>

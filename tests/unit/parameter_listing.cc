@@ -4,7 +4,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <plate_on_halfspace/parameters.h>
+#include <plate_on_halfspace/scene/parameters.h>
 
 #include "../tests.h"
 

@@ -15,7 +15,7 @@
 //   m, n of 1 / (m^2 + n^2)^2 (the Mindlin point-load deflection is
 //   infinite: only the thin plate is compared, see below).
 // The series (m, n <= 4001) are first checked against the values of
-// references.md (0.00406235, 0.04789, 0.011601, Mindlin factors 1.0005 for
+// doc/verification.md (0.00406235, 0.04789, 0.011601, Mindlin factors 1.0005 for
 // a/t = 100 and 1.0518 for a/t = 10). Then the finite-element centre
 // deflection and centre moment Mx for every element with reduced and
 // selective integration (and full integration for a/t = 10) on 4x4, 8x8,
@@ -32,8 +32,8 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
-#include <plate_on_halfspace/mindlin_plate.h>
-#include <plate_on_halfspace/parameters.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/scene/parameters.h>
 
 #include <cmath>
 #include <iomanip>

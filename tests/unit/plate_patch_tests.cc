@@ -40,8 +40,8 @@
 
 #include <deal.II/lac/lapack_full_matrix.h>
 
-#include <plate_on_halfspace/mindlin_plate.h>
-#include <plate_on_halfspace/parameters.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/scene/parameters.h>
 
 #include <array>
 #include <cmath>

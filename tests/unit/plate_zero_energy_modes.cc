@@ -45,8 +45,8 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
-#include <plate_on_halfspace/mindlin_plate.h>
-#include <plate_on_halfspace/parameters.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/scene/parameters.h>
 
 #include <algorithm>
 #include <array>

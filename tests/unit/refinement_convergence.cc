@@ -1,7 +1,7 @@
 // Refinement cycles (Adaptivity/Cycles, Refinement = global | adaptive) on
 // the flexible uniformly loaded square with the Galerkin operator: both
 // converge to the exact centre settlement 1.1221997 q B (1-nu0^2)/E0
-// (references.md, exact). Global refinement: the error falls on every
+// (doc/verification.md, exact). Global refinement: the error falls on every
 // cycle, to below 2e-5; adaptive refinement: the error does not grow after
 // the first cycles (see below). The result files must hold one row
 // (convergence.txt) and one entry (summary.json) per cycle.

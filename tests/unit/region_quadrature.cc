@@ -7,7 +7,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 
-#include <plate_on_halfspace/quadrilateral_geometry.h>
+#include <plate_on_halfspace/base/quadrilateral_geometry.h>
 
 #include <algorithm>
 #include <array>

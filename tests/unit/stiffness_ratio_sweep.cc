@@ -2,7 +2,7 @@
 // 16 decades at each end, issue 5. Two limits are exact:
 // - very flexible: the settlement of a uniformly loaded rectangle,
 //   1.1221997 q B (1 - nu0^2) / E0 at the centre of a square (the closed
-//   form of formulation.md; parameters/flexible-square.prm, collocation,
+//   form of doc/formulation.md; parameters/flexible-square.prm, collocation,
 //   which represents a uniform pressure exactly);
 // - very stiff: the rigid plate. Its discrete value follows from the
 //   half-space operator alone, w = P / (1^T M F^{-1} B 1) (a rigid

@@ -1,5 +1,5 @@
 // Lift-off of a weightless circular plate under a central point load on a
-// tensionless half-space, against the computed reference of references.md
+// tensionless half-space, against the computed reference of doc/verification.md
 // ("Tensionless circular plate, weightless, central point load"): with
 // K = (l/a)^3, l^3 = 2 D (1 - nu0^2) / E0, the plate keeps full contact
 // for K >= about 0.069 and otherwise touches the soil on a disk of radius
@@ -86,7 +86,7 @@ main()
                   << "; reference within the node bracket (+-0.02): "
                   << (bracket_ok ? "ok" : "FAILED") << std::endl;
           AssertThrow(area_ok && bracket_ok,
-                      ExcMessage("contact radius differs from references.md"));
+                      ExcMessage("contact radius differs from doc/verification.md"));
         }
     }
 }

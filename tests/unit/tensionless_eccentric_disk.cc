@@ -1,7 +1,7 @@
 // A near-rigid disk (parameters/rigid-disk.prm, relative stiffness
 // K = 3.8e3) on a tensionless half-space under an eccentric point load.
 // A rigid circular punch stays in full contact iff the eccentricity is at
-// most a/3 (references.md, exact): at e = 0.30 a every node stays in
+// most a/3 (doc/verification.md, exact): at e = 0.30 a every node stays in
 // contact and the tensionless answer equals the bonded one (to 1e-10); at
 // e = 0.40 a part of the plate lifts off, the far side first. Both answers
 // satisfy the discrete contact conditions to 1e-8 and equilibrium to 1e-8.

@@ -3,7 +3,7 @@
 // 8 x 8 cells with a/t = 5 ... 10^4 (E = 12 (1 - nu^2) D / t^3). The
 // reference is the Navier series of the Mindlin plate,
 // w = w_K (1 + 5.18 (t/a)^2) with w_K = 0.00406235 q a^4 / D its thin
-// limit (references.md; tests/unit/plate_navier computes the series).
+// limit (doc/verification.md; tests/unit/plate_navier computes the series).
 // Every element/integration choice the program accepts:
 // - heterosis/selective, lagrange/selective, lagrange/full keep the limit
 //   (within the 8 x 8 mesh's discretisation error, 1%) for every a/t;
@@ -18,8 +18,8 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
-#include <plate_on_halfspace/input_checks.h>
-#include <plate_on_halfspace/mindlin_plate.h>
+#include <plate_on_halfspace/scene/input_checks.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
 
 #include "../tests.h"
 

@@ -1,0 +1,229 @@
+/**
+ * Integrals of the Boussinesq kernel 1/|x - y| against pairs of shape
+ * functions over pairs of plate cells: the building block of the Galerkin
+ * half-space operator (doc/formulation.md, "Default variant").
+ */
+#ifndef plate_on_halfspace_halfspace_cell_pair_quadrature_h
+#define plate_on_halfspace_halfspace_cell_pair_quadrature_h
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <plate_on_halfspace/plate/foundation_space.h>
+
+#include <array>
+#include <map>
+#include <mutex>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  /**
+   * A cell against its own mirror image (a symmetric scene,
+   * mirror_symmetry.h): @p block (i, k) couples node @p rows[i] with node
+   * @p columns[k], the same nodes in another order. The integral is
+   * symmetric in the two nodes, the quadrature only nearly: average each
+   * entry with its transpose, so that A stays exactly symmetric (the dense
+   * and the hierarchical Galerkin operators both use this).
+   */
+  void
+  symmetrise_self_image_block(const std::vector<unsigned int> &rows,
+                              const std::vector<unsigned int> &columns,
+                              FullMatrix<double>              &block);
+
+  /**
+   * For every cell of a list of FoundationSpace cells (a space's cells,
+   * and for a symmetric scene their mirror images): its foundation nodes and
+   * the node shape functions psi_a = sum_i T_ai phi_i (the Q2 functions phi
+   * after the serendipity and hanging-node constraints), tabulated on Gauss
+   * rules of several orders. integrate_inverse_distance() picks the rule from
+   * the pair's separation:
+   *  - coincident and touching cells (sharing a vertex or part of an edge):
+   *    outer Gauss rule of the singular order on K; for each outer point x
+   *    the inner integral over L uses QSplit(QDuffy) split at x's reference
+   *    point in L (clamped onto L when x lies outside), whose Duffy collapse
+   *    cancels the 1/r singularity on any straight-sided quadrilateral.
+   *    These are integrated in the Q2 basis once per configuration up to
+   *    translation and scale (configuration()), so a mesh of congruent
+   *    cells integrates a handful of them;
+   *  - separated pairs: tensor Gauss rules, 5, 3 or 2 points per direction
+   *    for centre distances below 2.5, below 20 and from 20 cell diameters
+   *    on. The thresholds scale with the cells, so the relative quadrature
+   *    error of a pair does not fall with refinement: with 2 points from 5
+   *    diameters on, the flexible square's centre settlement stalled at a
+   *    relative error of 4e-4; from 20 on it converges (8e-6 at 833
+   *    foundation nodes, tests/unit/refinement_convergence).
+   */
+  class CellPairIntegrator
+  {
+  public:
+    CellPairIntegrator(const std::vector<FoundationSpace::Cell> &cells,
+                       const unsigned int singular_order);
+
+    /** Foundation nodes of cell @p c (the rows of its node shape functions). */
+    const std::vector<unsigned int> &
+    nodes(const unsigned int c) const
+    {
+      return cell_data[c].nodes;
+    }
+
+    /**
+     * Whether integrate_inverse_distance() treats cells @p k and @p l as a
+     * singular pair (the same cell, or touching): the expensive pairs,
+     * which a caller may want to integrate once and keep.
+     */
+    bool
+    singular_pair(const unsigned int k, const unsigned int l) const
+    {
+      // Cells whose centres lie further apart than their diameters added
+      // cannot touch: most pairs are decided without the vertex tests.
+      return k == l || (cell_data[k].centre.distance(cell_data[l].centre) <=
+                          cell_data[k].diameter + cell_data[l].diameter &&
+                        touching(k, l));
+    }
+
+    /**
+     * Integrate the singular pairs (k, l) of @p pairs into the cache of
+     * configurations, in parallel, each new configuration from its first
+     * pair in the list (so the result does not depend on the threads).
+     * Callers that integrate pairs concurrently call this first.
+     */
+    void
+    integrate_singular_pairs(
+      const std::vector<std::pair<unsigned int, unsigned int>> &pairs) const;
+
+    /**
+     * block(a,b) = ∫_{cell k} ∫_{cell l} psi_a(x) psi_b(y) / |x - y| dy dx,
+     * a over the nodes of k, b over those of l.
+     */
+    void
+    integrate_inverse_distance(const unsigned int  k,
+                               const unsigned int  l,
+                               FullMatrix<double> &block) const;
+
+    /**
+     * The same, but only the entries (a, b) with @p rows[a] and
+     * @p columns[b] are wanted (the others are left zero or hold the
+     * integral): a hierarchical matrix's compression asks for single rows
+     * and columns, and a separated pair then costs little more than its
+     * kernel evaluations. Empty masks mean all.
+     */
+    void
+    integrate_inverse_distance(const unsigned int       k,
+                               const unsigned int       l,
+                               FullMatrix<double>      &block,
+                               const std::vector<bool> &rows,
+                               const std::vector<bool> &columns) const;
+
+  private:
+    /**
+     * Node shape functions of one cell on one Gauss rule, stored flat so
+     * that the kernel loops vectorise.
+     */
+    struct Table
+    {
+      std::vector<double> x, y;    ///< physical points
+      std::vector<double> weights; ///< JxW
+      /** JxW_q psi_a(x_q) at [q * n_functions + a]. */
+      std::vector<double> weighted_values;
+      unsigned int        n_functions = 0;
+    };
+
+    /**
+     * The inner rule of a singular pair for one split point, with the Q2
+     * shape values at its points and at the split point.
+     */
+    struct SingularRule
+    {
+      SingularRule(const Point<2> &split, const QDuffy &duffy);
+      std::vector<Point<2>>              points;
+      std::vector<double>                weights;
+      std::vector<std::array<double, 9>> phi;
+      std::array<double, 9>              at_split;
+    };
+
+    struct CellData
+    {
+      std::vector<unsigned int> nodes;
+      FullMatrix<double>        node_from_q2; ///< T, n_nodes x 9
+      std::vector<Table>        tables; ///< the first n_stored_rules rules
+      Point<2>                  centre;
+      double                    diameter;
+    };
+
+    /** The node shape functions of cell @p c on @p rule. */
+    Table
+    make_table(const unsigned int c, const Quadrature<2> &rule) const;
+
+    /** psi(p) of cell @p c at the reference point @p p. */
+    void
+    node_shape_values(const unsigned int   c,
+                      const Point<2>      &p,
+                      std::vector<double> &values) const;
+
+    bool
+    touching(const unsigned int k, const unsigned int l) const;
+
+    void
+    integrate_regular(const Table             &outer,
+                      const Table             &inner,
+                      FullMatrix<double>      &block,
+                      const std::vector<bool> &rows,
+                      const std::vector<bool> &columns) const;
+
+    /**
+     * The singular pair (k, l) in the Q2 basis of the two cells (9 x 9,
+     * symmetrised over the order of the cells), from the cache of
+     * congruent configurations or integrated and cached.
+     */
+    const FullMatrix<double> &
+    singular_q2_block(const unsigned int k, const unsigned int l) const;
+
+    /** The symmetrised Q2 block of (k, l) over k's diameter cubed. */
+    FullMatrix<double>
+    normalised_singular_q2_block(const unsigned int k,
+                                 const unsigned int l) const;
+
+    /** One order of the singular rule: outer Gauss on k, inner Duffy on l
+     *  (9 x 9, Q2 basis). */
+    void
+    integrate_singular(const unsigned int  k,
+                       const unsigned int  l,
+                       FullMatrix<double> &q2_block) const;
+
+    /**
+     * The configuration of the pair (k, l) up to translation and scale:
+     * the vertices of both cells relative to k's first vertex over k's
+     * diameter, rounded to 1e-9. Congruent pairs (a uniform mesh's
+     * neighbours, an adaptive mesh's scaled copies, mirror images) share
+     * one key and one integral, which scales with the diameter cubed.
+     */
+    std::array<long long, 16>
+    configuration(const unsigned int k, const unsigned int l) const;
+
+    const std::vector<FoundationSpace::Cell> &cells;
+    const unsigned int                        singular_order;
+    /** Gauss rules of 2, 3 and 5 points per direction, then the graded
+     *  outer rule of the singular pairs. */
+    const std::array<Quadrature<2>, 4> rules;
+    /** How many of the rules each cell keeps tabulated. */
+    static constexpr unsigned int n_stored_rules = 2;
+    std::vector<CellData>         cell_data;
+    /** The Duffy rule on the reference triangle, singular at vertex 0. */
+    const QDuffy duffy;
+    /** Inner rules of coincident pairs, one per outer point. */
+    std::vector<SingularRule> coincident_rules;
+    /** The Q2 shape values at the points of the graded outer rule. */
+    std::vector<std::array<double, 9>> graded_phi;
+    /**
+     * Singular Q2 blocks by configuration() over the diameter cubed. A
+     * cache of what is integrated, filled from concurrent callers.
+     */
+    mutable std::map<std::array<long long, 16>, FullMatrix<double>>
+                       singular_cache;
+    mutable std::mutex singular_cache_mutex;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

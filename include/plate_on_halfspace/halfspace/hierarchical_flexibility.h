@@ -1,0 +1,249 @@
+/**
+ * The Galerkin half-space flexibility (doc/formulation.md, "Default variant"),
+ *   A_ij = alpha ∫∫ φ_i(x) φ_j(y) / |x - y| dy dx,
+ * stored as a hierarchical matrix (hmat-oss): the same matrix as
+ * BoussinesqGalerkinOperator::flexibility_matrix(), with the blocks of node
+ * clusters whose supports are well separated replaced by low-rank
+ * approximations (ACA+) to a relative tolerance, so that storage, assembly
+ * and the product grow like n log n instead of n², and an H-Cholesky
+ * factorisation replaces the n³ dense one.
+ */
+#ifndef plate_on_halfspace_halfspace_hierarchical_flexibility_h
+#define plate_on_halfspace_halfspace_hierarchical_flexibility_h
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/plate/foundation_space.h>
+
+#include <vector>
+
+// hmat-oss's opaque C types (hmat/hmat.h), declared here so that users of
+// this header need not include hmat-oss.
+struct hmat_matrix_struct;
+struct hmat_cluster_tree_struct;
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /**
+   * The Galerkin flexibility A as an H-matrix.
+   *
+   * Entries: every entry hmat-oss asks for comes from the CellPairIntegrator
+   * (cell_pair_quadrature.h), summed over the cell pairs (and mirror images)
+   * that touch the two nodes exactly as BoussinesqGalerkinOperator::build()
+   * sums them, so the near-field blocks are the dense matrix's entries (to
+   * rounding) with their singular quadrature, and only admissible blocks are
+   * approximated.
+   *
+   * Admissibility: a node's extent for the cluster tree is its support (the
+   * vertices of the cells that contain it), so a block is admissible only
+   * when the supports of its two node clusters are separated by at least
+   * diameter / eta (Hackbusch's condition); on such blocks the kernel is
+   * smooth and no singular cell pair is evaluated during compression.
+   *
+   * Numbering: hmat-oss reorders the nodes along its cluster tree; this
+   * class takes and returns vectors in the natural (foundation node)
+   * numbering and permutes internally.
+   *
+   * Errors: every hmat-oss call is checked; a failed assembly, a
+   * non-finite entry, a compressed matrix that differs from exact sampled
+   * rows by more than the tolerance allows, or a failed / inaccurate
+   * factorisation throws ExcMessage naming Foundation operator/Tolerance.
+   *
+   * Threading: hmat-oss's default (sequential) engine is used; it calls the
+   * entry callback from the calling thread only. Whole near-field blocks are
+   * integrated with deal.II's task-based parallelism inside that callback
+   * (the cell pairs are independent; only the summation into the block is
+   * serial). Calls to one object must not overlap.
+   */
+  class HierarchicalFlexibility
+  {
+  public:
+    /** How the H-matrix is built; the defaults are the tuned values. */
+    struct Settings
+    {
+      /**
+       * Relative accuracy of the compressed blocks (ACA+ stopping
+       * criterion) and of every recompression in the H-Cholesky
+       * factorisation (hmat-oss's low-rank epsilon): Foundation
+       * operator/Tolerance.
+       */
+      double tolerance = 1e-6;
+      /**
+       * Relative accuracy of the recompressions in the H-Cholesky factor
+       * when it is coarser than @p tolerance (the larger of the two is
+       * used): the factor preconditions conjugate gradients, which reach
+       * their own tolerance whatever it is; solve() is then accurate to
+       * about this, not to @p tolerance.
+       */
+      double factor_tolerance = 1e-3;
+      /** Largest number of nodes in a leaf of the cluster tree. */
+      unsigned int leaf_size = 48;
+      /** Hackbusch's eta: admissible when min diameter <= eta distance. */
+      double eta = 2.;
+    };
+
+    explicit HierarchicalFlexibility(const Settings &settings);
+    ~HierarchicalFlexibility();
+
+    HierarchicalFlexibility(const HierarchicalFlexibility &) = delete;
+    HierarchicalFlexibility &
+    operator=(const HierarchicalFlexibility &) = delete;
+
+    /**
+     * Build the H-matrix of A over all foundation nodes.
+     * @param cells the space's cells followed, for a symmetric scene, by
+     *   their mirror images (FoundationSpace::mirror_image_cells(), image of
+     *   cell c under reflection r at r * n_computed + c), as
+     *   BoussinesqGalerkinOperator::build() lists them.
+     * @param n_copies 1 + the number of reflections (cells.size() / number
+     *   of computed cells).
+     * @param node_locations the foundation nodes (x, y).
+     * @param alpha (1 - nu0^2)/(pi E0).
+     * @param singular_order Gauss points per direction of the singular
+     *   cell pairs (Discretization/Singular quadrature order).
+     */
+    void
+    build(const std::vector<FoundationSpace::Cell> &cells,
+          const unsigned int                        n_copies,
+          const std::vector<Point<2>>              &node_locations,
+          const double                              alpha,
+          const unsigned int                        singular_order);
+
+    /** The same for a whole FoundationSpace (its cells and their images). */
+    void
+    build(const FoundationSpace &space,
+          const double           alpha,
+          const unsigned int     singular_order);
+
+    /** dst = A src, natural numbering (units of A: length^3/force). */
+    void
+    vmult(Vector<double> &dst, const Vector<double> &src) const;
+
+    /**
+     * H-Cholesky factorisation A ≈ L L^T of a copy of A (the product keeps
+     * using A), with every recompression at the larger of the tolerance
+     * and the factor tolerance. Checks the
+     * factor by solving for a known vector; throws if hmat-oss reports a
+     * failure (A not positive definite at this tolerance) or the factor
+     * does not reproduce the vector.
+     */
+    void
+    factorize();
+
+    /** dst = (L L^T)^{-1} src, natural numbering; needs factorize(). */
+    void
+    solve(Vector<double> &dst, const Vector<double> &src) const;
+
+    /** The same for the columns of @p rhs (overwritten by the solutions). */
+    void
+    solve(FullMatrix<double> &rhs) const;
+
+    /** Number of foundation nodes n (A is n x n). */
+    unsigned int
+    size() const
+    {
+      return n_nodes;
+    }
+
+    bool
+    is_factorized() const
+    {
+      return factor != nullptr;
+    }
+
+    /** Bytes of the stored entries of the H-matrix and its factor, and of
+     *  the permutation (hmat-oss's tree nodes are not counted). */
+    std::size_t
+    memory_consumption() const;
+
+    /**
+     * Stored entries of A's H-matrix over n². The storage is lower
+     * symmetric (diagonal blocks and the blocks below them), so a matrix
+     * without low-rank blocks gives about 0.5.
+     */
+    double
+    compression_ratio() const;
+
+    /** Number of admissible (low-rank) leaves of A's H-matrix. */
+    std::size_t
+    n_low_rank_blocks() const;
+
+    /** Number of full (near-field) leaves of A's H-matrix. */
+    std::size_t
+    n_full_blocks() const;
+
+    /** The relative accuracy asked of the compression (Settings). */
+    double
+    tolerance() const
+    {
+      return settings.tolerance;
+    }
+
+    /**
+     * Largest relative 2-norm difference between sampled rows of the
+     * H-matrix and the same rows integrated exactly (measured by build()).
+     */
+    double
+    sampled_row_error() const
+    {
+      return row_error;
+    }
+
+    /** Wall times of build() and factorize(), in seconds. */
+    struct Times
+    {
+      /** Integrating entries: the singular cell pairs once, every entry
+       *  ACA+ and the near field ask for, the sampled rows of the check. */
+      double integration = 0;
+      /** ACA+'s own algebra during the assembly (the rest of it). */
+      double compression = 0;
+      /** The H-Cholesky factorisation and its check. */
+      double factorization = 0;
+    };
+
+    const Times &
+    build_times() const
+    {
+      return times;
+    }
+
+    /**
+     * ||A x - b|| / ||b|| of the factor's solve of a known b (measured by
+     * factorize(); A the H-matrix).
+     */
+    double
+    factorization_residual() const
+    {
+      return solve_residual;
+    }
+
+  private:
+    Settings     settings;
+    unsigned int n_nodes = 0;
+    /** hmat position k holds node hmat_to_node[k]. */
+    std::vector<unsigned int> hmat_to_node;
+    /** The cluster tree of the nodes (rows and columns). */
+    hmat_cluster_tree_struct *tree = nullptr;
+    /** A, lower-symmetric storage. */
+    hmat_matrix_struct *matrix = nullptr;
+    /** The H-Cholesky factor of a copy of A (nullptr before factorize()). */
+    hmat_matrix_struct *factor         = nullptr;
+    double              row_error      = 0;
+    double              solve_residual = 0;
+    Times               times;
+
+    void
+    release();
+
+    /** hmat-ordered buffer from a natural vector and back. */
+    void
+    to_hmat_order(const double *natural, double *ordered) const;
+    void
+    to_natural_order(const double *ordered, double *natural) const;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

@@ -1,0 +1,49 @@
+/**
+ * The memory guard of the dense foundation block: the coupled matrix
+ * K̄ + S lives on the n foundation nodes and is dense (n² doubles, several
+ * copies at once), so a fine mesh can ask for more memory than the machine
+ * has. Before building it, the program estimates the bytes and stops with
+ * a message naming them and the entries that reduce n, instead of being
+ * killed by the operating system halfway through.
+ */
+#ifndef plate_on_halfspace_halfspace_memory_guard_h
+#define plate_on_halfspace_halfspace_memory_guard_h
+
+#include <cstddef>
+
+namespace PlateOnHalfspace
+{
+  /**
+   * Peak bytes of the dense matrices for @p n_foundation_nodes nodes: the
+   * half-space flexibility F, the factor of its contact block, the
+   * condensed plate K̄, the coupled matrix K̄ + S and the right-hand sides
+   * M_{C,:} of S (foundation_operator.h, contact_solver.h), plus the second
+   * flexibility that element exclusion keeps: seven n x n doubles. With
+   * the iterative contact solver (@p iterative) three: F, the factor of
+   * F_CC of all nodes that build() makes, and the Cholesky factor that
+   * preconditions the conjugate gradients.
+   */
+  std::size_t
+  dense_foundation_bytes(const std::size_t n_foundation_nodes,
+                         const bool        iterative = false);
+
+  /**
+   * Bytes the run may use: MemAvailable of /proc/meminfo, or the
+   * environment variable PLATE_ON_HALFSPACE_MEMORY_LIMIT (bytes; a suffix
+   * K, M or G multiplies by 2^10, 2^20, 2^30) if it is set and smaller.
+   * 0 if neither can be read (then the guard does not stop the run).
+   */
+  std::size_t
+  available_memory_bytes();
+
+  /**
+   * Throw an ExcMessage naming the bytes needed, the bytes available and
+   * the entries that reduce the node count if dense_foundation_bytes()
+   * exceeds available_memory_bytes().
+   */
+  void
+  check_dense_foundation_memory(const std::size_t n_foundation_nodes,
+                                const bool        iterative = false);
+} // namespace PlateOnHalfspace
+
+#endif

@@ -1,0 +1,168 @@
+/**
+ * Results of a run in the output directory (doc/parameters.md, "Results"):
+ * summary.json (written atomically after every cycle), profile-NN.csv,
+ * solution-NN.vtu with solution.pvd, and convergence.txt.
+ */
+#ifndef plate_on_halfspace_io_results_output_h
+#define plate_on_halfspace_io_results_output_h
+
+#include <deal.II/base/convergence_table.h>
+#include <deal.II/base/point.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/contact/direct_solver.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /** Values at one point of the plate. */
+  struct PointValues
+  {
+    Point<2> location;
+    double   w = 0, q = 0, mx = 0, my = 0;
+  };
+
+  /** What summary.json reports for one cycle. */
+  struct CycleSummary
+  {
+    unsigned int cycle = 0, n_cells = 0, n_dofs = 0, n_foundation_dofs = 0;
+    unsigned int contact_iterations = 0, contact_nodes = 0;
+    double       contact_area_fraction = 0;
+    double       applied_load = 0, contact_force = 0;
+    double       complementarity_violation = 0;
+    unsigned int tensile_nodes             = 0;
+    double       max_penetration           = 0;
+    double       max_w = 0, min_w = 0, max_q = 0, min_q = 0;
+    double       max_mx = 0, min_mx = 0, max_my = 0, min_my = 0;
+    /** Wall time of the cycle and its parts: plate assembly (setup,
+     *  loads, condensation), half-space operator, contact solve, output. */
+    double wall_time_s = 0, assembly_time_s = 0, foundation_time_s = 0;
+    double solve_time_s = 0, output_time_s = 0;
+    /** The half-space operator's time split: integration, compression
+     *  (hierarchical storage), factorisation (FoundationOperator::
+     *  BuildTimes); they add up to foundation_time_s. */
+    double      foundation_integration_time_s   = 0;
+    double      foundation_compression_time_s   = 0;
+    double      foundation_factorization_time_s = 0;
+    std::string foundation_storage;
+    std::size_t foundation_memory_bytes = 0;
+    bool        converged               = true;
+    /** 1/κ₁ estimates of the coupled matrix and of the half-space block. */
+    double coupled_matrix_rcond = 1, foundation_block_rcond = 1;
+    std::vector<PointValues> probes;
+  };
+
+  /**
+   * Evaluates a solved cycle (fields, extremes, points) and writes the result
+   * files. Every file is written to a temporary name and renamed, so no file
+   * is ever half written. A run keeps the results of the run before it until
+   * it succeeds: the constructor moves them to previous-run/, commit() drops
+   * them, abandon() moves this run's files to failed-run/ and restores them.
+   */
+  class ResultsOutput
+  {
+  public:
+    /** Creates @p directory and sets the earlier run's results aside. */
+    explicit ResultsOutput(const std::string &directory);
+
+    /** A run that neither committed nor abandoned is abandoned. */
+    ~ResultsOutput();
+
+    /** The run succeeded: its results replace the earlier run's. */
+    void
+    commit();
+
+    /**
+     * The run failed: its files go to failed-run/ (for diagnosis) and the
+     * earlier run's results come back. Returns a one-line note saying so,
+     * empty if the run had written nothing.
+     */
+    std::string
+    abandon();
+
+    /** Whether @p name is one of the files a run writes (doc/parameters.md). */
+    static bool
+    is_result_file(const std::string &name);
+
+    /**
+     * Pressure, gap and contact indicator on the plate's scalar w-space
+     * and the extremes of w, q and the moments (at the nodes and the
+     * 2x2 Gauss points of every cell).
+     */
+    void
+    evaluate(const MindlinPlate   &plate,
+             const Vector<double> &solution,
+             const ContactState   &contact,
+             CycleSummary         &summary) const;
+
+    /** w, q, Mx, My at @p x (q from the FE pressure field). */
+    PointValues
+    point_values(const MindlinPlate   &plate,
+                 const Vector<double> &solution,
+                 const Vector<double> &pressure_field,
+                 const Point<2>       &x) const;
+
+    /** summary.json over all cycles so far. */
+    void
+    write_summary(const std::vector<CycleSummary> &cycles,
+                  const std::string               &symmetry,
+                  const bool                       converged) const;
+
+    /** profile-NN.csv along a line (points off the plate are skipped). */
+    void
+    write_profile(const unsigned int    cycle,
+                  const MindlinPlate   &plate,
+                  const Vector<double> &solution,
+                  const ContactState   &contact,
+                  const Point<2>       &start,
+                  const Point<2>       &end,
+                  const unsigned int    n_points) const;
+
+    /**
+     * nodes-NN.csv: x,y,w,q,gap,contact at every foundation node (the
+     * contact map), and gauss-profile-NN.csv: x,y,Mx,My at the 2x2 Gauss
+     * points nearest the profile line (the paper plots Mx there).
+     */
+    void
+    write_nodes_and_gauss_profile(const unsigned int    cycle,
+                                  const MindlinPlate   &plate,
+                                  const Vector<double> &solution,
+                                  const ContactState   &contact,
+                                  const Point<2>       &start,
+                                  const Point<2>       &end) const;
+
+    /** solution-NN.vtu and solution.pvd. */
+    void
+    write_vtu(const unsigned int    cycle,
+              const MindlinPlate   &plate,
+              const Vector<double> &solution,
+              const ContactState   &contact);
+
+    /** convergence.txt (ConvergenceTable text). */
+    void
+    write_convergence(ConvergenceTable &table) const;
+
+    /** Write @p text to @p name in the directory, atomically. */
+    void
+    write_file(const std::string &name, const std::string &text) const;
+
+  private:
+    /** Moves this program's result files from @p from to @p to. */
+    static unsigned int
+    move_result_files(const std::string &from, const std::string &to);
+
+    std::string                                 directory;
+    std::string                                 previous_run, failed_run;
+    bool                                        finished = false;
+    std::vector<std::pair<double, std::string>> pvd_records;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

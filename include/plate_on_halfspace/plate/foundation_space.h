@@ -1,0 +1,121 @@
+/**
+ * The discrete contact surface shared by the plate and the half-space: the
+ * foundation nodes (the unconstrained w-DOFs of the plate, doc/formulation.md
+ * "Adaptive refinement") and, for every plate cell, how its nine Q2 w-shape
+ * functions expand into foundation nodes once the serendipity and
+ * hanging-node constraints are applied.
+ *
+ * This is the only thing the half-space operators know about the plate, so a
+ * different operator (compressed, distributed) needs nothing else.
+ */
+#ifndef plate_on_halfspace_plate_foundation_space_h
+#define plate_on_halfspace_plate_foundation_space_h
+
+#include <deal.II/base/point.h>
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/scene/mirror_symmetry.h>
+#include <plate_on_halfspace/base/quadrilateral_geometry.h>
+
+#include <array>
+#include <utility>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /**
+   * Values of the nine biquadratic Lagrange shape functions of deal.II's
+   * FE_Q<2>(2) at a reference point, in FE_Q's local numbering (vertices
+   * 0-3, edge midpoints 4-7 on the faces x=0, x=1, y=0, y=1, centre 8).
+   */
+  std::array<double, 9>
+  q2_shape_values(const Point<2> &p);
+
+  /** The foundation nodes and the cell-to-node expansion (see file doc). */
+  struct FoundationSpace
+  {
+    /** One term node * weight of the expansion of a cell shape function. */
+    using Term = std::pair<unsigned int, double>;
+
+    /** One plate cell seen from the foundation. */
+    struct Cell
+    {
+      BilinearQuadrilateral geometry;
+      /** Expansion of the 9 local w-shape functions into foundation nodes. */
+      std::array<std::vector<Term>, 9> expansion;
+
+      /** The foundation nodes of the cell, each once, in order of first
+       *  appearance in the expansion. */
+      std::vector<unsigned int>
+      nodes() const;
+    };
+
+    /** Location of each foundation node (x, y). */
+    std::vector<Point<2>> node_locations;
+    /** All active plate cells, in the DoFHandler's active cell order. */
+    std::vector<Cell> cells;
+    /**
+     * The mirror planes of the scene: the cells are the computed part of
+     * the plate, and the half-space also carries the mirror images of its
+     * pressure (mirror_symmetry.h).
+     */
+    MirrorSymmetry symmetry;
+
+    /**
+     * The mirror images of the cells, for each reflection of
+     * symmetry.reflections() in turn (cells.size() each), with the same
+     * foundation nodes: the image of cell c under reflection r is element
+     * r * cells.size() + c. The vertices and local shape functions are
+     * renumbered so that the image is again counterclockwise and its node
+     * shape functions are those of c at the mirrored point.
+     */
+    std::vector<Cell>
+    mirror_image_cells() const;
+
+    unsigned int
+    n_nodes() const
+    {
+      return node_locations.size();
+    }
+
+    /**
+     * Assemble the consistent mass matrix M_ij = ∫ φ_i φ_j (the paper's E,
+     * (P11)-(P15)) over the cells with @p cell_in_foundation set (all if
+     * empty), into @p sparsity and @p matrix (3x3 Gauss, exact for
+     * parallelogram cells and for bilinear ones).
+     */
+    void
+    assemble_mass_matrix(const std::vector<bool> &cell_in_foundation,
+                         SparsityPattern         &sparsity,
+                         SparseMatrix<double>    &matrix) const;
+
+    /**
+     * The pressure basis of the contact conditions (doc/formulation.md,
+     * "Tensionless contact"): q_h = sum_i qt_i psit_i with nodal values
+     * q = T qt. A serendipity corner function has a negative integral
+     * (-1/12 of a square cell), so nodal conditions q_i >= 0 let a
+     * non-negative set of nodal pressures carry a net tension, and a
+     * tensionless plate then stays in contact where it should lift off.
+     * The basis psit_c = psi_c + alpha (psi_m1 + psi_m2 + ...) for a vertex
+     * node c (the mid-side nodes m of the edges that end at c) and
+     * psit_m = (1 - 2 alpha) psi_m for a mid-side node (Popp, Gee, Wall &
+     * Wohlmuth's transformation of quadratic serendipity multipliers,
+     * alpha = 1/5) spans the same space and has positive integrals:
+     * -1/3 + 8 alpha/3 of a cell's area at an interior vertex of a uniform
+     * mesh, -1/12 + 2 alpha/3 at a plate corner. T maps qt >= 0 to q >= 0.
+     * Returns false (and leaves @p transform empty) when the space has no
+     * serendipity cells (the 9-node Lagrange functions have positive
+     * integrals already); otherwise fills @p transform (n x n) with T.
+     */
+    bool
+    positive_pressure_transform(SparsityPattern      &sparsity,
+                                SparseMatrix<double> &transform) const;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

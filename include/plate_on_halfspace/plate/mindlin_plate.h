@@ -1,0 +1,222 @@
+/**
+ * The Reissner-Mindlin plate (doc/formulation.md, "Plate"; the paper's (P1)):
+ * an FESystem of three FE_Q<2>(2) fields (w, beta_x, beta_y), the element
+ * variant (serendipity / heterosis / lagrange) realised by constraining cell
+ * centre values, the sparse stiffness with reduced, selective or full shear
+ * integration, the load vector, and the condensation of everything but the
+ * foundation nodes (the paper's (P18)-(P19)).
+ */
+#ifndef plate_on_halfspace_plate_mindlin_plate_h
+#define plate_on_halfspace_plate_mindlin_plate_h
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q1.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/plate/foundation_space.h>
+#include <plate_on_halfspace/scene/parameters.h>
+#include <plate_on_halfspace/base/sparse_cholesky.h>
+
+#include <functional>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /** Bending moments per unit width (doc/formulation.md sign convention). */
+  struct Moments
+  {
+    double mx = 0, my = 0, mxy = 0;
+  };
+
+  /**
+   * The plate on a given triangulation. Component 0 is w (downward), 1 and 2
+   * are beta_x, beta_y (slopes of the normal, = dw/dx, dw/dy when thin).
+   */
+  class MindlinPlate
+  {
+  public:
+    MindlinPlate(const Parameters::Plate          &plate,
+                 const Parameters::Discretization &discretization);
+
+    /**
+     * Distribute DoFs on @p triangulation, build the constraints (hanging
+     * nodes, element centre constraints, and the homogeneous constraints
+     * @p extra_constraints add, e.g. supports in tests), the foundation
+     * space and the sparse stiffness.
+     */
+    void
+    setup(const Triangulation<2> &triangulation,
+          const std::function<void(const DoFHandler<2> &,
+                                   AffineConstraints<double> &)>
+            &extra_constraints = {});
+
+    /**
+     * Solve the computed part of a symmetric scene (mirror_symmetry.h): the
+     * mesh given to setup() is that part, its faces on the mirror planes
+     * carry mirror_plane_x/y_boundary_id. Call before setup().
+     */
+    void
+    set_mirror_symmetry(const MirrorSymmetry &mirror_symmetry)
+    {
+      symmetry = mirror_symmetry;
+    }
+
+    /** Assemble the load vector of a scene's loads (downward positive). */
+    void
+    assemble_loads(const Parameters::Loads &loads,
+                   const double             self_weight_pressure);
+
+    /** Total applied vertical load (force). */
+    double
+    applied_load() const
+    {
+      return total_load;
+    }
+
+    /**
+     * Solve the plate alone (no foundation) with the constraints given at
+     * setup; they must remove the rigid-body modes.
+     */
+    void
+    solve_unsupported(Vector<double> &solution) const;
+
+    /**
+     * The plate condensed onto the foundation nodes (P18)-(P19):
+     * K̄ = K_ff - K_fr K_rr^{-1} K_rf and P̄ = P_f - K_fr K_rr^{-1} P_r,
+     * with f the foundation nodes (unconstrained w-DOFs) and r all other
+     * unconstrained DOFs. Only this Schur complement, of the size of the
+     * foundation block, is dense; K itself stays sparse and K_rr is
+     * factorised by CHOLMOD (sparse_cholesky.h).
+     */
+    void
+    condense(LAPACKFullMatrix<double> &stiffness, Vector<double> &load);
+
+    /**
+     * Full solution vector from the foundation deflections (recovers the
+     * rotations, r = K_rr^{-1}(P_r - K_rf w_f), and the constrained values).
+     */
+    void
+    expand(const Vector<double> &foundation_w, Vector<double> &solution) const;
+
+    /** Foundation values (w-DOFs) from a full solution vector. */
+    Vector<double>
+    restrict_to_foundation(const Vector<double> &solution) const;
+
+    /** Scalar field on the foundation nodes as a full vector (component 0). */
+    Vector<double>
+    foundation_field_to_solution(const Vector<double> &field) const;
+
+    /** Moments at the reference point @p p of @p cell. */
+    Moments
+    moments(const typename DoFHandler<2>::active_cell_iterator &cell,
+            const Point<2>                                     &p,
+            const Vector<double>                               &solution) const;
+
+    /** Cell of the plate containing @p x and the reference point there. */
+    std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
+    locate(const Point<2> &x) const;
+
+    /** Value of component @p component of @p solution at @p x. */
+    double
+    point_value(const Vector<double> &solution,
+                const Point<2>       &x,
+                const unsigned int    component = 0) const;
+
+    const DoFHandler<2> &
+    get_dof_handler() const
+    {
+      return dof_handler;
+    }
+    const FESystem<2> &
+    get_fe() const
+    {
+      return fe;
+    }
+    const AffineConstraints<double> &
+    get_constraints() const
+    {
+      return constraints;
+    }
+    const FoundationSpace &
+    get_foundation_space() const
+    {
+      return foundation_space;
+    }
+    const SparseMatrix<double> &
+    get_stiffness_matrix() const
+    {
+      return stiffness;
+    }
+    const Vector<double> &
+    get_load_vector() const
+    {
+      return load;
+    }
+    /** Number of unconstrained DOFs. */
+    unsigned int
+    n_unconstrained_dofs() const;
+    /** The DoF of each foundation node. */
+    const std::vector<types::global_dof_index> &
+    get_foundation_dofs() const
+    {
+      return foundation_dofs;
+    }
+    double
+    flexural_rigidity() const
+    {
+      return plate.flexural_rigidity();
+    }
+    double
+    poissons_ratio() const
+    {
+      return plate.poissons_ratio;
+    }
+
+  private:
+    void
+    add_centre_constraints();
+    void
+    add_mirror_plane_constraints();
+    void
+    build_foundation_space();
+    void
+    assemble_stiffness();
+
+    const Parameters::Plate          plate;
+    const Parameters::Discretization discretization;
+    MirrorSymmetry                   symmetry;
+
+    FESystem<2>               fe;
+    MappingQ1<2>              mapping;
+    DoFHandler<2>             dof_handler;
+    const Triangulation<2>   *attached_triangulation = nullptr;
+    AffineConstraints<double> constraints;
+    SparsityPattern           sparsity;
+    SparseMatrix<double>      stiffness;
+    Vector<double>            load;
+    double                    total_load = 0;
+
+    std::vector<types::global_dof_index> foundation_dofs;
+    std::vector<int> foundation_index; ///< per DoF, -1 if none
+    FoundationSpace  foundation_space;
+
+    /** The unconstrained DoFs that are not foundation nodes, and the
+     *  Cholesky factor of K_rr. */
+    std::vector<types::global_dof_index> rest_dofs;
+    SparseCholesky                       rest_factor;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

@@ -1,0 +1,58 @@
+/**
+ * Messages for a person: deal.II's ParameterHandler reports a bad line by
+ * its number and the bare entry name; the user needs the section/entry and
+ * the allowed values (doc/parameters.md, "Commands"). Also the warnings for
+ * scenes that run but whose answer is known to be poor (shear locking,
+ * spurious modes: tests/unit/thin_plate_limit, plate_zero_energy_modes).
+ */
+#ifndef plate_on_halfspace_scene_input_checks_h
+#define plate_on_halfspace_scene_input_checks_h
+
+#include <plate_on_halfspace/scene/parameters.h>
+
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  /**
+   * The subsection path ("Plate/", "" at the top level) in force at line
+   * @p line_number (1-based) of the parameter text @p text, following its
+   * "subsection NAME" and "end" lines.
+   */
+  std::string
+  subsection_path_at_line(const std::string &text,
+                          const unsigned int line_number);
+
+  /**
+   * A deal.II pattern description ("[Double 0...MAX_DOUBLE (inclusive)]")
+   * in words ("a number >= 0").
+   */
+  std::string
+  describe_pattern(const std::string &pattern_description);
+
+  /**
+   * The message for an error that ParameterHandler::parse_input() threw
+   * while reading @p text (the contents of the file @p file_name; files
+   * named in the error that are not @p file_name, i.e. included ones, are
+   * read from disk): "Section/Entry: ..." with the allowed values, the
+   * nearest declared name for a misspelt one, and the file and line.
+   */
+  std::string
+  explain_parameter_file_error(const std::exception &error,
+                               const std::string    &text,
+                               const std::string    &file_name);
+
+  /**
+   * Warnings for a valid scene whose element choice is known to give a
+   * poor answer for it: shear locking (cells much larger than the
+   * thickness, tests/unit/thin_plate_limit) and the communicable spurious
+   * mode of lagrange/selective (tests/unit/plate_zero_energy_modes). Each
+   * names the entries and what to choose instead.
+   */
+  std::vector<std::string>
+  scene_warnings(const SceneParameters &parameters);
+} // namespace PlateOnHalfspace
+
+#endif

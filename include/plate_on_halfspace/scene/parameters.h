@@ -1,0 +1,280 @@
+/**
+ * The scene: every entry of the parameter file (doc/parameters.md), one struct per
+ * subsection, each with declare_parameters() and parse_parameters() (the
+ * code-gallery step-44 pattern). Cross-entry checks happen in
+ * parse_parameters() and throw an ExcMessage that names the entry and the
+ * allowed range.
+ *
+ * Units: any consistent set (kN, m, kPa in the shipped scenes). Loads and
+ * deflections are positive downward (doc/formulation.md, "Conventions").
+ */
+#ifndef plate_on_halfspace_scene_parameters_h
+#define plate_on_halfspace_scene_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <string>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  namespace Parameters
+  {
+    /** subsection Plate: geometry and material of the plate. */
+    struct Plate
+    {
+      enum class Shape
+      {
+        rectangle,
+        disk,
+        mesh_file
+      };
+      Shape       shape;
+      double      length_x, length_y; ///< rectangle spans [-L/2, L/2]
+      double      radius;             ///< disk centred at the origin
+      std::string mesh_file;          ///< Gmsh .msh with quadrilaterals
+      double      thickness;
+      double      youngs_modulus;
+      double      poissons_ratio;
+      double      unit_weight; ///< self weight = unit weight * thickness
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      /** Flexural rigidity D = E t^3 / (12 (1 - nu^2)). */
+      double
+      flexural_rigidity() const;
+    };
+
+    /** subsection Foundation: the elastic half-space. */
+    struct Foundation
+    {
+      double youngs_modulus;
+      double poissons_ratio;
+      bool   tensionless; ///< Contact = tensionless (true) or bonded
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** subsection Foundation operator: storage of the dense blocks. */
+    struct FoundationOperator
+    {
+      std::string storage; ///< auto | dense | hierarchical
+      double      tolerance;
+      /** Storage = auto: hierarchical from this many foundation nodes. */
+      unsigned int hierarchical_from;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** A rectangular load patch [x1,x2] x [y1,y2] with a pressure. */
+    struct RectangularPatch
+    {
+      Point<2> lower, upper;
+      double   pressure;
+    };
+
+    /** A circular load patch. */
+    struct CircularPatch
+    {
+      Point<2> centre;
+      double   radius;
+      double   pressure;
+    };
+
+    /** A point load (force, downward positive). */
+    struct PointLoad
+    {
+      Point<2> location;
+      double   force;
+    };
+
+    /** subsection Loads. */
+    struct Loads
+    {
+      double                        uniform_pressure;
+      std::vector<RectangularPatch> rectangular_patches;
+      std::vector<CircularPatch>    circular_patches;
+      std::vector<PointLoad>        point_loads;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** subsection Discretization. */
+    struct Discretization
+    {
+      enum class Element
+      {
+        serendipity,
+        heterosis,
+        lagrange
+      };
+      enum class ShearIntegration
+      {
+        reduced,
+        selective,
+        full
+      };
+      enum class Flexibility
+      {
+        galerkin,
+        collocation
+      };
+      Element          element;
+      ShearIntegration shear_integration;
+      unsigned int     subdivisions_x, subdivisions_y;
+      unsigned int     initial_refinements;
+      Flexibility      flexibility;
+      std::string      symmetry;
+      unsigned int     singular_quadrature_order;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** subsection Contact: the contact algorithm (tensionless contact). */
+    struct Contact
+    {
+      enum class Method
+      {
+        active_set,
+        element_exclusion
+      };
+      /** How each contact set's coupled problem is solved. */
+      enum class Solver
+      {
+        direct,    ///< ContactSolver: dense condensed plate + LAPACK
+        iterative, ///< IterativeContactSolver: sparse plate + CG
+        automatic  ///< iterative with hierarchical storage, else direct
+      };
+      Method       method;
+      unsigned int max_iterations;
+      double       tolerance;
+      Solver       solver;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** subsection Adaptivity. */
+    struct Adaptivity
+    {
+      unsigned int cycles;
+      bool         adaptive; ///< Refinement = adaptive (else global)
+      double       refine_fraction;
+      double       coarsen_fraction;
+      unsigned int max_cells;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** subsection Output. */
+    struct Output
+    {
+      std::vector<Point<2>> probe_points;
+      bool                  default_profile;
+      Point<2>              profile_start, profile_end;
+      unsigned int          profile_points;
+      bool                  vtu;
+      unsigned int          verbosity;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * A value the run must reproduce: quantity at a probe point or a summary
+     * value, a reference value and a relative tolerance. The program prints
+     * the comparison and fails (non-zero exit) if it does not hold, so that a
+     * scene file can serve as a verification test.
+     */
+    struct Check
+    {
+      std::string quantity; ///< w | q | Mx | My (at x,y) or a summary key
+      Point<2>    location;
+      bool        at_point;
+      double      reference;
+      double      relative_tolerance;
+    };
+
+    /** subsection Verification. */
+    struct Verification
+    {
+      std::vector<Check> checks;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+  } // namespace Parameters
+
+  /**
+   * The whole scene, as read from one parameter file.
+   */
+  struct SceneParameters
+  {
+    std::string output_directory;
+
+    Parameters::Plate              plate;
+    Parameters::Foundation         foundation;
+    Parameters::FoundationOperator foundation_operator;
+    Parameters::Loads              loads;
+    Parameters::Discretization     discretization;
+    Parameters::Contact            contact;
+    Parameters::Adaptivity         adaptivity;
+    Parameters::Output             output;
+    Parameters::Verification       verification;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /**
+     * The storage of the half-space operator in a cycle with
+     * @p n_foundation_nodes nodes: "dense" or "hierarchical" (Foundation
+     * operator/Storage, with auto resolved).
+     */
+    std::string
+    foundation_storage(const unsigned int n_foundation_nodes) const;
+
+    /** Whether such a cycle solves contact iteratively (Contact/Solver,
+     *  with auto resolved). */
+    bool
+    iterative_contact_solver(const unsigned int n_foundation_nodes) const;
+
+    /** Declare, read @p filename, parse and check. Throws on bad input. */
+    void
+    read(const std::string &filename);
+
+    /** Declare, read the parameter text @p text, parse and check. */
+    void
+    read_from_string(const std::string &text);
+  };
+} // namespace PlateOnHalfspace
+
+#endif

@@ -1,0 +1,463 @@
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/thread_management.h>
+
+#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
+#include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <set>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /**
+     * Outer rule of the singular pairs: Gauss points pulled towards the
+     * cell's edges by s = t^2 (3 - 2t) in each direction. The inner
+     * integral, as a function of the outer point, has logarithmically
+     * singular derivatives on the edges of the inner cell, which for these
+     * pairs lie on the outer cell's boundary; the grading smooths that out.
+     */
+    Quadrature<2>
+    graded_rule(const unsigned int n)
+    {
+      const QGauss<1>       gauss(n);
+      std::vector<Point<1>> points;
+      std::vector<double>   weights;
+      for (unsigned int q = 0; q < n; ++q)
+        {
+          const double t = gauss.point(q)[0];
+          points.emplace_back(t * t * (3. - 2. * t));
+          weights.push_back(gauss.weight(q) * 6. * t * (1. - t));
+        }
+      const Quadrature<1> graded(points, weights);
+      return Quadrature<2>(graded, graded);
+    }
+  } // namespace
+
+  void
+  symmetrise_self_image_block(const std::vector<unsigned int> &rows,
+                              const std::vector<unsigned int> &columns,
+                              FullMatrix<double>              &block)
+  {
+    const auto position = [](const std::vector<unsigned int> &list,
+                             const unsigned int               node) {
+      return static_cast<unsigned int>(
+        std::find(list.begin(), list.end(), node) - list.begin());
+    };
+    FullMatrix<double> symmetric(block.m(), block.n());
+    for (unsigned int i = 0; i < block.m(); ++i)
+      for (unsigned int k = 0; k < block.n(); ++k)
+        symmetric(i, k) =
+          0.5 * (block(i, k) +
+                 block(position(rows, columns[k]), position(columns, rows[i])));
+    block = symmetric;
+  }
+
+  CellPairIntegrator::SingularRule::SingularRule(const Point<2> &split,
+                                                 const QDuffy   &duffy)
+    : at_split(q2_shape_values(split))
+  {
+    const QSplit<2> rule(duffy, split);
+    points  = rule.get_points();
+    weights = rule.get_weights();
+    for (const Point<2> &y : points)
+      phi.push_back(q2_shape_values(y));
+  }
+
+  CellPairIntegrator::CellPairIntegrator(
+    const std::vector<FoundationSpace::Cell> &cells,
+    const unsigned int                        singular_order)
+    : cells(cells)
+    , singular_order(singular_order)
+    , rules{{QGauss<2>(2),
+             QGauss<2>(3),
+             QGauss<2>(5),
+             graded_rule(singular_order)}}
+    , cell_data(cells.size())
+    , duffy(singular_order, 1.0)
+  {
+    const Quadrature<2> &outer_rule = rules.back();
+    for (const Point<2> &p : outer_rule.get_points())
+      coincident_rules.emplace_back(p, duffy);
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      {
+        const FoundationSpace::Cell &cell = cells[c];
+        CellData                    &data = cell_data[c];
+        data.nodes                        = cell.nodes();
+        data.node_from_q2.reinit(data.nodes.size(), 9);
+        for (unsigned int i = 0; i < 9; ++i)
+          for (const auto &t : cell.expansion[i])
+            {
+              const unsigned int a =
+                std::find(data.nodes.begin(), data.nodes.end(), t.first) -
+                data.nodes.begin();
+              data.node_from_q2(a, i) += t.second;
+            }
+        data.centre   = cell.geometry.map(Point<2>(0.5, 0.5));
+        data.diameter = cell.geometry.diameter();
+
+        // The rules of most pairs are kept; the 5-point rule (pairs within
+        // 2.5 diameters) and the graded one (singular pairs, integrated
+        // once per configuration) are tabulated when needed: together
+        // they held 8 in 9 of the points, 0.9 GB at 77441 nodes.
+        for (unsigned int r = 0; r < n_stored_rules; ++r)
+          data.tables.push_back(make_table(c, rules[r]));
+      }
+    for (const Point<2> &p : outer_rule.get_points())
+      graded_phi.push_back(q2_shape_values(p));
+  }
+
+  CellPairIntegrator::Table
+  CellPairIntegrator::make_table(const unsigned int   c,
+                                 const Quadrature<2> &rule) const
+  {
+    const BilinearQuadrilateral &geometry = cells[c].geometry;
+    Table                        table;
+    table.n_functions = cell_data[c].nodes.size();
+    std::vector<double> values;
+    for (unsigned int q = 0; q < rule.size(); ++q)
+      {
+        const Point<2> &p   = rule.point(q);
+        const Point<2>  x   = geometry.map(p);
+        const double    JxW = rule.weight(q) * geometry.jacobian_determinant(p);
+        table.x.push_back(x[0]);
+        table.y.push_back(x[1]);
+        table.weights.push_back(JxW);
+        node_shape_values(c, p, values);
+        for (const double v : values)
+          table.weighted_values.push_back(JxW * v);
+      }
+    return table;
+  }
+
+  void
+  CellPairIntegrator::node_shape_values(const unsigned int   c,
+                                        const Point<2>      &p,
+                                        std::vector<double> &values) const
+  {
+    const auto         phi  = q2_shape_values(p);
+    const CellData    &data = cell_data[c];
+    const unsigned int n    = data.nodes.size();
+    values.assign(n, 0.);
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int i = 0; i < 9; ++i)
+        values[a] += data.node_from_q2(a, i) * phi[i];
+  }
+
+  bool
+  CellPairIntegrator::touching(const unsigned int k, const unsigned int l) const
+  {
+    // Convex cells that touch have a vertex of one on the closed other one
+    // (also across hanging nodes, where a small cell's vertex lies on a
+    // large cell's edge).
+    const auto &gk = cells[k].geometry, &gl = cells[l].geometry;
+    for (const Point<2> &v : gk.get_vertices())
+      if (gl.contains(v))
+        return true;
+    for (const Point<2> &v : gl.get_vertices())
+      if (gk.contains(v))
+        return true;
+    return false;
+  }
+
+  void
+  CellPairIntegrator::integrate_regular(const Table             &outer,
+                                        const Table             &inner,
+                                        FullMatrix<double>      &block,
+                                        const std::vector<bool> &rows,
+                                        const std::vector<bool> &columns) const
+  {
+    const unsigned int n_p = outer.x.size(), n_q = inner.x.size();
+    const unsigned int na = outer.n_functions, nb = inner.n_functions;
+    // G(p, q) = 1 / |x_p - y_q| (at most 25 x 25 points); a plain loop
+    // over flat arrays, which the compiler vectorises.
+    std::array<double, 625> G;
+    Assert(n_p * n_q <= G.size(), ExcInternalError());
+    for (unsigned int p = 0; p < n_p; ++p)
+      {
+        const double  xp = outer.x[p], yp = outer.y[p];
+        double *const g = G.data() + p * n_q;
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const double dx = xp - inner.x[q], dy = yp - inner.y[q];
+            g[q] = 1. / std::sqrt(dx * dx + dy * dy);
+          }
+      }
+    std::array<unsigned int, 9> a_list, b_list;
+    unsigned int                n_a = 0, n_b = 0;
+    for (unsigned int a = 0; a < na; ++a)
+      if (rows.empty() || rows[a])
+        a_list[n_a++] = a;
+    for (unsigned int b = 0; b < nb; ++b)
+      if (columns.empty() || columns[b])
+        b_list[n_b++] = b;
+    // block(a, b) = sum_p sum_q U(p, a) G(p, q) V(q, b) with U, V the
+    // weighted shape values: contract G with the side that has fewer
+    // wanted functions first.
+    const double          *U = outer.weighted_values.data();
+    const double          *V = inner.weighted_values.data();
+    std::array<double, 25> s;
+    if (n_a <= n_b)
+      for (unsigned int i = 0; i < n_a; ++i)
+        {
+          const unsigned int a = a_list[i];
+          std::fill(s.begin(), s.begin() + n_q, 0.);
+          for (unsigned int p = 0; p < n_p; ++p)
+            {
+              const double  u = U[p * na + a];
+              const double *g = G.data() + p * n_q;
+              for (unsigned int q = 0; q < n_q; ++q)
+                s[q] += u * g[q];
+            }
+          for (unsigned int j = 0; j < n_b; ++j)
+            {
+              const unsigned int b   = b_list[j];
+              double             sum = 0;
+              for (unsigned int q = 0; q < n_q; ++q)
+                sum += s[q] * V[q * nb + b];
+              block(a, b) += sum;
+            }
+        }
+    else
+      for (unsigned int j = 0; j < n_b; ++j)
+        {
+          const unsigned int b = b_list[j];
+          for (unsigned int p = 0; p < n_p; ++p)
+            {
+              const double *g   = G.data() + p * n_q;
+              double        sum = 0;
+              for (unsigned int q = 0; q < n_q; ++q)
+                sum += g[q] * V[q * nb + b];
+              s[p] = sum;
+            }
+          for (unsigned int i = 0; i < n_a; ++i)
+            {
+              const unsigned int a   = a_list[i];
+              double             sum = 0;
+              for (unsigned int p = 0; p < n_p; ++p)
+                sum += U[p * na + a] * s[p];
+              block(a, b) += sum;
+            }
+        }
+  }
+
+  void
+  CellPairIntegrator::integrate_singular(const unsigned int  k,
+                                         const unsigned int  l,
+                                         FullMatrix<double> &q2_block) const
+  {
+    q2_block.reinit(9, 9);
+    const BilinearQuadrilateral &inner_cell = cells[l].geometry;
+    const Table                  outer = make_table(k, rules.back()); // graded
+    const auto                  &v     = inner_cell.get_vertices();
+    const std::vector<Point<2>>  polygon = {v[0], v[1], v[3], v[2]};
+    std::array<double, 9>        t;
+    for (unsigned int p = 0; p < outer.x.size(); ++p)
+      {
+        const Point<2> x(outer.x[p], outer.y[p]);
+        // The inner singularity sits at x's reference point in L; outside
+        // L (touching pairs) the nearest point of the reference square is
+        // the best place to concentrate the Duffy points. Coincident pairs
+        // reuse the rules built once for the outer points.
+        std::unique_ptr<SingularRule> own_rule;
+        const SingularRule           *rule = nullptr;
+        if (k == l)
+          rule = &coincident_rules[p];
+        else
+          {
+            Point<2> split = inner_cell.inverse_map(x);
+            for (unsigned int d = 0; d < 2; ++d)
+              split[d] = std::min(1., std::max(0., split[d]));
+            own_rule = std::make_unique<SingularRule>(split, duffy);
+            rule     = own_rule.get();
+          }
+        // Singularity subtraction, in the Q2 basis: phi_i(y) = (phi_i(y) -
+        // phi_i(split)) + phi_i(split). The first part over r is bounded
+        // and the Duffy rule integrates it accurately; the second is
+        // phi_i(split) times the exact integral of 1/r over the polygon L.
+        const double polygon_integral =
+          integral_of_inverse_distance_over_polygon(x, polygon);
+        for (unsigned int i = 0; i < 9; ++i)
+          t[i] = rule->at_split[i] * polygon_integral;
+        for (unsigned int q = 0; q < rule->points.size(); ++q)
+          {
+            const Point<2> &y_ref = rule->points[q];
+            const double    r     = x.distance(inner_cell.map(y_ref));
+            if (r == 0.)
+              continue; // a point of measure zero
+            const double kernel =
+              rule->weights[q] * inner_cell.jacobian_determinant(y_ref) / r;
+            for (unsigned int i = 0; i < 9; ++i)
+              t[i] += kernel * (rule->phi[q][i] - rule->at_split[i]);
+          }
+        for (unsigned int i = 0; i < 9; ++i)
+          {
+            const double u = outer.weights[p] * graded_phi[p][i];
+            for (unsigned int j = 0; j < 9; ++j)
+              q2_block(i, j) += u * t[j];
+          }
+      }
+  }
+
+  std::array<long long, 16>
+  CellPairIntegrator::configuration(const unsigned int k,
+                                    const unsigned int l) const
+  {
+    const auto               &vk     = cells[k].geometry.get_vertices();
+    const auto               &vl     = cells[l].geometry.get_vertices();
+    const Point<2>            origin = vk[0];
+    const double              scale  = 1e9 / cell_data[k].diameter;
+    std::array<long long, 16> key;
+    for (unsigned int v = 0; v < 4; ++v)
+      for (unsigned int d = 0; d < 2; ++d)
+        {
+          key[2 * v + d]     = std::llround((vk[v][d] - origin[d]) * scale);
+          key[8 + 2 * v + d] = std::llround((vl[v][d] - origin[d]) * scale);
+        }
+    return key;
+  }
+
+  void
+  CellPairIntegrator::integrate_singular_pairs(
+    const std::vector<std::pair<unsigned int, unsigned int>> &pairs) const
+  {
+    // The first pair of each new configuration, in the order given, so
+    // that the cache does not depend on which thread finishes first.
+    std::vector<std::pair<unsigned int, unsigned int>> representatives;
+    {
+      std::set<std::array<long long, 16>> seen;
+      const std::lock_guard<std::mutex>   lock(singular_cache_mutex);
+      for (const auto &pair : pairs)
+        {
+          const auto key = configuration(pair.first, pair.second);
+          if (singular_cache.count(key) == 0 && seen.insert(key).second)
+            representatives.push_back(pair);
+        }
+    }
+    std::vector<FullMatrix<double>> blocks(representatives.size());
+    const unsigned int              n_tasks = MultithreadInfo::n_threads();
+    Threads::TaskGroup<void>        tasks;
+    for (unsigned int t = 0; t < n_tasks; ++t)
+      tasks += Threads::new_task([&, t]() {
+        for (std::size_t p = representatives.size() * t / n_tasks;
+             p < representatives.size() * (t + 1) / n_tasks;
+             ++p)
+          blocks[p] = normalised_singular_q2_block(representatives[p].first,
+                                                   representatives[p].second);
+      });
+    tasks.join_all();
+    const std::lock_guard<std::mutex> lock(singular_cache_mutex);
+    for (std::size_t p = 0; p < representatives.size(); ++p)
+      singular_cache.emplace(configuration(representatives[p].first,
+                                           representatives[p].second),
+                             std::move(blocks[p]));
+  }
+
+  const FullMatrix<double> &
+  CellPairIntegrator::singular_q2_block(const unsigned int k,
+                                        const unsigned int l) const
+  {
+    const auto key = configuration(k, l);
+    {
+      const std::lock_guard<std::mutex> lock(singular_cache_mutex);
+      const auto                        found = singular_cache.find(key);
+      if (found != singular_cache.end())
+        return found->second;
+    }
+    FullMatrix<double> normalised = normalised_singular_q2_block(k, l);
+    // std::map never moves its elements: the reference stays valid while
+    // other threads insert. (Callers that integrate concurrently fill the
+    // cache with integrate_singular_pairs() first; here the first of two
+    // near-congruent pairs computed at once would win.)
+    const std::lock_guard<std::mutex> lock(singular_cache_mutex);
+    return singular_cache.emplace(key, std::move(normalised)).first->second;
+  }
+
+  FullMatrix<double>
+  CellPairIntegrator::normalised_singular_q2_block(const unsigned int k,
+                                                   const unsigned int l) const
+  {
+    // The rule is not symmetric in the roles of the two cells (outer Gauss
+    // on one, inner Duffy on the other): average both orders, so that A is
+    // exactly symmetric (its Cholesky factor reads one triangle), the block
+    // does not depend on which cell comes first, and a mirror-symmetric
+    // mesh gives a mirror-symmetric A.
+    FullMatrix<double> forward, backward;
+    integrate_singular(k, l, forward);
+    if (k == l)
+      backward = forward;
+    else
+      integrate_singular(l, k, backward);
+    const double       diameter = cell_data[k].diameter;
+    const double       unscale  = 1. / (diameter * diameter * diameter);
+    FullMatrix<double> normalised(9, 9);
+    for (unsigned int i = 0; i < 9; ++i)
+      for (unsigned int j = 0; j < 9; ++j)
+        normalised(i, j) = 0.5 * (forward(i, j) + backward(j, i)) * unscale;
+    return normalised;
+  }
+
+  void
+  CellPairIntegrator::integrate_inverse_distance(
+    const unsigned int  k,
+    const unsigned int  l,
+    FullMatrix<double> &block) const
+  {
+    integrate_inverse_distance(k, l, block, {}, {});
+  }
+
+  void
+  CellPairIntegrator::integrate_inverse_distance(
+    const unsigned int       k,
+    const unsigned int       l,
+    FullMatrix<double>      &block,
+    const std::vector<bool> &rows,
+    const std::vector<bool> &columns) const
+  {
+    const CellData &dk = cell_data[k], &dl = cell_data[l];
+    block.reinit(dk.nodes.size(), dl.nodes.size());
+    if (singular_pair(k, l))
+      {
+        // to the node shape functions: block = T_k B T_l^T
+        const FullMatrix<double> &q2_block = singular_q2_block(k, l);
+        const double       scale = dk.diameter * dk.diameter * dk.diameter;
+        FullMatrix<double> right(9, dl.nodes.size()); // B T_l^T
+        for (unsigned int i = 0; i < 9; ++i)
+          for (unsigned int b = 0; b < dl.nodes.size(); ++b)
+            {
+              double sum = 0;
+              for (unsigned int j = 0; j < 9; ++j)
+                sum += q2_block(i, j) * dl.node_from_q2(b, j);
+              right(i, b) = sum * scale;
+            }
+        for (unsigned int a = 0; a < dk.nodes.size(); ++a)
+          for (unsigned int b = 0; b < dl.nodes.size(); ++b)
+            {
+              double sum = 0;
+              for (unsigned int i = 0; i < 9; ++i)
+                sum += dk.node_from_q2(a, i) * right(i, b);
+              block(a, b) = sum;
+            }
+        return;
+      }
+    const double separation =
+      dk.centre.distance(dl.centre) / std::max(dk.diameter, dl.diameter);
+    // Round away the last digits: on a uniform mesh many pairs sit exactly
+    // on a threshold, and rounding must not send a pair and its mirror
+    // image to different rules.
+    const double       rounded = std::round(separation * 1e6) * 1e-6;
+    const unsigned int rule    = (rounded < 2.5 ? 2 : rounded < 20 ? 1 : 0);
+    if (rule < n_stored_rules)
+      integrate_regular(dk.tables[rule], dl.tables[rule], block, rows, columns);
+    else
+      integrate_regular(make_table(k, rules[rule]),
+                        make_table(l, rules[rule]),
+                        block,
+                        rows,
+                        columns);
+  }
+} // namespace PlateOnHalfspace

@@ -1,0 +1,175 @@
+#include <deal.II/base/exceptions.h>
+
+#include <plate_on_halfspace/halfspace/hierarchical_operator.h>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    HierarchicalFlexibility::Settings
+    settings_with(const double tolerance)
+    {
+      HierarchicalFlexibility::Settings settings;
+      settings.tolerance = tolerance;
+      return settings;
+    }
+
+    const std::string needs_iterative_solver =
+      "Foundation operator/Storage = hierarchical needs Contact/Solver = "
+      "iterative or auto (the direct solver would form the dense foundation "
+      "block the hierarchical matrix avoids).";
+  } // namespace
+
+  HierarchicalGalerkinOperator::HierarchicalGalerkinOperator(
+    const double       alpha,
+    const unsigned int singular_order,
+    const double       tolerance)
+    : alpha(alpha)
+    , singular_order(singular_order)
+    , flexibility(settings_with(tolerance))
+  {}
+
+  void
+  HierarchicalGalerkinOperator::build(
+    const FoundationSpace   &space,
+    const std::vector<bool> &cell_in_foundation)
+  {
+    AssertThrow(std::find(cell_in_foundation.begin(),
+                          cell_in_foundation.end(),
+                          false) == cell_in_foundation.end(),
+                ExcMessage("Foundation operator/Storage = hierarchical does "
+                           "not support Contact/Method = element exclusion "
+                           "(use active set)."));
+    build_mass_matrix(space, cell_in_foundation);
+    use_positive_pressure_basis(space);
+    flexibility.build(space, alpha, singular_order);
+    flexibility.factorize();
+    times.compression   = flexibility.build_times().compression;
+    times.factorization = flexibility.build_times().factorization;
+  }
+
+  void
+  HierarchicalGalerkinOperator::set_contact_nodes(
+    const std::vector<bool> &requested)
+  {
+    // The iterative solver restricts products itself; only the flags are
+    // kept (for contact_nodes()).
+    AssertDimension(requested.size(), node_supported.size());
+    for (unsigned int i = 0; i < requested.size(); ++i)
+      in_contact[i] = requested[i] && node_supported[i];
+  }
+
+  void
+  HierarchicalGalerkinOperator::apply(const Vector<double> &q,
+                                      Vector<double>       &s) const
+  {
+    // s = T^T A T q (doc/formulation.md's weak settlement in the contact basis)
+    Vector<double> values, settlement(q.size());
+    nodal_pressure(q, values);
+    flexibility.vmult(settlement, values);
+    s.reinit(q.size());
+    if (positive_basis)
+      transform.Tvmult(s, settlement);
+    else
+      s = settlement;
+  }
+
+  void
+  HierarchicalGalerkinOperator::plate_settlement(const Vector<double> &w,
+                                                 Vector<double>       &b) const
+  {
+    b.reinit(w.size());
+    test_coupling().vmult(b, w);
+  }
+
+  void
+  HierarchicalGalerkinOperator::solve(const Vector<double> &,
+                                      Vector<double> &) const
+  {
+    AssertThrow(false, ExcMessage(needs_iterative_solver));
+  }
+
+  void
+  HierarchicalGalerkinOperator::add_stiffness(LAPACKFullMatrix<double> &) const
+  {
+    AssertThrow(false, ExcMessage(needs_iterative_solver));
+  }
+
+  unsigned int
+  HierarchicalGalerkinOperator::size() const
+  {
+    return flexibility.size();
+  }
+
+  void
+  HierarchicalGalerkinOperator::vmult(Vector<double>       &s,
+                                      const Vector<double> &q) const
+  {
+    apply(q, s);
+  }
+
+  void
+  HierarchicalGalerkinOperator::coefficients_from_values(
+    const Vector<double> &x,
+    Vector<double>       &y) const
+  {
+    // T y = x: vertex rows are identity rows, so y_c = x_c first, then
+    // each mid-side row y_m = (x_m - sum_c T_mc y_c) / T_mm.
+    y = x;
+    for (unsigned int i = 0; i < transform.m(); ++i)
+      if (transform.diag_element(i) != 1.)
+        {
+          double rest = x[i];
+          for (auto t = transform.begin(i); t != transform.end(i); ++t)
+            if (t->column() != i)
+              rest -= t->value() * x[t->column()];
+          y[i] = rest / transform.diag_element(i);
+        }
+  }
+
+  void
+  HierarchicalGalerkinOperator::apply_inverse_transpose_transform(
+    const Vector<double> &x,
+    Vector<double>       &y) const
+  {
+    // T^T y = x: a mid-side column of T holds only its diagonal, so
+    // y_m = x_m / T_mm first; then y_c = x_c - sum_m T_mc y_m.
+    y = x;
+    for (unsigned int i = 0; i < transform.m(); ++i)
+      if (transform.diag_element(i) != 1.)
+        y[i] = x[i] / transform.diag_element(i);
+    for (unsigned int i = 0; i < transform.m(); ++i)
+      if (transform.diag_element(i) != 1.)
+        for (auto t = transform.begin(i); t != transform.end(i); ++t)
+          if (t->column() != i)
+            y[t->column()] -= t->value() * y[i];
+  }
+
+  void
+  HierarchicalGalerkinOperator::precondition(Vector<double>       &q,
+                                             const Vector<double> &s) const
+  {
+    // (T^T A T)^{-1} s = T^{-1} A^{-1} T^{-T} s, A^{-1} by the H-Cholesky
+    // factor.
+    Vector<double> tested(s.size()), values(s.size());
+    if (positive_basis)
+      apply_inverse_transpose_transform(s, tested);
+    else
+      tested = s;
+    flexibility.solve(values, tested);
+    q.reinit(s.size());
+    if (positive_basis)
+      coefficients_from_values(values, q);
+    else
+      q = values;
+  }
+
+  std::size_t
+  HierarchicalGalerkinOperator::memory_consumption() const
+  {
+    return flexibility.memory_consumption() + mass.memory_consumption() +
+           mass_sparsity.memory_consumption() +
+           tested_mass.memory_consumption() + force_mass.memory_consumption() +
+           transform.memory_consumption();
+  }
+} // namespace PlateOnHalfspace

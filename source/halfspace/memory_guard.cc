@@ -1,0 +1,92 @@
+#include <deal.II/base/exceptions.h>
+
+#include <plate_on_halfspace/halfspace/memory_guard.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    std::string
+    gigabytes(const std::size_t bytes)
+    {
+      std::ostringstream s;
+      s << std::setprecision(3) << bytes / 1073741824. << " GiB";
+      return s.str();
+    }
+  } // namespace
+
+  std::size_t
+  dense_foundation_bytes(const std::size_t n_foundation_nodes,
+                         const bool        iterative)
+  {
+    return (iterative ? 3 : 7) * n_foundation_nodes * n_foundation_nodes *
+           sizeof(double);
+  }
+
+  std::size_t
+  available_memory_bytes()
+  {
+    std::size_t   available = 0;
+    std::ifstream meminfo("/proc/meminfo");
+    for (std::string key; meminfo >> key;)
+      {
+        std::size_t kilobytes = 0;
+        meminfo >> kilobytes;
+        if (key == "MemAvailable:")
+          {
+            available = kilobytes * 1024;
+            break;
+          }
+        meminfo.ignore(256, '\n');
+      }
+    if (const char *limit = std::getenv("PLATE_ON_HALFSPACE_MEMORY_LIMIT"))
+      {
+        char             *end   = nullptr;
+        const double      value = std::strtod(limit, &end);
+        const std::string unit  = end;
+        const double      scale = (unit == "K" ? 1024. :
+                                   unit == "M" ? 1048576. :
+                                   unit == "G" ? 1073741824. :
+                                                 1.);
+        const std::size_t bytes = static_cast<std::size_t>(value * scale);
+        AssertThrow(value > 0 && (unit.empty() || scale > 1.),
+                    dealii::ExcMessage(
+                      "The environment variable PLATE_ON_HALFSPACE_MEMORY_"
+                      "LIMIT = <" +
+                      std::string(limit) +
+                      "> must be a positive number of bytes, optionally with "
+                      "a suffix K, M or G."));
+        if (available == 0 || bytes < available)
+          available = bytes;
+      }
+    return available;
+  }
+
+  void
+  check_dense_foundation_memory(const std::size_t n_foundation_nodes,
+                                const bool        iterative)
+  {
+    const std::size_t needed =
+      dense_foundation_bytes(n_foundation_nodes, iterative);
+    const std::size_t available = available_memory_bytes();
+    AssertThrow(
+      available == 0 || needed <= available,
+      dealii::ExcMessage(
+        "The dense foundation block of " + std::to_string(n_foundation_nodes) +
+        " nodes needs about " + std::to_string(needed) + " bytes (" +
+        gigabytes(needed) + (iterative ? ", 3" : ", 7") +
+        " n^2 doubles), but only " + std::to_string(available) + " bytes (" +
+        gigabytes(available) +
+        ") are available. Reduce the node count: Discretization/Subdivisions "
+        "x and y, Discretization/Initial refinements, Adaptivity/Max cells "
+        "or Adaptivity/Cycles (memory grows with the square of the nodes; "
+        "Discretization/Symmetry, where available, quarters it), or use "
+        "Foundation operator/Storage = hierarchical."));
+  }
+} // namespace PlateOnHalfspace

@@ -1,0 +1,504 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <plate_on_halfspace/io/results_output.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <regex>
+#include <sstream>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /** Mx, My, Mxy from the rotation gradients (doc/formulation.md). */
+    class MomentsPostprocessor : public DataPostprocessor<2>
+    {
+    public:
+      MomentsPostprocessor(const double D, const double nu)
+        : D(D)
+        , nu(nu)
+      {}
+
+      void
+      evaluate_vector_field(
+        const DataPostprocessorInputs::Vector<2> &inputs,
+        std::vector<Vector<double>> &computed_quantities) const override
+      {
+        for (unsigned int p = 0; p < inputs.solution_gradients.size(); ++p)
+          {
+            const auto &g = inputs.solution_gradients[p];
+            // g[c][d] = d u_c / d x_d; components 1, 2 are beta_x, beta_y
+            computed_quantities[p][0] = -D * (g[1][0] + nu * g[2][1]);
+            computed_quantities[p][1] = -D * (g[2][1] + nu * g[1][0]);
+            computed_quantities[p][2] =
+              -D * 0.5 * (1. - nu) * (g[1][1] + g[2][0]);
+          }
+      }
+
+      std::vector<std::string>
+      get_names() const override
+      {
+        return {"Mx", "My", "Mxy"};
+      }
+
+      UpdateFlags
+      get_needed_update_flags() const override
+      {
+        return update_gradients;
+      }
+
+    private:
+      const double D, nu;
+    };
+
+    std::string
+    two_digits(const unsigned int cycle)
+    {
+      std::ostringstream s;
+      s << std::setw(2) << std::setfill('0') << cycle;
+      return s.str();
+    }
+  } // namespace
+
+  ResultsOutput::ResultsOutput(const std::string &directory)
+    : directory(directory)
+    , previous_run((std::filesystem::path(directory) / "previous-run").string())
+    , failed_run((std::filesystem::path(directory) / "failed-run").string())
+  {
+    std::error_code error;
+    std::filesystem::create_directories(directory, error);
+    AssertThrow(!error && std::filesystem::is_directory(directory),
+                ExcMessage("Output directory: cannot create <" + directory +
+                           ">: " + error.message()));
+    // previous-run/ left by a run that was killed holds the last good
+    // results; the files beside it are the killed run's.
+    if (std::filesystem::exists(previous_run))
+      {
+        std::filesystem::remove_all(failed_run);
+        move_result_files(directory, failed_run);
+      }
+    else
+      move_result_files(directory, previous_run);
+  }
+
+  ResultsOutput::~ResultsOutput()
+  {
+    if (!finished)
+      try
+        {
+          abandon();
+        }
+      catch (...)
+        {
+          // nothing more can be done while unwinding
+        }
+  }
+
+  bool
+  ResultsOutput::is_result_file(const std::string &name)
+  {
+    static const std::regex pattern(
+      R"((summary\.json|convergence\.txt|solution\.pvd|solution-\d+\.vtu|)"
+      R"((gauss-profile|profile|nodes)-\d+\.csv))");
+    return std::regex_match(name, pattern);
+  }
+
+  unsigned int
+  ResultsOutput::move_result_files(const std::string &from,
+                                   const std::string &to)
+  {
+    if (!std::filesystem::is_directory(from))
+      return 0;
+    std::vector<std::filesystem::path> files;
+    for (const auto &entry : std::filesystem::directory_iterator(from))
+      if (entry.is_regular_file() &&
+          is_result_file(entry.path().filename().string()))
+        files.push_back(entry.path());
+    if (!files.empty())
+      std::filesystem::create_directories(to);
+    for (const auto &file : files)
+      std::filesystem::rename(file,
+                              std::filesystem::path(to) / file.filename());
+    return files.size();
+  }
+
+  void
+  ResultsOutput::commit()
+  {
+    finished = true;
+    std::filesystem::remove_all(previous_run);
+    std::filesystem::remove_all(failed_run);
+  }
+
+  std::string
+  ResultsOutput::abandon()
+  {
+    finished = true;
+    std::filesystem::remove_all(failed_run);
+    const unsigned int written = move_result_files(directory, failed_run);
+    move_result_files(previous_run, directory);
+    std::filesystem::remove_all(previous_run);
+    if (written == 0)
+      return "";
+    return "The failed run's results are in <" + failed_run +
+           ">; the earlier results in <" + directory + "> are kept.";
+  }
+
+  void
+  ResultsOutput::write_file(const std::string &name,
+                            const std::string &text) const
+  {
+    const std::filesystem::path target =
+      std::filesystem::path(directory) / name;
+    const std::filesystem::path temporary =
+      std::filesystem::path(directory) / ("." + name + ".tmp");
+    {
+      std::ofstream file(temporary);
+      file << text;
+      file.close();
+      AssertThrow(file,
+                  ExcMessage("Output directory: cannot write <" +
+                             temporary.string() + ">."));
+    }
+    std::filesystem::rename(temporary, target);
+  }
+
+  void
+  ResultsOutput::evaluate(const MindlinPlate   &plate,
+                          const Vector<double> &solution,
+                          const ContactState   &contact,
+                          CycleSummary         &summary) const
+  {
+    summary.max_w = *std::max_element(contact.w.begin(), contact.w.end());
+    summary.min_w = *std::min_element(contact.w.begin(), contact.w.end());
+    summary.max_q = *std::max_element(contact.q.begin(), contact.q.end());
+    summary.min_q = *std::min_element(contact.q.begin(), contact.q.end());
+
+    // Moments at the 2x2 Gauss points, where the quadratic element's
+    // derivatives are most accurate (the paper plots Mx there too).
+    const QGauss<2>           rule(2);
+    FEValues<2>               values(plate.get_fe(), rule, update_gradients);
+    std::vector<Tensor<2, 2>> grad(rule.size());
+    const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
+    summary.max_mx = summary.max_my = -std::numeric_limits<double>::max();
+    summary.min_mx = summary.min_my = std::numeric_limits<double>::max();
+    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+      {
+        values.reinit(cell);
+        values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
+                                                                     grad);
+        for (const auto &g : grad)
+          {
+            const double mx = -D * (g[0][0] + nu * g[1][1]);
+            const double my = -D * (g[1][1] + nu * g[0][0]);
+            summary.max_mx  = std::max(summary.max_mx, mx);
+            summary.min_mx  = std::min(summary.min_mx, mx);
+            summary.max_my  = std::max(summary.max_my, my);
+            summary.min_my  = std::min(summary.min_my, my);
+          }
+      }
+
+    // Area in contact: each cell counts with the fraction of its nodes in
+    // contact.
+    const FoundationSpace &space = plate.get_foundation_space();
+    double                 area = 0, contact_area = 0;
+    const QGauss<2>        area_rule(2);
+    for (const auto &cell : space.cells)
+      {
+        double cell_area = 0;
+        for (unsigned int q = 0; q < area_rule.size(); ++q)
+          cell_area += area_rule.weight(q) *
+                       cell.geometry.jacobian_determinant(area_rule.point(q));
+        const std::vector<unsigned int> nodes = cell.nodes();
+        unsigned int                    n_in  = 0;
+        for (const unsigned int i : nodes)
+          n_in += contact.in_contact[i];
+        area += cell_area;
+        contact_area +=
+          cell_area * n_in / std::max<std::size_t>(nodes.size(), 1);
+      }
+    summary.contact_area_fraction = contact_area / area;
+    // Nodes in contact on the whole plate: a node of the computed part
+    // stands for its distinct mirror images.
+    // The same for the nodes whose pressure coefficient is tensile.
+    summary.contact_nodes = 0;
+    summary.tensile_nodes = 0;
+    for (unsigned int i = 0; i < space.n_nodes(); ++i)
+      {
+        const unsigned int images =
+          space.symmetry.images(space.node_locations[i]).size();
+        if (contact.in_contact[i])
+          summary.contact_nodes += images;
+        if (contact.pressure_coefficients[i] < 0)
+          summary.tensile_nodes += images;
+      }
+    summary.complementarity_violation = contact.complementarity_violation;
+    summary.max_penetration           = contact.max_penetration;
+    summary.contact_iterations        = contact.iterations;
+    summary.converged                 = contact.converged;
+  }
+
+  PointValues
+  ResultsOutput::point_values(const MindlinPlate   &plate,
+                              const Vector<double> &solution,
+                              const Vector<double> &pressure_field,
+                              const Point<2>       &x) const
+  {
+    // w, q, Mx and My are even across a mirror plane: a point of the
+    // mirrored-away part reads its image in the computed part.
+    const Point<2> y =
+      plate.get_foundation_space().symmetry.to_computed_part(x);
+    PointValues values;
+    values.location       = x;
+    values.w              = plate.point_value(solution, y, 0);
+    values.q              = plate.point_value(pressure_field, y, 0);
+    const auto    located = plate.locate(y);
+    const Moments m = plate.moments(located.first, located.second, solution);
+    values.mx       = m.mx;
+    values.my       = m.my;
+    return values;
+  }
+
+  void
+  ResultsOutput::write_summary(const std::vector<CycleSummary> &cycles,
+                               const std::string               &symmetry,
+                               const bool                       converged) const
+  {
+    nlohmann::ordered_json summary;
+    summary["converged"] = converged;
+    summary["symmetry"]  = symmetry;
+    summary["cycles"]    = nlohmann::ordered_json::array();
+    for (const CycleSummary &c : cycles)
+      {
+        nlohmann::ordered_json j;
+        j["cycle"]                         = c.cycle;
+        j["n_cells"]                       = c.n_cells;
+        j["n_dofs"]                        = c.n_dofs;
+        j["n_foundation_dofs"]             = c.n_foundation_dofs;
+        j["contact_iterations"]            = c.contact_iterations;
+        j["contact_nodes"]                 = c.contact_nodes;
+        j["contact_area_fraction"]         = c.contact_area_fraction;
+        j["applied_load"]                  = c.applied_load;
+        j["contact_force"]                 = c.contact_force;
+        j["complementarity_violation"]     = c.complementarity_violation;
+        j["tensile_nodes"]                 = c.tensile_nodes;
+        j["max_penetration"]               = c.max_penetration;
+        j["max_w"]                         = c.max_w;
+        j["min_w"]                         = c.min_w;
+        j["max_q"]                         = c.max_q;
+        j["min_q"]                         = c.min_q;
+        j["max_Mx"]                        = c.max_mx;
+        j["min_Mx"]                        = c.min_mx;
+        j["max_My"]                        = c.max_my;
+        j["min_My"]                        = c.min_my;
+        j["wall_time_s"]                   = c.wall_time_s;
+        j["assembly_time_s"]               = c.assembly_time_s;
+        j["foundation_time_s"]             = c.foundation_time_s;
+        j["foundation_integration_time_s"] = c.foundation_integration_time_s;
+        j["foundation_compression_time_s"] = c.foundation_compression_time_s;
+        j["foundation_factorization_time_s"] =
+          c.foundation_factorization_time_s;
+        j["solve_time_s"]            = c.solve_time_s;
+        j["output_time_s"]           = c.output_time_s;
+        j["foundation_storage"]      = c.foundation_storage;
+        j["foundation_memory_bytes"] = c.foundation_memory_bytes;
+        j["converged"]               = c.converged;
+        j["coupled_matrix_rcond"]    = c.coupled_matrix_rcond;
+        j["foundation_block_rcond"]  = c.foundation_block_rcond;
+        j["probes"]                  = nlohmann::ordered_json::array();
+        for (const PointValues &p : c.probes)
+          j["probes"].push_back({{"x", p.location[0]},
+                                 {"y", p.location[1]},
+                                 {"w", p.w},
+                                 {"q", p.q},
+                                 {"Mx", p.mx},
+                                 {"My", p.my}});
+        summary["cycles"].push_back(j);
+      }
+    write_file("summary.json", summary.dump(2) + "\n");
+  }
+
+  void
+  ResultsOutput::write_profile(const unsigned int    cycle,
+                               const MindlinPlate   &plate,
+                               const Vector<double> &solution,
+                               const ContactState   &contact,
+                               const Point<2>       &start,
+                               const Point<2>       &end,
+                               const unsigned int    n_points) const
+  {
+    const Vector<double> pressure =
+      plate.foundation_field_to_solution(contact.q);
+    std::ostringstream csv;
+    csv << "x,y,w,q,Mx,My\n" << std::setprecision(10);
+    for (unsigned int k = 0; k < n_points; ++k)
+      {
+        const Point<2> x = start + (end - start) * (k / double(n_points - 1));
+        PointValues    values;
+        try
+          {
+            values = point_values(plate, solution, pressure, x);
+          }
+        catch (...)
+          {
+            continue; // off the plate (e.g. across a disk's polygon)
+          }
+        csv << x[0] << ',' << x[1] << ',' << values.w << ',' << values.q << ','
+            << values.mx << ',' << values.my << '\n';
+      }
+    write_file("profile-" + two_digits(cycle) + ".csv", csv.str());
+  }
+
+  void
+  ResultsOutput::write_nodes_and_gauss_profile(const unsigned int    cycle,
+                                               const MindlinPlate   &plate,
+                                               const Vector<double> &solution,
+                                               const ContactState   &contact,
+                                               const Point<2>       &start,
+                                               const Point<2>       &end) const
+  {
+    const FoundationSpace &space = plate.get_foundation_space();
+    std::ostringstream     nodes;
+    nodes << "x,y,w,q,gap,contact\n" << std::setprecision(10);
+    // The whole plate: the nodes of the computed part and, for a symmetric
+    // scene, their distinct mirror images.
+    for (unsigned int i = 0; i < space.n_nodes(); ++i)
+      for (const Point<2> &x : space.symmetry.images(space.node_locations[i]))
+        nodes << x[0] << ',' << x[1] << ',' << contact.w[i] << ','
+              << contact.q[i] << ',' << contact.gap[i] << ','
+              << (contact.in_contact[i] ? 1 : 0) << '\n';
+    write_file("nodes-" + two_digits(cycle) + ".csv", nodes.str());
+
+    // Gauss points of the cells the line crosses or borders, keeping those
+    // nearest to the line in each cell.
+    const Tensor<1, 2> direction = (end - start) / end.distance(start);
+    const auto         distance  = [&](const Point<2> &x) {
+      const Tensor<1, 2> d = x - start;
+      return std::abs(d[0] * direction[1] - d[1] * direction[0]);
+    };
+    const QGauss<2>           rule(2);
+    FEValues<2>               values(plate.get_fe(),
+                       rule,
+                       update_gradients | update_quadrature_points);
+    std::vector<Tensor<2, 2>> grad(rule.size());
+    const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
+    std::vector<std::array<double, 4>> rows;
+    // (Mx and My are even across mirror planes: the images of a cell's
+    // Gauss points, never on a plane, carry its values.)
+    std::vector<std::array<double, 2>> transforms = {{{1., 1.}}};
+    for (const auto &signs : space.symmetry.reflections())
+      transforms.push_back(signs);
+    for (const auto &signs : transforms)
+      for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+        {
+          values.reinit(cell);
+          std::vector<Point<2>> points;
+          for (const Point<2> &x : values.get_quadrature_points())
+            points.emplace_back(signs[0] * x[0], signs[1] * x[1]);
+          double nearest = std::numeric_limits<double>::max();
+          for (const Point<2> &x : points)
+            nearest = std::min(nearest, distance(x));
+          if (nearest > cell->diameter() / 2)
+            continue;
+          values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
+                                                                       grad);
+          for (unsigned int q = 0; q < rule.size(); ++q)
+            if (distance(points[q]) <= nearest * (1 + 1e-8))
+              rows.push_back({{points[q][0],
+                               points[q][1],
+                               -D * (grad[q][0][0] + nu * grad[q][1][1]),
+                               -D * (grad[q][1][1] + nu * grad[q][0][0])}});
+        }
+    std::sort(rows.begin(), rows.end(), [&](const auto &a, const auto &b) {
+      return (Point<2>(a[0], a[1]) - start) * direction <
+             (Point<2>(b[0], b[1]) - start) * direction;
+    });
+    std::ostringstream csv;
+    csv << "x,y,Mx,My\n" << std::setprecision(10);
+    for (const auto &r : rows)
+      csv << r[0] << ',' << r[1] << ',' << r[2] << ',' << r[3] << '\n';
+    write_file("gauss-profile-" + two_digits(cycle) + ".csv", csv.str());
+  }
+
+  void
+  ResultsOutput::write_vtu(const unsigned int    cycle,
+                           const MindlinPlate   &plate,
+                           const Vector<double> &solution,
+                           const ContactState   &contact)
+  {
+    // q, gap and the contact indicator share the Q2 space of w: pack them
+    // into the three components of one vector on the plate's FESystem.
+    const auto    &fe = plate.get_fe();
+    Vector<double> indicator(contact.q.size());
+    for (unsigned int i = 0; i < indicator.size(); ++i)
+      indicator[i] = contact.in_contact[i] ? 1. : 0.;
+    const Vector<double> fields[3] = {
+      plate.foundation_field_to_solution(contact.q),
+      plate.foundation_field_to_solution(contact.gap),
+      plate.foundation_field_to_solution(indicator)};
+    Vector<double>                       packed(solution.size());
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+      {
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < 9; ++i)
+          for (unsigned int c = 0; c < 3; ++c)
+            packed[dofs[fe.component_to_system_index(c, i)]] =
+              fields[c][dofs[fe.component_to_system_index(0, i)]];
+      }
+
+    DataOut<2> data_out;
+    data_out.attach_dof_handler(plate.get_dof_handler());
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      solution_kind = {
+        DataComponentInterpretation::component_is_scalar,
+        DataComponentInterpretation::component_is_part_of_vector,
+        DataComponentInterpretation::component_is_part_of_vector};
+    data_out.add_data_vector(solution,
+                             std::vector<std::string>{"w", "beta", "beta"},
+                             DataOut<2>::type_dof_data,
+                             solution_kind);
+    data_out.add_data_vector(packed,
+                             std::vector<std::string>{"q", "gap", "contact"});
+    const MomentsPostprocessor moments(plate.flexural_rigidity(),
+                                       plate.poissons_ratio());
+    data_out.add_data_vector(solution, moments);
+    data_out.build_patches(2);
+
+    const std::string  name = "solution-" + two_digits(cycle) + ".vtu";
+    std::ostringstream vtu;
+    data_out.write_vtu(vtu);
+    write_file(name, vtu.str());
+
+    pvd_records.erase(std::remove_if(pvd_records.begin(),
+                                     pvd_records.end(),
+                                     [&](const auto &r) {
+                                       return r.second == name;
+                                     }),
+                      pvd_records.end());
+    pvd_records.emplace_back(cycle, name);
+    std::ostringstream pvd;
+    DataOutBase::write_pvd_record(pvd, pvd_records);
+    write_file("solution.pvd", pvd.str());
+  }
+
+  void
+  ResultsOutput::write_convergence(ConvergenceTable &table) const
+  {
+    std::ostringstream text;
+    table.write_text(text, TableHandler::org_mode_table);
+    write_file("convergence.txt", text.str());
+  }
+} // namespace PlateOnHalfspace

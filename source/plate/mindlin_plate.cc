@@ -1,0 +1,557 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+
+#include <cmath>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    BilinearQuadrilateral
+    cell_geometry(const typename DoFHandler<2>::active_cell_iterator &cell)
+    {
+      return BilinearQuadrilateral(std::array<Point<2>, 4>{
+        {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}});
+    }
+  } // namespace
+
+  MindlinPlate::MindlinPlate(const Parameters::Plate          &plate,
+                             const Parameters::Discretization &discretization)
+    : plate(plate)
+    , discretization(discretization)
+    , fe(FE_Q<2>(2), 3)
+  {}
+
+  void
+  MindlinPlate::setup(
+    const Triangulation<2>                                 &triangulation,
+    const std::function<void(const DoFHandler<2> &,
+                             AffineConstraints<double> &)> &extra_constraints)
+  {
+    // Keep the DoFHandler attached across refinement cycles, so that a
+    // SolutionTransfer prepared before refinement can interpolate.
+    if (attached_triangulation != &triangulation)
+      dof_handler.reinit(triangulation);
+    attached_triangulation = &triangulation;
+    dof_handler.distribute_dofs(fe);
+
+    constraints.clear();
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    add_centre_constraints();
+    add_mirror_plane_constraints();
+    if (extra_constraints)
+      extra_constraints(dof_handler, constraints);
+    constraints.close();
+
+    build_foundation_space();
+
+    DynamicSparsityPattern dsp(dof_handler.n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    sparsity.copy_from(dsp);
+    stiffness.reinit(sparsity);
+    load.reinit(dof_handler.n_dofs());
+    total_load = 0;
+    assemble_stiffness();
+  }
+
+  void
+  MindlinPlate::add_mirror_plane_constraints()
+  {
+    // The solution of a symmetric scene is even across a mirror plane
+    // (mirror_symmetry.h): w is free there, the slope across the plane
+    // vanishes: beta_x = 0 on x = 0, beta_y = 0 on y = 0. Hanging nodes on
+    // the plane are already constrained to nodes on the plane, which are
+    // zero here too.
+    for (const unsigned int axis : {0u, 1u})
+      {
+        if (!(axis == 0 ? symmetry.x : symmetry.y))
+          continue;
+        const IndexSet plane_dofs = DoFTools::extract_boundary_dofs(
+          dof_handler,
+          fe.component_mask(FEValuesExtractors::Scalar(1 + axis)),
+          {axis == 0 ? mirror_plane_x_boundary_id :
+                       mirror_plane_y_boundary_id});
+        for (const auto dof : plane_dofs)
+          if (!constraints.is_constrained(dof))
+            constraints.add_line(dof);
+      }
+  }
+
+  void
+  MindlinPlate::add_centre_constraints()
+  {
+    // serendipity: every field; heterosis: w only; lagrange: none
+    // (doc/formulation.md, "Plate"). u_centre = 1/2 sum(mid-sides) -
+    // 1/4 sum(corners) removes exactly the xi^2 eta^2 mode of Q2.
+    unsigned int n_constrained_components = 0;
+    switch (discretization.element)
+      {
+        case Parameters::Discretization::Element::serendipity:
+          n_constrained_components = 3;
+          break;
+        case Parameters::Discretization::Element::heterosis:
+          n_constrained_components = 1;
+          break;
+        case Parameters::Discretization::Element::lagrange:
+          n_constrained_components = 0;
+          break;
+      }
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        cell->get_dof_indices(dofs);
+        for (unsigned int c = 0; c < n_constrained_components; ++c)
+          {
+            const auto centre = dofs[fe.component_to_system_index(c, 8)];
+            constraints.add_line(centre);
+            for (unsigned int v = 0; v < 4; ++v)
+              constraints.add_entry(centre,
+                                    dofs[fe.component_to_system_index(c, v)],
+                                    -0.25);
+            for (unsigned int m = 4; m < 8; ++m)
+              constraints.add_entry(centre,
+                                    dofs[fe.component_to_system_index(c, m)],
+                                    0.5);
+          }
+      }
+  }
+
+  void
+  MindlinPlate::build_foundation_space()
+  {
+    std::vector<Point<2>> support_points(dof_handler.n_dofs());
+    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support_points);
+    const IndexSet w_dofs =
+      DoFTools::extract_dofs(dof_handler,
+                             fe.component_mask(FEValuesExtractors::Scalar(0)));
+
+    foundation_dofs.clear();
+    foundation_index.assign(dof_handler.n_dofs(), -1);
+    foundation_space          = FoundationSpace();
+    foundation_space.symmetry = symmetry;
+    for (const auto dof : w_dofs)
+      if (!constraints.is_constrained(dof))
+        {
+          foundation_index[dof] = foundation_dofs.size();
+          foundation_dofs.push_back(dof);
+          foundation_space.node_locations.push_back(support_points[dof]);
+        }
+
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        cell->get_dof_indices(dofs);
+        FoundationSpace::Cell data{cell_geometry(cell), {}};
+        for (unsigned int i = 0; i < 9; ++i)
+          {
+            const auto dof = dofs[fe.component_to_system_index(0, i)];
+            if (foundation_index[dof] >= 0)
+              data.expansion[i].emplace_back(foundation_index[dof], 1.);
+            else
+              {
+                // After close(), a constrained DoF depends on unconstrained
+                // ones only; those of a w-DoF are w-DoFs. A support (w = 0)
+                // has no entries.
+                const auto *entries = constraints.get_constraint_entries(dof);
+                if (entries != nullptr)
+                  for (const auto &entry : *entries)
+                    {
+                      Assert(foundation_index[entry.first] >= 0,
+                             ExcInternalError());
+                      data.expansion[i].emplace_back(
+                        foundation_index[entry.first], entry.second);
+                    }
+              }
+          }
+        foundation_space.cells.push_back(data);
+      }
+  }
+
+  void
+  MindlinPlate::assemble_stiffness()
+  {
+    using SI = Parameters::Discretization::ShearIntegration;
+    const SI                         shear = discretization.shear_integration;
+    const QGauss<2>                  bending_rule(shear == SI::reduced ? 2 : 3);
+    const QGauss<2>                  shear_rule(shear == SI::full ? 3 : 2);
+    FEValues<2>                      bending_values(mapping,
+                               fe,
+                               bending_rule,
+                               update_gradients | update_JxW_values);
+    FEValues<2>                      shear_values(mapping,
+                             fe,
+                             shear_rule,
+                             update_values | update_gradients |
+                               update_JxW_values);
+    const FEValuesExtractors::Scalar w(0);
+    const FEValuesExtractors::Vector beta(1);
+
+    // (P1): D_b = D [[1,nu,0],[nu,1,0],[0,0,(1-nu)/2]], D_s = k G t.
+    const double D  = plate.flexural_rigidity();
+    const double nu = plate.poissons_ratio;
+    const double Ds =
+      5. / 6. * plate.youngs_modulus / (2. * (1. + nu)) * plate.thickness;
+
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    FullMatrix<double>                   local(n, n);
+    std::vector<types::global_dof_index> dofs(n);
+    std::vector<std::array<double, 3>>   kappa(n);
+    std::vector<Tensor<1, 2>>            gamma(n);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        local = 0;
+        bending_values.reinit(cell);
+        for (unsigned int q = 0; q < bending_rule.size(); ++q)
+          {
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const Tensor<2, 2> g = bending_values[beta].gradient(i, q);
+                kappa[i]             = {{g[0][0], g[1][1], g[0][1] + g[1][0]}};
+              }
+            const double JxW = bending_values.JxW(q);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                local(i, j) +=
+                  D *
+                  (kappa[i][0] * kappa[j][0] + kappa[i][1] * kappa[j][1] +
+                   nu *
+                     (kappa[i][0] * kappa[j][1] + kappa[i][1] * kappa[j][0]) +
+                   0.5 * (1. - nu) * kappa[i][2] * kappa[j][2]) *
+                  JxW;
+          }
+        shear_values.reinit(cell);
+        for (unsigned int q = 0; q < shear_rule.size(); ++q)
+          {
+            // gamma = grad w - beta
+            for (unsigned int i = 0; i < n; ++i)
+              gamma[i] =
+                shear_values[w].gradient(i, q) - shear_values[beta].value(i, q);
+            const double JxW = shear_values.JxW(q);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                local(i, j) += Ds * (gamma[i] * gamma[j]) * JxW;
+          }
+        cell->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(local, dofs, stiffness);
+      }
+  }
+
+  void
+  MindlinPlate::assemble_loads(const Parameters::Loads &loads,
+                               const double             self_weight_pressure)
+  {
+    load                                   = 0;
+    total_load                             = 0;
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    Vector<double>                       local(n);
+    std::vector<types::global_dof_index> dofs(n);
+    const QGauss<2>                      cell_rule(3);
+    std::vector<bool> rectangle_used(loads.rectangular_patches.size(), false);
+    std::vector<bool> disk_used(loads.circular_patches.size(), false);
+
+    const auto add = [&](const Quadrature<2>         &rule,
+                         const double                 pressure,
+                         const bool                   physical_weights,
+                         const BilinearQuadrilateral &geometry) {
+      for (unsigned int q = 0; q < rule.size(); ++q)
+        {
+          const auto   phi = q2_shape_values(rule.point(q));
+          const double weight =
+            physical_weights ?
+              rule.weight(q) :
+              rule.weight(q) * geometry.jacobian_determinant(rule.point(q));
+          for (unsigned int i = 0; i < 9; ++i)
+            local[fe.component_to_system_index(0, i)] +=
+              pressure * phi[i] * weight;
+        }
+    };
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        local                                = 0;
+        const BilinearQuadrilateral geometry = cell_geometry(cell);
+        const double uniform = loads.uniform_pressure + self_weight_pressure;
+        if (uniform != 0)
+          add(cell_rule, uniform, false, geometry);
+        for (unsigned int k = 0; k < loads.rectangular_patches.size(); ++k)
+          {
+            const auto         &patch = loads.rectangular_patches[k];
+            const Quadrature<2> rule  = quadrature_on_rectangle_part(geometry,
+                                                                    patch.lower,
+                                                                    patch.upper,
+                                                                    4);
+            if (rule.size() > 0)
+              rectangle_used[k] = true;
+            add(rule, patch.pressure, true, geometry);
+          }
+        for (unsigned int k = 0; k < loads.circular_patches.size(); ++k)
+          {
+            const auto         &patch = loads.circular_patches[k];
+            const Quadrature<2> rule =
+              quadrature_on_disk_part(geometry, patch.centre, patch.radius, 8);
+            if (rule.size() > 0)
+              disk_used[k] = true;
+            add(rule, patch.pressure, true, geometry);
+          }
+        cell->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(local, dofs, load);
+      }
+
+    for (unsigned int k = 0; k < rectangle_used.size(); ++k)
+      AssertThrow(rectangle_used[k],
+                  ExcMessage("Loads/Rectangular patches: patch " +
+                             std::to_string(k + 1) +
+                             " does not overlap the plate."));
+    for (unsigned int k = 0; k < disk_used.size(); ++k)
+      AssertThrow(disk_used[k],
+                  ExcMessage("Loads/Circular patches: patch " +
+                             std::to_string(k + 1) +
+                             " does not overlap the plate."));
+
+    for (const auto &point_load : loads.point_loads)
+      {
+        std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
+          located;
+        try
+          {
+            located = locate(point_load.location);
+          }
+        catch (...)
+          {
+            AssertThrow(false,
+                        ExcMessage("Loads/Point loads: the point (" +
+                                   std::to_string(point_load.location[0]) +
+                                   ", " +
+                                   std::to_string(point_load.location[1]) +
+                                   ") is not on the plate."));
+          }
+        local          = 0;
+        const auto phi = q2_shape_values(located.second);
+        for (unsigned int i = 0; i < 9; ++i)
+          local[fe.component_to_system_index(0, i)] = point_load.force * phi[i];
+        located.first->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(local, dofs, load);
+      }
+
+    // The w-shape functions are a partition of unity, also after the
+    // constraints: the sum of the w-loads is the resultant.
+    for (const auto dof : foundation_dofs)
+      total_load += load[dof];
+  }
+
+  unsigned int
+  MindlinPlate::n_unconstrained_dofs() const
+  {
+    return dof_handler.n_dofs() - constraints.n_constraints();
+  }
+
+  void
+  MindlinPlate::solve_unsupported(Vector<double> &solution) const
+  {
+    SparseDirectUMFPACK solver;
+    solver.initialize(stiffness);
+    solution = load;
+    solver.solve(solution);
+    constraints.distribute(solution);
+  }
+
+  void
+  MindlinPlate::condense(LAPACKFullMatrix<double> &condensed,
+                         Vector<double>           &condensed_load)
+  {
+    // r: every unconstrained DoF that is not a foundation node (rotations,
+    // and w-DoFs a test may have supported).
+    rest_dofs.clear();
+    for (types::global_dof_index i = 0; i < dof_handler.n_dofs(); ++i)
+      if (foundation_index[i] < 0 && !constraints.is_constrained(i))
+        rest_dofs.push_back(i);
+    std::vector<int> rest_position(dof_handler.n_dofs(), -1);
+    for (unsigned int c = 0; c < rest_dofs.size(); ++c)
+      rest_position[rest_dofs[c]] = c;
+    rest_factor.factorize(stiffness, rest_dofs);
+
+    const unsigned int nf = foundation_dofs.size(), nr = rest_dofs.size();
+    condensed.reinit(nf);
+    condensed = 0.;
+    // K_ff
+    for (unsigned int i = 0; i < nf; ++i)
+      for (auto entry = stiffness.begin(foundation_dofs[i]);
+           entry != stiffness.end(foundation_dofs[i]);
+           ++entry)
+        if (foundation_index[entry->column()] >= 0)
+          condensed(i, foundation_index[entry->column()]) = entry->value();
+
+    // K_fr row by row, columns numbered within r
+    std::vector<std::vector<std::pair<unsigned int, double>>> coupling_rows(nf);
+    for (unsigned int i = 0; i < nf; ++i)
+      for (auto entry = stiffness.begin(foundation_dofs[i]);
+           entry != stiffness.end(foundation_dofs[i]);
+           ++entry)
+        if (rest_position[entry->column()] >= 0)
+          coupling_rows[i].emplace_back(rest_position[entry->column()],
+                                        entry->value());
+
+    // - K_fr K_rr^{-1} K_rf, a block of columns at a time (K symmetric: row
+    // f_j of K holds column j of K_rf).
+    const unsigned int  block_size = 256;
+    std::vector<double> block;
+    for (unsigned int first = 0; first < nf; first += block_size)
+      {
+        const unsigned int k = std::min(block_size, nf - first);
+        block.assign(std::size_t(nr) * k, 0.);
+        for (unsigned int jj = 0; jj < k; ++jj)
+          {
+            const auto dof = foundation_dofs[first + jj];
+            for (auto entry = stiffness.begin(dof); entry != stiffness.end(dof);
+                 ++entry)
+              if (rest_position[entry->column()] >= 0)
+                block[rest_position[entry->column()] + std::size_t(jj) * nr] =
+                  entry->value();
+          }
+        rest_factor.solve(block, k);
+        // column by column: both the block's and K̄'s columns are contiguous
+        for (unsigned int jj = 0; jj < k; ++jj)
+          {
+            const double *x = block.data() + std::size_t(jj) * nr;
+            for (unsigned int i = 0; i < nf; ++i)
+              {
+                double sum = 0;
+                for (const auto &entry : coupling_rows[i])
+                  sum += entry.second * x[entry.first];
+                condensed(i, first + jj) -= sum;
+              }
+          }
+      }
+
+    // P̄ = P_f - K_fr K_rr^{-1} P_r
+    std::vector<double> rest_load(nr);
+    for (unsigned int c = 0; c < nr; ++c)
+      rest_load[c] = load[rest_dofs[c]];
+    rest_factor.solve(rest_load, 1);
+    Vector<double> rest_solution(dof_handler.n_dofs()),
+      product(dof_handler.n_dofs());
+    for (unsigned int c = 0; c < nr; ++c)
+      rest_solution[rest_dofs[c]] = rest_load[c];
+    stiffness.vmult(product, rest_solution);
+    condensed_load.reinit(nf);
+    for (unsigned int i = 0; i < nf; ++i)
+      condensed_load[i] =
+        load[foundation_dofs[i]] - product[foundation_dofs[i]];
+  }
+
+  void
+  MindlinPlate::expand(const Vector<double> &foundation_w,
+                       Vector<double>       &solution) const
+  {
+    const unsigned int n = dof_handler.n_dofs();
+    Vector<double>     known(n), rhs(n);
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      known[foundation_dofs[i]] = foundation_w[i];
+    // r = K_rr^{-1} (P_r - K_rf w_f)
+    stiffness.vmult(rhs, known);
+    rhs.sadd(-1., 1., load);
+    std::vector<double> rest(rest_dofs.size());
+    for (unsigned int c = 0; c < rest_dofs.size(); ++c)
+      rest[c] = rhs[rest_dofs[c]];
+    rest_factor.solve(rest, 1);
+    solution = known;
+    for (unsigned int c = 0; c < rest_dofs.size(); ++c)
+      solution[rest_dofs[c]] = rest[c];
+    constraints.distribute(solution);
+  }
+
+  Vector<double>
+  MindlinPlate::restrict_to_foundation(const Vector<double> &solution) const
+  {
+    Vector<double> values(foundation_dofs.size());
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      values[i] = solution[foundation_dofs[i]];
+    return values;
+  }
+
+  Vector<double>
+  MindlinPlate::foundation_field_to_solution(const Vector<double> &field) const
+  {
+    Vector<double> values(dof_handler.n_dofs());
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      values[foundation_dofs[i]] = field[i];
+    constraints.distribute(values);
+    // distribute() also set the rotations from their own constraints (all
+    // zero); only component 0 carries the field.
+    return values;
+  }
+
+  std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
+  MindlinPlate::locate(const Point<2> &x) const
+  {
+    typename DoFHandler<2>::active_cell_iterator best;
+    double   best_distance = std::numeric_limits<double>::max();
+    Point<2> best_point;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        const BilinearQuadrilateral geometry = cell_geometry(cell);
+        Point<2>                    p        = geometry.inverse_map(x);
+        for (unsigned int d = 0; d < 2; ++d)
+          p[d] = std::min(1., std::max(0., p[d]));
+        const double distance = geometry.map(p).distance(x);
+        if (distance < best_distance)
+          {
+            best_distance = distance;
+            best          = cell;
+            best_point    = p;
+          }
+        if (distance == 0.)
+          break;
+      }
+    AssertThrow(best_distance <= 1e-10 * (1. + x.norm()),
+                ExcMessage("The point is not on the plate."));
+    return {best, best_point};
+  }
+
+  double
+  MindlinPlate::point_value(const Vector<double> &solution,
+                            const Point<2>       &x,
+                            const unsigned int    component) const
+  {
+    const auto  located = locate(x);
+    FEValues<2> values(mapping,
+                       fe,
+                       Quadrature<2>(std::vector<Point<2>>{located.second}),
+                       update_values);
+    values.reinit(located.first);
+    std::vector<Vector<double>> all(1, Vector<double>(3));
+    values.get_function_values(solution, all);
+    return all[0][component];
+  }
+
+  Moments
+  MindlinPlate::moments(
+    const typename DoFHandler<2>::active_cell_iterator &cell,
+    const Point<2>                                     &p,
+    const Vector<double>                               &solution) const
+  {
+    FEValues<2> values(mapping,
+                       fe,
+                       Quadrature<2>(std::vector<Point<2>>{p}),
+                       update_gradients);
+    values.reinit(cell);
+    std::vector<Tensor<2, 2>> grad(1);
+    values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
+                                                                 grad);
+    const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio;
+    Moments      m;
+    m.mx  = -D * (grad[0][0][0] + nu * grad[0][1][1]);
+    m.my  = -D * (grad[0][1][1] + nu * grad[0][0][0]);
+    m.mxy = -D * 0.5 * (1. - nu) * (grad[0][0][1] + grad[0][1][0]);
+    return m;
+  }
+} // namespace PlateOnHalfspace

@@ -1,0 +1,219 @@
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/grid/grid_refinement.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/numerics/error_estimator.h>
+
+#include <plate_on_halfspace/refinement/mesh_refinement.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /**
+     * The load that a load discontinuity puts on @p cell: for each patch
+     * whose edge crosses the cell (the patch covers part of it, not all),
+     * |pressure| times the cell's area; for each point load on the cell,
+     * its |force|.
+     */
+    double
+    load_edge_indicator(const Triangulation<2>::active_cell_iterator &cell,
+                        const Parameters::Loads                      &loads)
+    {
+      const BoundingBox<2> box   = cell->bounding_box();
+      const double         area  = cell->measure();
+      double               value = 0;
+      for (const auto &patch : loads.rectangular_patches)
+        {
+          const BoundingBox<2> patch_box({patch.lower, patch.upper});
+          const double         overlap_x =
+                         std::min(box.upper_bound(0), patch.upper[0]) -
+                         std::max(box.lower_bound(0), patch.lower[0]),
+                       overlap_y =
+                         std::min(box.upper_bound(1), patch.upper[1]) -
+                         std::max(box.lower_bound(1), patch.lower[1]);
+          if (overlap_x <= 0 || overlap_y <= 0)
+            continue; // apart, or touching along an edge
+          bool all_inside = true;
+          for (const unsigned int v : cell->vertex_indices())
+            all_inside = all_inside && patch_box.point_inside(cell->vertex(v));
+          if (!all_inside)
+            value += std::abs(patch.pressure) * area;
+        }
+      for (const auto &patch : loads.circular_patches)
+        {
+          unsigned int inside = 0;
+          for (const unsigned int v : cell->vertex_indices())
+            inside += cell->vertex(v).distance(patch.centre) <= patch.radius;
+          // the rim crosses the cell: some vertices inside, or none while
+          // the circle reaches into the cell's box
+          const Point<2> nearest(std::clamp(patch.centre[0],
+                                            box.lower_bound(0),
+                                            box.upper_bound(0)),
+                                 std::clamp(patch.centre[1],
+                                            box.lower_bound(1),
+                                            box.upper_bound(1)));
+          if (inside < 4 && nearest.distance(patch.centre) < patch.radius)
+            value += std::abs(patch.pressure) * area;
+        }
+      for (const auto &point_load : loads.point_loads)
+        if (box.point_inside(point_load.location))
+          value += std::abs(point_load.force);
+      return value;
+    }
+  } // namespace
+
+  bool
+  mark_cells_for_refinement(const Parameters::Adaptivity &adaptivity,
+                            const MindlinPlate           &plate,
+                            const Vector<double>         &solution,
+                            const ContactState           &contact,
+                            const Parameters::Loads      &loads,
+                            Triangulation<2>             &triangulation)
+  {
+    const unsigned int n_cells = triangulation.n_active_cells();
+    if (!adaptivity.adaptive)
+      {
+        if (4 * n_cells > adaptivity.max_cells)
+          return false;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          cell->set_refine_flag();
+        return true;
+      }
+
+    // The numbers to mark are those of the whole plate: its n-th cell in
+    // the order of the indicators is the computed part's ceil(n / copies)-th
+    // (a symmetric scene's cells come in groups of copies).
+    const unsigned int copies =
+      plate.get_foundation_space().symmetry.n_copies();
+    const auto part_count = [&](const double fraction_of_plate) {
+      const auto whole = static_cast<unsigned int>(fraction_of_plate);
+      return (whole + copies - 1) / copies;
+    };
+    const unsigned int n_refined =
+      std::max(1u, part_count(adaptivity.refine_fraction * n_cells * copies));
+    if (n_cells + 3 * n_refined > adaptivity.max_cells)
+      return false;
+
+    Vector<float> indicators(n_cells);
+    KellyErrorEstimator<2>::estimate(
+      plate.get_dof_handler(), QGauss<1>(3), {}, solution, indicators);
+    const MirrorSymmetry &symmetry = plate.get_foundation_space().symmetry;
+    if (symmetry.x || symmetry.y)
+      {
+        // On the whole plate a face on a mirror plane is interior. A field
+        // that is even across the plane (w; beta_y across x = 0; beta_x
+        // across y = 0) has a jump of the normal derivative twice its
+        // one-sided derivative there: the Kelly term 4 h/24 ∫ (du/dn)^2. An
+        // odd field (beta_x across x = 0, beta_y across y = 0) has no jump.
+        // Kelly of one component with zero Neumann data on its even planes
+        // gives the term once (N^2 = R^2 + term, R without it), so eta^2 =
+        // sum over components of 4 N^2 - 3 R^2, and the computed part is
+        // marked as the whole plate would be.
+        const Functions::ZeroFunction<2> zero(3);
+        Vector<double>                   squares(n_cells);
+        for (unsigned int component = 0; component < 3; ++component)
+          {
+            std::map<types::boundary_id, const Function<2> *> even_planes;
+            if (symmetry.x && component != 1)
+              even_planes[mirror_plane_x_boundary_id] = &zero;
+            if (symmetry.y && component != 2)
+              even_planes[mirror_plane_y_boundary_id] = &zero;
+            ComponentMask mask(3, false);
+            mask.set(component, true);
+            Vector<float> raw(n_cells), with_planes(n_cells);
+            KellyErrorEstimator<2>::estimate(
+              plate.get_dof_handler(), QGauss<1>(3), {}, solution, raw, mask);
+            KellyErrorEstimator<2>::estimate(plate.get_dof_handler(),
+                                             QGauss<1>(3),
+                                             even_planes,
+                                             solution,
+                                             with_planes,
+                                             mask);
+            for (unsigned int c = 0; c < n_cells; ++c)
+              squares[c] += 4. * with_planes[c] * with_planes[c] -
+                            3. * double(raw[c]) * raw[c];
+          }
+        for (unsigned int c = 0; c < n_cells; ++c)
+          indicators[c] = std::sqrt(std::max(0., squares[c]));
+      }
+    // The contact pressure is singular at the plate edge and changes sign
+    // or vanishes non-smoothly at the contact boundary: on those cells add
+    // an indicator sqrt(area) * (max q - min q) over the cell's nodes (the
+    // variation of the pressure at the cell's scale: large where q is
+    // singular, small where it is smooth, e.g. under a flexible plate). The
+    // edges of load patches and point loads make the shear force jump: there
+    // add the load of the discontinuity. Each family is normalised to its
+    // maximum, so that every kind of singular place is refined where it matters
+    // most. Faces on a mirror plane (boundary id != 0) are not plate edges.
+    const FoundationSpace &space = plate.get_foundation_space();
+    Vector<float> pressure_indicators(n_cells), load_indicators(n_cells);
+    unsigned int  index = 0;
+    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+      {
+        bool   in = false, out = false, positive = false, negative = false;
+        double q_min = std::numeric_limits<double>::max(),
+               q_max = -std::numeric_limits<double>::max();
+        for (const auto &terms : space.cells[index].expansion)
+          for (const auto &t : terms)
+            {
+              (contact.in_contact[t.first] ? in : out)        = true;
+              (contact.q[t.first] >= 0 ? positive : negative) = true;
+              q_min = std::min(q_min, contact.q[t.first]);
+              q_max = std::max(q_max, contact.q[t.first]);
+            }
+        bool on_plate_edge = false;
+        for (const unsigned int f : cell->face_indices())
+          on_plate_edge = on_plate_edge || (cell->at_boundary(f) &&
+                                            cell->face(f)->boundary_id() == 0);
+        if (on_plate_edge || (in && out) || (positive && negative))
+          pressure_indicators[index] =
+            std::sqrt(cell->measure()) * (q_max - q_min);
+        load_indicators[index] = load_edge_indicator(cell, loads);
+        ++index;
+      }
+    // A family that only sees rounding (q uniform under a flexible plate)
+    // is left out.
+    const double kelly_max = indicators.linfty_norm(),
+                 pressure_max =
+                   pressure_indicators.linfty_norm() >
+                       1e-8 * contact.q.linfty_norm() *
+                         std::sqrt(GridTools::volume(triangulation)) ?
+                     pressure_indicators.linfty_norm() :
+                     0.,
+                 load_max = load_indicators.linfty_norm();
+    for (unsigned int c = 0; c < n_cells; ++c)
+      indicators[c] =
+        (kelly_max > 0 ? indicators[c] / kelly_max : 0.) +
+        (pressure_max > 0 ? pressure_indicators[c] / pressure_max : 0.) +
+        (load_max > 0 ? load_indicators[c] / load_max : 0.);
+    // Fixed-number marking, but cells whose indicators tie with the last
+    // marked one (to 1e-5 relative: rounding) are marked with it, so that a
+    // symmetric solution gets a symmetric mesh, and a symmetric scene's
+    // computed part is refined as the whole plate would be.
+    std::vector<float> sorted(indicators.begin(), indicators.end());
+    std::sort(sorted.begin(), sorted.end(), std::greater<float>());
+    const double       tie    = 1e-5 * sorted.front();
+    const double       refine = sorted[n_refined - 1] - tie;
+    const unsigned int n_coarsened =
+      part_count(adaptivity.coarsen_fraction * n_cells * copies);
+    const double coarsen =
+      n_coarsened > 0 ? sorted[n_cells - n_coarsened] + tie : -1.;
+    unsigned int index_c = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        if (indicators[index_c] >= refine)
+          cell->set_refine_flag();
+        else if (indicators[index_c] <= coarsen)
+          cell->set_coarsen_flag();
+        ++index_c;
+      }
+    return true;
+  }
+} // namespace PlateOnHalfspace

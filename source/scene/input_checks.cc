@@ -1,0 +1,391 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <plate_on_halfspace/scene/input_checks.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    std::string
+    trimmed(const std::string &text)
+    {
+      const auto begin = text.find_first_not_of(" \t\r");
+      if (begin == std::string::npos)
+        return "";
+      const auto end = text.find_last_not_of(" \t\r");
+      return text.substr(begin, end - begin + 1);
+    }
+
+    /** The line without its comment, trimmed. */
+    std::string
+    content_of(const std::string &line)
+    {
+      return trimmed(line.substr(0, line.find('#')));
+    }
+
+    /** Every declared subsection path and its entries. */
+    std::map<std::string, std::set<std::string>>
+    declared_names()
+    {
+      ParameterHandler prm;
+      SceneParameters::declare_parameters(prm);
+      std::ostringstream listing;
+      prm.print_parameters(listing, ParameterHandler::ShortPRM);
+      std::map<std::string, std::set<std::string>> names;
+      std::vector<std::string>                     path;
+      std::istringstream                           lines(listing.str());
+      for (std::string line; std::getline(lines, line);)
+        {
+          const std::string content = content_of(line);
+          const auto        joined  = [&]() {
+            std::string p;
+            for (const auto &s : path)
+              p += s + "/";
+            return p;
+          };
+          if (content.rfind("subsection ", 0) == 0)
+            {
+              names[joined()].insert(trimmed(content.substr(11)));
+              path.push_back(trimmed(content.substr(11)));
+            }
+          else if (content == "end" && !path.empty())
+            path.pop_back();
+          else if (content.rfind("set ", 0) == 0)
+            names[joined()].insert(
+              trimmed(content.substr(4, content.find('=') - 4)));
+        }
+      return names;
+    }
+
+    unsigned int
+    edit_distance(const std::string &a, const std::string &b)
+    {
+      std::vector<unsigned int> row(b.size() + 1);
+      for (unsigned int j = 0; j <= b.size(); ++j)
+        row[j] = j;
+      for (unsigned int i = 1; i <= a.size(); ++i)
+        {
+          unsigned int diagonal = row[0];
+          row[0]                = i;
+          for (unsigned int j = 1; j <= b.size(); ++j)
+            {
+              const unsigned int above = row[j];
+              row[j]                   = std::min(
+                {row[j] + 1,
+                                   row[j - 1] + 1,
+                                   diagonal + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ?
+                                                 0u :
+                                                 1u)});
+              diagonal = above;
+            }
+        }
+      return row[b.size()];
+    }
+
+    /** " Did you mean <X>?" for the nearest of @p candidates, or "". */
+    std::string
+    suggestion(const std::string &name, const std::set<std::string> &candidates)
+    {
+      std::string  best;
+      unsigned int best_distance = 4; // more than 3 edits: no suggestion
+      for (const std::string &c : candidates)
+        {
+          const unsigned int d = edit_distance(name, c);
+          if (d < best_distance)
+            {
+              best_distance = d;
+              best          = c;
+            }
+        }
+      return best.empty() ? "" : " Did you mean <" + best + ">?";
+    }
+
+    std::string
+    list_of(const std::set<std::string> &names)
+    {
+      std::string list;
+      for (const std::string &n : names)
+        list += (list.empty() ? "" : ", ") + n;
+      return list;
+    }
+
+    std::string
+    section_name(const std::string &path)
+    {
+      return path.empty() ? "the top level" :
+                            "subsection " + path.substr(0, path.size() - 1);
+    }
+  } // namespace
+
+  std::string
+  subsection_path_at_line(const std::string &text,
+                          const unsigned int line_number)
+  {
+    std::vector<std::string> path;
+    std::istringstream       lines(text);
+    std::string              line;
+    for (unsigned int n = 1; n < line_number && std::getline(lines, line); ++n)
+      {
+        const std::string content = content_of(line);
+        if (content.rfind("subsection ", 0) == 0)
+          path.push_back(trimmed(content.substr(11)));
+        else if (content == "end" && !path.empty())
+          path.pop_back();
+      }
+    std::string joined;
+    for (const std::string &s : path)
+      joined += s + "/";
+    return joined;
+  }
+
+  std::string
+  describe_pattern(const std::string &description)
+  {
+    std::smatch match;
+    const auto  bound = [](const std::string &b) {
+      return (b == "MAX_DOUBLE" || b == "2147483647")   ? std::string("inf") :
+              (b == "-MAX_DOUBLE" || b == "-2147483648") ? std::string("-inf") :
+                                                           b;
+    };
+    const auto range = [&](const std::string &kind,
+                           const std::string &low,
+                           const std::string &high) {
+      const std::string l = bound(low), h = bound(high);
+      if (l == "-inf" && h == "inf")
+        return "a finite " + kind;
+      if (h == "inf")
+        return "a " + kind + " >= " + l;
+      return "a " + kind + " in [" + l + ", " + h + "]";
+    };
+    if (std::regex_search(description,
+                          match,
+                          std::regex("Double (\\S+)\\.\\.\\.(\\S+)")))
+      return range("number", match[1], match[2]);
+    if (std::regex_search(description,
+                          match,
+                          std::regex("Integer range (\\S+)\\.\\.\\.(\\S+)")))
+      return range("whole number", match[1], match[2]);
+    if (std::regex_search(description,
+                          match,
+                          std::regex("Selection ([^\\]]*)\\]")))
+      {
+        std::string options = trimmed(match[1]);
+        std::string words;
+        for (const std::string &o : Utilities::split_string_list(options, '|'))
+          words += (words.empty() ? "" : " | ") + o;
+        return "one of: " + words;
+      }
+    if (description.find("Bool") != std::string::npos)
+      return "true or false";
+    return description;
+  }
+
+  std::string
+  explain_parameter_file_error(const std::exception &error,
+                               const std::string    &text,
+                               const std::string    &file_name)
+  {
+    std::string info;
+    if (const auto *deal_error = dynamic_cast<const ExceptionBase *>(&error))
+      {
+        std::ostringstream s;
+        deal_error->print_info(s);
+        info = s.str();
+      }
+    else
+      info = error.what();
+    // one line, single spaces
+    std::string flat;
+    for (const char c : info)
+      if (std::isspace(static_cast<unsigned char>(c)))
+        {
+          if (!flat.empty() && flat.back() != ' ')
+            flat += ' ';
+        }
+      else
+        flat += c;
+    flat = trimmed(flat);
+
+    std::smatch where;
+    if (!std::regex_search(flat,
+                           where,
+                           std::regex("^Line <(\\d+)> of file <([^>]*?)>?:")))
+      return flat;
+    const unsigned int line = std::stoul(where[1]);
+    const std::string  file = where[2];
+    std::string        source_text;
+    if (file == file_name)
+      source_text = text;
+    else
+      {
+        std::ifstream      in(file);
+        std::ostringstream s;
+        s << in.rdbuf();
+        source_text = s.str();
+      }
+    const std::string path  = subsection_path_at_line(source_text, line);
+    const std::string place = " (" + file + ", line " + std::to_string(line) +
+                              "; plate-on-halfspace --print-parameters lists "
+                              "every entry)";
+    const auto names = declared_names();
+    const auto known = [&](const std::string &p) {
+      const auto it = names.find(p);
+      return it == names.end() ? std::set<std::string>() : it->second;
+    };
+
+    std::smatch m;
+    if (std::regex_search(
+          flat,
+          m,
+          std::regex("The entry value (.*) for the entry named (.*) does not "
+                     "match the given pattern: (.*)$")))
+      return path + std::string(m[2]) + ": the value <" + std::string(m[1]) +
+             "> is not allowed; it must be " + describe_pattern(m[3]) + "." +
+             place;
+    if (std::regex_search(flat,
+                          m,
+                          std::regex("No entry with name <(.*)> was declared")))
+      {
+        std::set<std::string> entries;
+        for (const std::string &n : known(path))
+          if (names.count(path + n + "/") == 0)
+            entries.insert(n);
+        return path + std::string(m[1]) + ": there is no such entry in " +
+               section_name(path) + "." + suggestion(m[1], entries) +
+               " Its entries: " + list_of(entries) + "." + place;
+      }
+    if (std::regex_search(
+          flat, m, std::regex("no such subsection to be entered: (.*)$")))
+      {
+        // deal.II reports the mangled path; the last part is the name
+        std::string name = m[1];
+        name             = name.substr(name.rfind('.') + 1);
+        name = std::regex_replace(name, std::regex("_20"), std::string(" "));
+        name = std::regex_replace(name, std::regex("_27"), std::string("'"));
+        std::set<std::string> sections;
+        for (const std::string &n : known(path))
+          if (names.count(path + n + "/") > 0)
+            sections.insert(n);
+        return "subsection <" + name + "> does not exist in " +
+               section_name(path) + "." + suggestion(name, sections) +
+               " The subsections: " + list_of(sections) + "." + place;
+      }
+    const std::string rest = trimmed(flat.substr(where[0].length()));
+    return (path.empty() ? std::string("") : section_name(path) + ": ") +
+           "cannot read the line: " + rest + place;
+  }
+
+  std::vector<std::string>
+  scene_warnings(const SceneParameters &parameters)
+  {
+    using D = Parameters::Discretization;
+    std::vector<std::string> warnings;
+    const D                 &d = parameters.discretization;
+    const auto              &p = parameters.plate;
+
+    // The largest initial cell size h; unknown before a mesh file is read.
+    double       h          = 0;
+    const double refinement = std::pow(0.5, d.initial_refinements);
+    if (p.shape == Parameters::Plate::Shape::rectangle)
+      h =
+        std::max(p.length_x / d.subdivisions_x, p.length_y / d.subdivisions_y) *
+        refinement;
+    else if (p.shape == Parameters::Plate::Shape::disk)
+      h = 0.8 * p.radius * refinement; // hyper_ball_balanced's largest cells
+
+    // tests/unit/thin_plate_limit: these choices lose the thin-plate limit
+    // (shear locking) once cells are much larger than the thickness; the
+    // error grows like (h/t)^2 and is below about 1% while h <= 10 t on a
+    // mesh of 4 or more cells per span.
+    const bool locks = d.element == D::Element::serendipity ||
+                       (d.shear_integration == D::ShearIntegration::full &&
+                        d.element != D::Element::lagrange);
+    const double slenderness_limit = 10.;
+    if (locks && h > slenderness_limit * p.thickness)
+      {
+        std::ostringstream w;
+        w << "Discretization/Element = "
+          << (d.element == D::Element::serendipity ? "serendipity" :
+                                                     "heterosis")
+          << " with Shear integration = "
+          << (d.shear_integration == D::ShearIntegration::reduced ?
+                "reduced" :
+              d.shear_integration == D::ShearIntegration::selective ?
+                "selective" :
+                "full")
+          << " locks in shear when the cells are much larger than the plate "
+             "thickness: here about "
+          << std::setprecision(3) << h / p.thickness
+          << " thicknesses per cell (the deflection may be too small when "
+             "this exceeds "
+          << slenderness_limit
+          << "). Use Element = heterosis with Shear integration = selective "
+             "(free of locking and of spurious modes), or refine the mesh.";
+        warnings.push_back(w.str());
+      }
+    if (d.element == D::Element::lagrange &&
+        d.shear_integration == D::ShearIntegration::selective)
+      warnings.push_back(
+        "Discretization/Element = lagrange with Shear integration = "
+        "selective has a spurious zero-energy deflection mode that only the "
+        "foundation restrains (tests/unit/plate_zero_energy_modes); prefer "
+        "Element = heterosis with Shear integration = selective.");
+
+    // A load patch partly off the plate: the load assembly integrates the
+    // part on the plate exactly (quadrilateral_geometry.h) and ignores the
+    // rest; a patch wholly off the plate is an error there. Checked here
+    // for the rectangle and the disk (a mesh file's outline is not known
+    // before it is read).
+    const auto on_plate = [&](const Point<2> &x) {
+      const double slack = 1e-12 * std::max({p.length_x, p.length_y, p.radius});
+      if (p.shape == Parameters::Plate::Shape::rectangle)
+        return std::abs(x[0]) <= p.length_x / 2 + slack &&
+               std::abs(x[1]) <= p.length_y / 2 + slack;
+      return x.norm() <= p.radius + slack;
+    };
+    if (p.shape != Parameters::Plate::Shape::mesh_file)
+      {
+        const auto &loads = parameters.loads;
+        for (unsigned int k = 0; k < loads.rectangular_patches.size(); ++k)
+          {
+            const auto &r = loads.rectangular_patches[k];
+            if (!on_plate(r.lower) || !on_plate(r.upper) ||
+                !on_plate(Point<2>(r.lower[0], r.upper[1])) ||
+                !on_plate(Point<2>(r.upper[0], r.lower[1])))
+              warnings.push_back("Loads/Rectangular patches: patch " +
+                                 std::to_string(k + 1) +
+                                 " extends beyond the plate; only the part "
+                                 "on the plate is applied (applied_load in "
+                                 "summary.json).");
+          }
+        for (unsigned int k = 0; k < loads.circular_patches.size(); ++k)
+          {
+            const auto  &c = loads.circular_patches[k];
+            const double r = c.radius;
+            const bool   inside =
+              (p.shape == Parameters::Plate::Shape::disk ?
+                 c.centre.norm() + r <= p.radius * (1 + 1e-12) :
+                 on_plate(Point<2>(c.centre[0] + r, c.centre[1] + r)) &&
+                   on_plate(Point<2>(c.centre[0] - r, c.centre[1] - r)));
+            if (!inside)
+              warnings.push_back("Loads/Circular patches: patch " +
+                                 std::to_string(k + 1) +
+                                 " extends beyond the plate; only the part "
+                                 "on the plate is applied (applied_load in "
+                                 "summary.json).");
+          }
+      }
+    return warnings;
+  }
+} // namespace PlateOnHalfspace

@@ -1,0 +1,371 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/grid/manifold_lib.h>
+#include <deal.II/grid/tria_description.h>
+
+#include <plate_on_halfspace/scene/mirror_symmetry.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+
+namespace PlateOnHalfspace
+{
+  std::string
+  MirrorSymmetry::name() const
+  {
+    return x ? (y ? "xy" : "x") : (y ? "y" : "none");
+  }
+
+  std::vector<std::array<double, 2>>
+  MirrorSymmetry::reflections() const
+  {
+    std::vector<std::array<double, 2>> result;
+    if (x)
+      result.push_back({{-1., 1.}});
+    if (y)
+      result.push_back({{1., -1.}});
+    if (x && y)
+      result.push_back({{-1., -1.}});
+    return result;
+  }
+
+  Point<2>
+  MirrorSymmetry::to_computed_part(const Point<2> &p) const
+  {
+    return Point<2>(x ? std::abs(p[0]) : p[0], y ? std::abs(p[1]) : p[1]);
+  }
+
+  std::vector<Point<2>>
+  MirrorSymmetry::images(const Point<2> &p) const
+  {
+    std::vector<Point<2>> result = {p};
+    for (const auto &signs : reflections())
+      // a point on a plane is its own image across that plane
+      if ((signs[0] > 0 || std::abs(p[0]) > tolerance) &&
+          (signs[1] > 0 || std::abs(p[1]) > tolerance))
+        result.emplace_back(signs[0] * p[0], signs[1] * p[1]);
+    return result;
+  }
+
+  namespace
+  {
+    /** The mirror image of @p p across the plane normal to @p axis. */
+    Point<2>
+    mirrored(const Point<2> &p, const unsigned int axis)
+    {
+      Point<2> image = p;
+      image[axis]    = -image[axis];
+      return image;
+    }
+
+    /**
+     * Whether every point of @p points has its mirror image (across the
+     * plane normal to @p axis) among them, to @p tolerance. Points are
+     * binned on a grid of size 4 tolerance; an image is looked for in its
+     * bin and the neighbouring ones.
+     */
+    bool
+    mirror_closed(const std::vector<Point<2>> &points,
+                  const unsigned int           axis,
+                  const double                 tolerance)
+    {
+      const double h   = 4 * tolerance;
+      const auto   bin = [h](const Point<2> &p) {
+        return std::make_pair(std::llround(p[0] / h), std::llround(p[1] / h));
+      };
+      std::multimap<std::pair<long long, long long>, Point<2>> bins;
+      for (const Point<2> &p : points)
+        bins.emplace(bin(p), p);
+      for (const Point<2> &p : points)
+        {
+          const Point<2> image = mirrored(p, axis);
+          const auto     b     = bin(image);
+          bool           found = false;
+          for (long long i = -1; i <= 1 && !found; ++i)
+            for (long long j = -1; j <= 1 && !found; ++j)
+              {
+                const auto range =
+                  bins.equal_range(std::make_pair(b.first + i, b.second + j));
+                for (auto it = range.first; it != range.second && !found; ++it)
+                  found = it->second.distance(image) <= tolerance;
+              }
+          if (!found)
+            return false;
+        }
+      return true;
+    }
+
+    /**
+     * Whether the loads come in mirror pairs across the plane normal to
+     * @p axis (each patch and point load, or an equal one, has its image
+     * in the list as often as itself).
+     */
+    template <typename Load, typename Same, typename Mirror>
+    bool
+    loads_mirror_symmetric(const std::vector<Load> &loads,
+                           const Same              &same,
+                           const Mirror            &mirror)
+    {
+      for (const Load &load : loads)
+        {
+          const Load image = mirror(load);
+          const auto n_same =
+            std::count_if(loads.begin(), loads.end(), [&](const Load &l) {
+              return same(l, load);
+            });
+          const auto n_image =
+            std::count_if(loads.begin(), loads.end(), [&](const Load &l) {
+              return same(l, image);
+            });
+          if (n_same != n_image)
+            return false;
+        }
+      return true;
+    }
+
+    /**
+     * Why the scene is not symmetric about the plane normal to @p axis, or
+     * an empty string if it is.
+     */
+    std::string
+    reason_against_plane(const SceneParameters  &parameters,
+                         const Triangulation<2> &mesh,
+                         const unsigned int      axis,
+                         const double            tolerance)
+    {
+      const std::string plane = (axis == 0 ? "x = 0" : "y = 0");
+      for (const auto &cell : mesh.active_cell_iterators())
+        {
+          double lowest = 0, highest = 0;
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              lowest  = std::min(lowest, cell->vertex(v)[axis]);
+              highest = std::max(highest, cell->vertex(v)[axis]);
+            }
+          if (lowest < -tolerance && highest > tolerance)
+            return "cells of the mesh straddle the plane " + plane +
+                   (parameters.plate.shape ==
+                        Parameters::Plate::Shape::rectangle ?
+                      std::string(" (an odd Discretization/Subdivisions ") +
+                        (axis == 0 ? "x" : "y") + ")" :
+                      std::string());
+        }
+      std::vector<Point<2>> centres;
+      for (const auto &cell : mesh.active_cell_iterators())
+        centres.push_back(cell->center());
+      if (!mirror_closed(mesh.get_vertices(), axis, tolerance) ||
+          !mirror_closed(centres, axis, tolerance))
+        return "the mesh is not mirror symmetric about " + plane;
+
+      const auto close = [tolerance](const Point<2> &a, const Point<2> &b) {
+        return a.distance(b) <= tolerance;
+      };
+      const auto same_value = [](const double a, const double b) {
+        return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b));
+      };
+      const auto &loads = parameters.loads;
+      using Parameters::CircularPatch;
+      using Parameters::PointLoad;
+      using Parameters::RectangularPatch;
+      const bool patches_symmetric = loads_mirror_symmetric(
+        loads.rectangular_patches,
+        [&](const RectangularPatch &a, const RectangularPatch &b) {
+          return close(a.lower, b.lower) && close(a.upper, b.upper) &&
+                 same_value(a.pressure, b.pressure);
+        },
+        [&](RectangularPatch p) {
+          const double low = p.lower[axis];
+          p.lower[axis]    = -p.upper[axis];
+          p.upper[axis]    = -low;
+          return p;
+        });
+      const bool disks_symmetric = loads_mirror_symmetric(
+        loads.circular_patches,
+        [&](const CircularPatch &a, const CircularPatch &b) {
+          return close(a.centre, b.centre) &&
+                 std::abs(a.radius - b.radius) <= tolerance &&
+                 same_value(a.pressure, b.pressure);
+        },
+        [&](CircularPatch p) {
+          p.centre = mirrored(p.centre, axis);
+          return p;
+        });
+      const bool points_symmetric = loads_mirror_symmetric(
+        loads.point_loads,
+        [&](const PointLoad &a, const PointLoad &b) {
+          return close(a.location, b.location) && same_value(a.force, b.force);
+        },
+        [&](PointLoad p) {
+          p.location = mirrored(p.location, axis);
+          return p;
+        });
+      if (!patches_symmetric || !disks_symmetric || !points_symmetric)
+        return "the loads are not mirror symmetric about " + plane;
+      return "";
+    }
+
+    double
+    mesh_extent(const Triangulation<2> &mesh)
+    {
+      double extent = 0;
+      for (const Point<2> &v : mesh.get_vertices())
+        extent = std::max(extent, v.norm());
+      return extent;
+    }
+  } // namespace
+
+  MirrorSymmetry
+  choose_mirror_symmetry(const SceneParameters  &parameters,
+                         const Triangulation<2> &coarse_mesh)
+  {
+    const std::string &requested = parameters.discretization.symmetry;
+    MirrorSymmetry     symmetry;
+    symmetry.tolerance = 1e-10 * mesh_extent(coarse_mesh);
+    if (requested == "none")
+      return symmetry;
+    const double tolerance = symmetry.tolerance;
+    for (const unsigned int axis : {0u, 1u})
+      {
+        const bool wanted =
+          requested.find(axis == 0 ? 'x' : 'y') != std::string::npos;
+        if (requested != "auto" && !wanted)
+          continue;
+        const std::string reason =
+          reason_against_plane(parameters, coarse_mesh, axis, tolerance);
+        AssertThrow(reason.empty() || requested == "auto",
+                    ExcMessage("Discretization/Symmetry = " + requested +
+                               ": the scene is not symmetric, " + reason +
+                               ". Use auto (the planes the scene has) or "
+                               "none."));
+        (axis == 0 ? symmetry.x : symmetry.y) = reason.empty();
+      }
+    return symmetry;
+  }
+
+  void
+  cut_to_computed_part(const MirrorSymmetry &symmetry,
+                       Triangulation<2>     &triangulation)
+  {
+    if (!symmetry.x && !symmetry.y)
+      return;
+    AssertThrow(triangulation.n_levels() == 1,
+                ExcInternalError("The mesh is cut before it is refined."));
+    const double tolerance = symmetry.tolerance;
+    const auto   kept      = [&](const Triangulation<2>::cell_iterator &cell) {
+      const Point<2> c = cell->center();
+      return (!symmetry.x || c[0] > 0) && (!symmetry.y || c[1] > 0);
+    };
+
+    std::map<unsigned int, unsigned int> new_index;
+    std::vector<Point<2>>                vertices;
+    const auto vertex = [&](const unsigned int old_index) {
+      const auto [it, inserted] =
+        new_index.emplace(old_index,
+                          static_cast<unsigned int>(vertices.size()));
+      if (inserted)
+        vertices.push_back(triangulation.get_vertices()[old_index]);
+      return it->second;
+    };
+    std::vector<CellData<2>> cells;
+    SubCellData              faces;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        if (!kept(cell))
+          continue;
+        CellData<2> data;
+        for (const unsigned int v : cell->vertex_indices())
+          data.vertices[v] = vertex(cell->vertex_index(v));
+        data.material_id = cell->material_id();
+        data.manifold_id = cell->manifold_id();
+        cells.push_back(data);
+        // Curved faces keep their manifold (a disk's rim).
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->manifold_id() != numbers::flat_manifold_id)
+            {
+              CellData<1> line;
+              line.vertices    = {vertex(cell->face(f)->vertex_index(0)),
+                                  vertex(cell->face(f)->vertex_index(1))};
+              line.manifold_id = cell->face(f)->manifold_id();
+              line.boundary_id =
+                (cell->at_boundary(f) || !kept(cell->neighbor(f))) ?
+                  0 :
+                  numbers::internal_face_boundary_id;
+              faces.boundary_lines.push_back(line);
+            }
+      }
+
+    std::map<types::manifold_id, std::unique_ptr<Manifold<2>>> manifolds;
+    for (const types::manifold_id id : triangulation.get_manifold_ids())
+      if (id != numbers::flat_manifold_id)
+        manifolds[id] = triangulation.get_manifold(id).clone();
+    triangulation.clear();
+    triangulation.reset_all_manifolds();
+    triangulation.create_triangulation(vertices, cells, faces);
+    for (auto &[id, manifold] : manifolds)
+      if (dynamic_cast<TransfiniteInterpolationManifold<2> *>(manifold.get()))
+        {
+          // built on the cells it interpolates: build it anew on these
+          TransfiniteInterpolationManifold<2> transfinite;
+          transfinite.initialize(triangulation);
+          triangulation.set_manifold(id, transfinite);
+        }
+      else
+        triangulation.set_manifold(id, *manifold);
+
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->at_boundary(f))
+          {
+            const auto face     = cell->face(f);
+            const auto on_plane = [&](const unsigned int axis) {
+              return std::abs(face->vertex(0)[axis]) <= tolerance &&
+                     std::abs(face->vertex(1)[axis]) <= tolerance;
+            };
+            face->set_boundary_id(
+              symmetry.x && on_plane(0) ? mirror_plane_x_boundary_id :
+              symmetry.y && on_plane(1) ? mirror_plane_y_boundary_id :
+                                          0);
+          }
+  }
+
+  Parameters::Loads
+  loads_on_computed_part(const Parameters::Loads &loads,
+                         const MirrorSymmetry    &symmetry)
+  {
+    const double      tolerance = symmetry.tolerance;
+    Parameters::Loads part      = loads;
+    const bool        planes[2] = {symmetry.x, symmetry.y};
+    part.rectangular_patches.clear();
+    part.circular_patches.clear();
+    part.point_loads.clear();
+    for (const auto &patch : loads.rectangular_patches)
+      if ((!planes[0] || patch.upper[0] > tolerance) &&
+          (!planes[1] || patch.upper[1] > tolerance))
+        part.rectangular_patches.push_back(patch);
+    for (const auto &patch : loads.circular_patches)
+      if ((!planes[0] || patch.centre[0] + patch.radius > tolerance) &&
+          (!planes[1] || patch.centre[1] + patch.radius > tolerance))
+        part.circular_patches.push_back(patch);
+    for (auto point_load : loads.point_loads)
+      {
+        bool dropped = false;
+        for (const unsigned int axis : {0u, 1u})
+          if (planes[axis])
+            {
+              if (point_load.location[axis] < -tolerance)
+                dropped = true;
+              else if (point_load.location[axis] <= tolerance)
+                {
+                  // on the plane: the computed part carries its half
+                  point_load.location[axis] = 0;
+                  point_load.force /= 2;
+                }
+            }
+        if (!dropped)
+          part.point_loads.push_back(point_load);
+      }
+    return part;
+  }
+} // namespace PlateOnHalfspace

@@ -1,0 +1,799 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <plate_on_halfspace/scene/input_checks.h>
+#include <plate_on_halfspace/scene/parameters.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /**
+     * Split a list entry "a,b,c ; d,e,f" into items of exactly @p n_fields
+     * numbers each. Errors name the section and entry.
+     */
+    std::vector<std::vector<double>>
+    parse_number_list(const std::string &text,
+                      const unsigned int n_fields,
+                      const std::string &entry_name,
+                      const std::string &field_names)
+    {
+      std::vector<std::vector<double>> items;
+      for (const std::string &item : Utilities::split_string_list(text, ';'))
+        {
+          if (item.empty())
+            continue;
+          const std::vector<std::string> fields =
+            Utilities::split_string_list(item, ',');
+          AssertThrow(fields.size() == n_fields,
+                      ExcMessage("Entry <" + entry_name + ">: the item <" +
+                                 item + "> must have " +
+                                 std::to_string(n_fields) + " fields (" +
+                                 field_names + ")."));
+          std::vector<double> numbers;
+          for (const std::string &field : fields)
+            {
+              double value = 0;
+              try
+                {
+                  value = Utilities::string_to_double(field);
+                }
+              catch (...)
+                {
+                  AssertThrow(false,
+                              ExcMessage("Entry <" + entry_name + ">: <" +
+                                         field + "> in <" + item +
+                                         "> is not a number."));
+                }
+              AssertThrow(std::isfinite(value),
+                          ExcMessage("Entry <" + entry_name + ">: <" + field +
+                                     "> is not a finite number."));
+              numbers.push_back(value);
+            }
+          items.push_back(numbers);
+        }
+      return items;
+    }
+
+    void
+    require(const bool condition, const std::string &message)
+    {
+      AssertThrow(condition, ExcMessage(message));
+    }
+
+    /** " (got X)" for the messages of the checks below. */
+    std::string
+    got(const double value)
+    {
+      std::ostringstream s;
+      s << " (got " << value << ")";
+      return s.str();
+    }
+  } // namespace
+
+  namespace Parameters
+  {
+    void
+    Plate::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Plate");
+      prm.declare_entry("Shape",
+                        "rectangle",
+                        Patterns::Selection("rectangle|disk|mesh file"),
+                        "Plan of the plate: a rectangle [-Lx/2,Lx/2]x[-Ly/2,"
+                        "Ly/2], a disk centred at the origin, or a Gmsh mesh.");
+      prm.declare_entry("Length x",
+                        "12",
+                        Patterns::Double(0),
+                        "Shape = rectangle: side along x [length].");
+      prm.declare_entry("Length y",
+                        "8",
+                        Patterns::Double(0),
+                        "Shape = rectangle: side along y [length].");
+      prm.declare_entry("Radius",
+                        "1",
+                        Patterns::Double(0),
+                        "Shape = disk: radius [length].");
+      prm.declare_entry("Mesh file",
+                        "",
+                        Patterns::Anything(),
+                        "Shape = mesh file: Gmsh .msh file with straight-sided "
+                        "quadrilaterals in the x-y plane (relative paths are "
+                        "taken from the working directory).");
+      prm.declare_entry("Thickness",
+                        "0.5",
+                        Patterns::Double(0),
+                        "Plate thickness t [length].");
+      prm.declare_entry("Young's modulus",
+                        "2.5e7",
+                        Patterns::Double(0),
+                        "Young's modulus E of the plate [force/length^2].");
+      prm.declare_entry("Poisson's ratio",
+                        "0.15",
+                        Patterns::Double(-1, 0.5),
+                        "Poisson's ratio nu of the plate, -1 < nu < 0.5.");
+      prm.declare_entry("Unit weight",
+                        "0",
+                        Patterns::Double(0),
+                        "Unit weight of the plate material [force/length^3]; "
+                        "> 0 adds the self weight unit weight x thickness as "
+                        "a uniform downward pressure.");
+      prm.leave_subsection();
+    }
+
+    void
+    Plate::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Plate");
+      const std::string s = prm.get("Shape");
+      shape               = (s == "rectangle" ? Shape::rectangle :
+                             s == "disk"      ? Shape::disk :
+                                                Shape::mesh_file);
+      length_x            = prm.get_double("Length x");
+      length_y            = prm.get_double("Length y");
+      radius              = prm.get_double("Radius");
+      mesh_file           = prm.get("Mesh file");
+      thickness           = prm.get_double("Thickness");
+      youngs_modulus      = prm.get_double("Young's modulus");
+      poissons_ratio      = prm.get_double("Poisson's ratio");
+      unit_weight         = prm.get_double("Unit weight");
+      prm.leave_subsection();
+
+      if (shape == Shape::rectangle)
+        require(length_x > 0 && length_y > 0,
+                "Plate/Length x and Plate/Length y must be > 0 for "
+                "Shape = rectangle" +
+                  got(std::min(length_x, length_y)) + ".");
+      if (shape == Shape::disk)
+        require(radius > 0,
+                "Plate/Radius must be > 0 for Shape = disk" + got(radius) +
+                  ".");
+      if (shape == Shape::mesh_file)
+        require(!mesh_file.empty(),
+                "Plate/Mesh file must name a Gmsh .msh file for "
+                "Shape = mesh file.");
+      require(thickness > 0,
+              "Plate/Thickness must be > 0" + got(thickness) + ".");
+      require(youngs_modulus > 0,
+              "Plate/Young's modulus must be > 0" + got(youngs_modulus) + ".");
+      require(poissons_ratio > -1 && poissons_ratio < 0.5,
+              "Plate/Poisson's ratio must lie in (-1, 0.5)" +
+                got(poissons_ratio) + ".");
+    }
+
+    double
+    Plate::flexural_rigidity() const
+    {
+      return youngs_modulus * thickness * thickness * thickness /
+             (12. * (1. - poissons_ratio * poissons_ratio));
+    }
+
+    void
+    Foundation::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Foundation");
+      prm.declare_entry("Young's modulus",
+                        "1e5",
+                        Patterns::Double(0),
+                        "Young's modulus E0 of the half-space "
+                        "[force/length^2].");
+      prm.declare_entry("Poisson's ratio",
+                        "0.3",
+                        Patterns::Double(0, 0.5),
+                        "Poisson's ratio nu0 of the half-space, "
+                        "0 <= nu0 < 0.5.");
+      prm.declare_entry("Contact",
+                        "tensionless",
+                        Patterns::Selection("tensionless|bonded"),
+                        "bonded: the soil also pulls (q of any sign); "
+                        "tensionless: q >= 0 and the plate may lift off.");
+      prm.leave_subsection();
+    }
+
+    void
+    Foundation::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Foundation");
+      youngs_modulus = prm.get_double("Young's modulus");
+      poissons_ratio = prm.get_double("Poisson's ratio");
+      tensionless    = (prm.get("Contact") == "tensionless");
+      prm.leave_subsection();
+      require(youngs_modulus > 0,
+              "Foundation/Young's modulus must be > 0" + got(youngs_modulus) +
+                ".");
+      // A soil's nu0 lies in [0, 0.5); 0.5 (undrained) is the limit the
+      // Poisson sweep of tests/unit/extreme_scenes approaches continuously.
+      require(poissons_ratio >= 0 && poissons_ratio < 0.5,
+              "Foundation/Poisson's ratio must lie in [0, 0.5)" +
+                got(poissons_ratio) + ".");
+    }
+
+    void
+    FoundationOperator::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Foundation operator");
+      prm.declare_entry("Storage",
+                        "auto",
+                        Patterns::Selection("auto|dense|hierarchical"),
+                        "How the half-space block is stored: dense (LAPACK), "
+                        "hierarchical (an H-matrix of hmat-oss, compressed "
+                        "to Tolerance; needs Contact/Solver = iterative or "
+                        "auto, Flexibility = galerkin and, on a tensionless "
+                        "foundation, Contact/Method = active set) or auto: "
+                        "hierarchical in the cycles with at least "
+                        "Hierarchical from foundation nodes where the scene "
+                        "allows it (the conditions above, Contact/Solver not "
+                        "direct), dense otherwise.");
+      prm.declare_entry("Tolerance",
+                        "1e-6",
+                        Patterns::Double(0, 1),
+                        "Relative accuracy of the compressed blocks "
+                        "(Storage = hierarchical); the H-Cholesky factor, "
+                        "which only preconditions, is recompressed at the "
+                        "larger of this and 1e-3.");
+      prm.declare_entry("Hierarchical from",
+                        "3000",
+                        Patterns::Integer(0),
+                        "Storage = auto: the number of foundation nodes from "
+                        "which a cycle uses the hierarchical operator (below "
+                        "it the dense one, exact and fast enough; at 4961 "
+                        "nodes dense took 60 s and 1.2 GB, hierarchical 5 s "
+                        "and 0.27 GB on example 2).");
+      prm.leave_subsection();
+    }
+
+    void
+    FoundationOperator::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Foundation operator");
+      storage           = prm.get("Storage");
+      tolerance         = prm.get_double("Tolerance");
+      hierarchical_from = prm.get_integer("Hierarchical from");
+      prm.leave_subsection();
+      require(tolerance > 0,
+              "Foundation operator/Tolerance must lie in (0, 1]" +
+                got(tolerance) + ".");
+    }
+
+    void
+    Loads::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loads");
+      prm.declare_entry("Uniform pressure",
+                        "0",
+                        Patterns::Double(),
+                        "Pressure on the whole plate, downward positive "
+                        "[force/length^2].");
+      prm.declare_entry("Rectangular patches",
+                        "",
+                        Patterns::Anything(),
+                        "Rectangular pressure patches x1,y1,x2,y2,pressure ; "
+                        "... (x1<x2, y1<y2; downward positive; integrated "
+                        "exactly over the covered part of each cell).");
+      prm.declare_entry("Circular patches",
+                        "",
+                        Patterns::Anything(),
+                        "Circular pressure patches xc,yc,radius,pressure ; "
+                        "... (radius > 0; downward positive).");
+      prm.declare_entry("Point loads",
+                        "",
+                        Patterns::Anything(),
+                        "Point loads x,y,force ; ... (downward positive, the "
+                        "point must lie on the plate).");
+      prm.leave_subsection();
+    }
+
+    void
+    Loads::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loads");
+      uniform_pressure = prm.get_double("Uniform pressure");
+      rectangular_patches.clear();
+      for (const auto &v : parse_number_list(prm.get("Rectangular patches"),
+                                             5,
+                                             "Loads/Rectangular patches",
+                                             "x1,y1,x2,y2,pressure"))
+        {
+          require(v[0] < v[2] && v[1] < v[3],
+                  "Loads/Rectangular patches: each patch x1,y1,x2,y2,pressure "
+                  "needs x1 < x2 and y1 < y2 (patch " +
+                    std::to_string(rectangular_patches.size() + 1) + ").");
+          rectangular_patches.push_back(
+            {Point<2>(v[0], v[1]), Point<2>(v[2], v[3]), v[4]});
+        }
+      circular_patches.clear();
+      for (const auto &v : parse_number_list(prm.get("Circular patches"),
+                                             4,
+                                             "Loads/Circular patches",
+                                             "xc,yc,radius,pressure"))
+        {
+          require(v[2] > 0,
+                  "Loads/Circular patches: the radius must be > 0" + got(v[2]) +
+                    ".");
+          circular_patches.push_back({Point<2>(v[0], v[1]), v[2], v[3]});
+        }
+      point_loads.clear();
+      for (const auto &v : parse_number_list(
+             prm.get("Point loads"), 3, "Loads/Point loads", "x,y,force"))
+        point_loads.push_back({Point<2>(v[0], v[1]), v[2]});
+      prm.leave_subsection();
+    }
+
+    void
+    Discretization::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Discretization");
+      prm.declare_entry("Element",
+                        "serendipity",
+                        Patterns::Selection("serendipity|heterosis|lagrange"),
+                        "serendipity: the paper's 8-node element (Q2 with "
+                        "constrained centre); heterosis: w serendipity, "
+                        "rotations Q2; lagrange: all Q2.");
+      prm.declare_entry("Shear integration",
+                        "reduced",
+                        Patterns::Selection("reduced|selective|full"),
+                        "reduced: bending and shear 2x2 Gauss (the paper's "
+                        "practice); selective: bending 3x3, shear 2x2; full: "
+                        "both 3x3 (locks for thin plates).");
+      prm.declare_entry("Subdivisions x",
+                        "10",
+                        Patterns::Integer(1, 1000),
+                        "Shape = rectangle: initial cells along x.");
+      prm.declare_entry("Subdivisions y",
+                        "10",
+                        Patterns::Integer(1, 1000),
+                        "Shape = rectangle: initial cells along y.");
+      prm.declare_entry("Initial refinements",
+                        "0",
+                        Patterns::Integer(0, 10),
+                        "Global refinements of the initial mesh.");
+      prm.declare_entry("Flexibility",
+                        "galerkin",
+                        Patterns::Selection("galerkin|collocation"),
+                        "galerkin: symmetric Galerkin half-space operator "
+                        "(default); collocation: the paper's nodal "
+                        "flexibility matrix G (needs axis-aligned "
+                        "rectangular cells).");
+      prm.declare_entry("Symmetry",
+                        "auto",
+                        Patterns::Selection("auto|none|x|y|xy"),
+                        "Mirror planes x = 0 and/or y = 0 to exploit: a "
+                        "scene whose mesh and loads are mirror symmetric is "
+                        "solved on the half or quarter plate, with the "
+                        "mirror images in the half-space kernel (the same "
+                        "answer, a 4x or 16x smaller dense block). auto: "
+                        "the planes the scene has; x, y, xy: insist (an "
+                        "error if the scene is not symmetric); none: the "
+                        "whole plate.");
+      prm.declare_entry("Singular quadrature order",
+                        "8",
+                        Patterns::Integer(4, 30),
+                        "galerkin: Gauss points per direction of the Duffy "
+                        "rules for coincident and touching cell pairs.");
+      prm.leave_subsection();
+    }
+
+    void
+    Discretization::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Discretization");
+      const std::string e = prm.get("Element");
+      element             = (e == "serendipity" ? Element::serendipity :
+                             e == "heterosis"   ? Element::heterosis :
+                                                  Element::lagrange);
+      const std::string s = prm.get("Shear integration");
+      shear_integration   = (s == "reduced"   ? ShearIntegration::reduced :
+                             s == "selective" ? ShearIntegration::selective :
+                                                ShearIntegration::full);
+      subdivisions_x      = prm.get_integer("Subdivisions x");
+      subdivisions_y      = prm.get_integer("Subdivisions y");
+      initial_refinements = prm.get_integer("Initial refinements");
+      flexibility =
+        (prm.get("Flexibility") == "galerkin" ? Flexibility::galerkin :
+                                                Flexibility::collocation);
+      symmetry = prm.get("Symmetry");
+      // tests/unit/plate_zero_energy_modes.cc: these two choices have three
+      // spurious pure-rotation modes that survive assembly and that the
+      // foundation (acting on w only) cannot restrain.
+      require(shear_integration != ShearIntegration::reduced ||
+                element == Element::serendipity,
+              "Discretization/Shear integration = reduced is only stable "
+              "with Element = serendipity; heterosis and lagrange have "
+              "spurious rotation modes with it (use selective or full).");
+      singular_quadrature_order = prm.get_integer("Singular quadrature order");
+      prm.leave_subsection();
+    }
+
+    void
+    Contact::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      prm.declare_entry("Method",
+                        "active set",
+                        Patterns::Selection("active set|element exclusion"),
+                        "Tensionless contact algorithm: active set (exact "
+                        "discrete complementarity) or element exclusion (the "
+                        "paper's heuristic).");
+      prm.declare_entry("Max iterations",
+                        "100",
+                        Patterns::Integer(1, 100000),
+                        "Maximum contact iterations per cycle.");
+      prm.declare_entry("Tolerance",
+                        "1e-8",
+                        Patterns::Double(0, 1),
+                        "element exclusion: relative change of the "
+                        "displacement norm that ends the iteration.");
+      prm.declare_entry(
+        "Solver",
+        "auto",
+        Patterns::Selection("auto|direct|iterative"),
+        "How each contact set is solved: auto (iterative with the "
+        "hierarchical half-space operator, direct with a dense one), direct "
+        "(the plate condensed onto "
+        "the foundation nodes into a dense matrix, factorised by LAPACK) or "
+        "iterative (conjugate gradients on the contact pressures with the "
+        "sparse plate stiffness and the half-space preconditioned by its "
+        "inverse; no dense coupled matrix; needs Discretization/Flexibility "
+        "= galerkin and Contact/Method = active set; coupled_matrix_rcond "
+        "is not estimated and reads 1; a plate far more flexible than the "
+        "soil needs direct).");
+      prm.leave_subsection();
+    }
+
+    void
+    Contact::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      method         = (prm.get("Method") == "active set" ? Method::active_set :
+                                                            Method::element_exclusion);
+      max_iterations = prm.get_integer("Max iterations");
+      tolerance      = prm.get_double("Tolerance");
+      const std::string name = prm.get("Solver");
+      solver                 = (name == "iterative" ? Solver::iterative :
+                                name == "direct"    ? Solver::direct :
+                                                      Solver::automatic);
+      prm.leave_subsection();
+      require(tolerance > 0,
+              "Contact/Tolerance must lie in (0, 1]" + got(tolerance) + ".");
+    }
+
+    void
+    Adaptivity::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Adaptivity");
+      prm.declare_entry("Cycles",
+                        "1",
+                        Patterns::Integer(1, 30),
+                        "Number of solve/refine cycles; 1 solves once on the "
+                        "initial mesh.");
+      prm.declare_entry("Refinement",
+                        "adaptive",
+                        Patterns::Selection("global|adaptive"),
+                        "global: refine every cell; adaptive: Kelly "
+                        "indicator plus plate edge and contact boundary.");
+      prm.declare_entry("Refine fraction",
+                        "0.3",
+                        Patterns::Double(0, 1),
+                        "Adaptive: fraction of cells refined per cycle.");
+      prm.declare_entry("Coarsen fraction",
+                        "0",
+                        Patterns::Double(0, 1),
+                        "Adaptive: fraction of cells coarsened per cycle.");
+      prm.declare_entry("Max cells",
+                        "20000",
+                        Patterns::Integer(1),
+                        "Refinement stops before the mesh exceeds this many "
+                        "cells (the dense foundation block grows with the "
+                        "square of the node count).");
+      prm.leave_subsection();
+    }
+
+    void
+    Adaptivity::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Adaptivity");
+      cycles           = prm.get_integer("Cycles");
+      adaptive         = (prm.get("Refinement") == "adaptive");
+      refine_fraction  = prm.get_double("Refine fraction");
+      coarsen_fraction = prm.get_double("Coarsen fraction");
+      max_cells        = prm.get_integer("Max cells");
+      prm.leave_subsection();
+      require(refine_fraction + coarsen_fraction <= 1,
+              "Adaptivity/Refine fraction + Adaptivity/Coarsen fraction must "
+              "not exceed 1.");
+    }
+
+    void
+    Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      prm.declare_entry("Probe points",
+                        "",
+                        Patterns::Anything(),
+                        "Points x,y ; ... where w, q, Mx, My are reported in "
+                        "summary.json (each must lie on the plate).");
+      prm.declare_entry("Profile",
+                        "",
+                        Patterns::Anything(),
+                        "Line x1,y1,x2,y2,points for profile-NN.csv; empty: "
+                        "the centre line y = 0 across the plate with 241 "
+                        "points.");
+      prm.declare_entry("VTU",
+                        "true",
+                        Patterns::Bool(),
+                        "Write solution-NN.vtu and solution.pvd.");
+      prm.declare_entry("Verbosity",
+                        "1",
+                        Patterns::Integer(0, 2),
+                        "0: only checks and errors; 1: a line per cycle and "
+                        "contact iteration; 2: also timings (not for tests).");
+      prm.leave_subsection();
+    }
+
+    void
+    Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      probe_points.clear();
+      for (const auto &v : parse_number_list(
+             prm.get("Probe points"), 2, "Output/Probe points", "x,y"))
+        probe_points.emplace_back(v[0], v[1]);
+      const auto profile = parse_number_list(prm.get("Profile"),
+                                             5,
+                                             "Output/Profile",
+                                             "x1,y1,x2,y2,points");
+      require(profile.size() <= 1,
+              "Output/Profile takes one line x1,y1,x2,y2,points.");
+      default_profile = profile.empty();
+      if (!default_profile)
+        {
+          const auto &v = profile[0];
+          profile_start = Point<2>(v[0], v[1]);
+          profile_end   = Point<2>(v[2], v[3]);
+          require(v[4] >= 2 && v[4] <= 1e6 && v[4] == std::floor(v[4]),
+                  "Output/Profile: the number of points must be an integer "
+                  "in [2, 1e6].");
+          profile_points = static_cast<unsigned int>(v[4]);
+        }
+      else
+        profile_points = 241;
+      vtu       = prm.get_bool("VTU");
+      verbosity = prm.get_integer("Verbosity");
+      prm.leave_subsection();
+    }
+
+    void
+    Verification::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Verification");
+      prm.declare_entry(
+        "Checks",
+        "",
+        Patterns::Anything(),
+        "Values the run must reproduce, checked after the last cycle: "
+        "'quantity,x,y,reference,relative tolerance' for w|q|Mx|My at a "
+        "point, or 'key,reference,relative tolerance' for a summary value "
+        "(applied_load, contact_force, max_w, min_w, max_q, min_q, "
+        "contact_area_fraction); items separated by ';'. A failed check "
+        "makes the program exit with status 1.");
+      prm.leave_subsection();
+    }
+
+    void
+    Verification::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Verification");
+      const std::string text = prm.get("Checks");
+      prm.leave_subsection();
+      checks.clear();
+      for (const std::string &item : Utilities::split_string_list(text, ';'))
+        {
+          if (item.empty())
+            continue;
+          std::vector<std::string> fields =
+            Utilities::split_string_list(item, ',');
+          require(fields.size() == 5 || fields.size() == 3,
+                  "Verification/Checks: <" + item +
+                    "> must be 'quantity,x,y,reference,tolerance' or "
+                    "'key,reference,tolerance'.");
+          const std::string quantity = fields[0];
+          fields.erase(fields.begin());
+          std::string rest;
+          for (const std::string &f : fields)
+            rest += (rest.empty() ? "" : ",") + f;
+          const auto  numbers = parse_number_list(rest,
+                                                 fields.size(),
+                                                 "Verification/Checks",
+                                                 "numbers after the quantity");
+          const auto &v       = numbers[0];
+          Check       check;
+          check.quantity = quantity;
+          check.at_point = (v.size() == 4);
+          if (check.at_point)
+            {
+              require(quantity == "w" || quantity == "q" || quantity == "Mx" ||
+                        quantity == "My",
+                      "Verification/Checks: point quantity <" + quantity +
+                        "> must be one of w, q, Mx, My.");
+              check.location = Point<2>(v[0], v[1]);
+            }
+          else
+            require(quantity == "applied_load" || quantity == "contact_force" ||
+                      quantity == "max_w" || quantity == "min_w" ||
+                      quantity == "max_q" || quantity == "min_q" ||
+                      quantity == "contact_area_fraction",
+                    "Verification/Checks: summary key <" + quantity +
+                      "> is not one of applied_load, contact_force, max_w, "
+                      "min_w, max_q, min_q, contact_area_fraction.");
+          check.reference          = v[v.size() - 2];
+          check.relative_tolerance = v[v.size() - 1];
+          require(check.relative_tolerance > 0,
+                  "Verification/Checks: the tolerance of <" + item +
+                    "> must be > 0.");
+          checks.push_back(check);
+        }
+    }
+  } // namespace Parameters
+
+  void
+  SceneParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Output directory",
+                      "output",
+                      Patterns::Anything(),
+                      "Directory for summary.json, profiles, VTU and "
+                      "convergence.txt (created if missing).");
+    Parameters::Plate::declare_parameters(prm);
+    Parameters::Foundation::declare_parameters(prm);
+    Parameters::FoundationOperator::declare_parameters(prm);
+    Parameters::Loads::declare_parameters(prm);
+    Parameters::Discretization::declare_parameters(prm);
+    Parameters::Contact::declare_parameters(prm);
+    Parameters::Adaptivity::declare_parameters(prm);
+    Parameters::Output::declare_parameters(prm);
+    Parameters::Verification::declare_parameters(prm);
+  }
+
+  namespace
+  {
+    /**
+     * Why @p parameters cannot use the hierarchical half-space operator
+     * (the message of the first condition it breaks), or "" if it can:
+     * Storage = hierarchical is refused with this message, and Storage =
+     * auto stays dense.
+     */
+    std::string
+    hierarchical_storage_obstacle(const SceneParameters &parameters)
+    {
+      if (parameters.contact.solver == Parameters::Contact::Solver::direct)
+        return "Foundation operator/Storage = hierarchical needs Contact/"
+               "Solver = iterative or auto (the direct solver forms the "
+               "dense block the hierarchical matrix avoids).";
+      if (parameters.discretization.flexibility !=
+          Parameters::Discretization::Flexibility::galerkin)
+        return "Foundation operator/Storage = hierarchical needs the "
+               "symmetric half-space operator, Discretization/Flexibility "
+               "= galerkin.";
+      if (parameters.foundation.tensionless &&
+          parameters.contact.method != Parameters::Contact::Method::active_set)
+        return "Foundation operator/Storage = hierarchical needs Contact/"
+               "Method = active set (element exclusion rebuilds the "
+               "operator).";
+      return "";
+    }
+  } // namespace
+
+  void
+  SceneParameters::parse_parameters(ParameterHandler &prm)
+  {
+    output_directory = prm.get("Output directory");
+    require(!output_directory.empty(), "Output directory must not be empty.");
+    plate.parse_parameters(prm);
+    foundation.parse_parameters(prm);
+    foundation_operator.parse_parameters(prm);
+    loads.parse_parameters(prm);
+    discretization.parse_parameters(prm);
+    contact.parse_parameters(prm);
+    adaptivity.parse_parameters(prm);
+    output.parse_parameters(prm);
+    verification.parse_parameters(prm);
+
+    if (discretization.flexibility ==
+        Parameters::Discretization::Flexibility::collocation)
+      require(plate.shape != Parameters::Plate::Shape::disk,
+              "Discretization/Flexibility = collocation needs axis-aligned "
+              "rectangular cells (the paper's closed-form integral); use "
+              "galerkin for Plate/Shape = disk.");
+    if (foundation_operator.storage == "hierarchical")
+      {
+        const std::string obstacle = hierarchical_storage_obstacle(*this);
+        require(obstacle.empty(), obstacle);
+      }
+    if (contact.solver == Parameters::Contact::Solver::iterative)
+      {
+        require(discretization.flexibility ==
+                  Parameters::Discretization::Flexibility::galerkin,
+                "Contact/Solver = iterative needs the symmetric half-space "
+                "operator, Discretization/Flexibility = galerkin.");
+        require(!foundation.tensionless ||
+                  contact.method == Parameters::Contact::Method::active_set,
+                "Contact/Solver = iterative needs Contact/Method = active "
+                "set (element exclusion rebuilds the operator).");
+      }
+  }
+
+  std::string
+  SceneParameters::foundation_storage(
+    const unsigned int n_foundation_nodes) const
+  {
+    if (foundation_operator.storage != "auto")
+      return foundation_operator.storage;
+    const bool allowed = hierarchical_storage_obstacle(*this).empty();
+    return (allowed &&
+            n_foundation_nodes >= foundation_operator.hierarchical_from) ?
+             "hierarchical" :
+             "dense";
+  }
+
+  bool
+  SceneParameters::iterative_contact_solver(
+    const unsigned int n_foundation_nodes) const
+  {
+    return contact.solver == Parameters::Contact::Solver::iterative ||
+           (contact.solver == Parameters::Contact::Solver::automatic &&
+            foundation_storage(n_foundation_nodes) == "hierarchical");
+  }
+
+  void
+  SceneParameters::read(const std::string &filename)
+  {
+    AssertThrow(std::filesystem::is_regular_file(filename) &&
+                  std::ifstream(filename).good(),
+                ExcMessage("Cannot open the parameter file <" + filename +
+                           ">."));
+    std::ostringstream text;
+    text << std::ifstream(filename).rdbuf();
+    ParameterHandler prm;
+    declare_parameters(prm);
+    // parse_input() also follows "include other.prm" lines, so tests can
+    // derive from the shipped scenes. Its messages name the line, not the
+    // section and the allowed values: input_checks.h adds them.
+    try
+      {
+        prm.parse_input(filename);
+      }
+    catch (const std::exception &error)
+      {
+        AssertThrow(false,
+                    ExcMessage(explain_parameter_file_error(error,
+                                                            text.str(),
+                                                            filename)));
+      }
+    parse_parameters(prm);
+  }
+
+  void
+  SceneParameters::read_from_string(const std::string &text)
+  {
+    ParameterHandler prm;
+    declare_parameters(prm);
+    try
+      {
+        prm.parse_input_from_string(text);
+      }
+    catch (const std::exception &error)
+      {
+        // deal.II names a string "input string"
+        AssertThrow(false,
+                    ExcMessage(explain_parameter_file_error(error,
+                                                            text,
+                                                            "input string")));
+      }
+    parse_parameters(prm);
+  }
+} // namespace PlateOnHalfspace
