@@ -1,7 +1,11 @@
 /**
- * The application: the adaptive loop of doc/formulation.md ("Adaptive
- * refinement") around the contact iteration, driven by a scene file
- * (step-41/42 and ASPECT are the models).
+ * The application (doc/architecture.md, "One cycle"): the adaptive loop of
+ * doc/formulation.md ("Adaptive refinement") around the contact iteration,
+ * driven by a scene file. Each cycle runs named phases, as deal.II's
+ * step-42 does: set up the plate, build the foundation operator, solve
+ * contact, postprocess, write, and refine for the next cycle. The driver
+ * chooses the variants from the scene (storage, contact solver) and talks
+ * to each family only through its interface.
  */
 #ifndef plate_on_halfspace_plate_on_halfspace_problem_h
 #define plate_on_halfspace_plate_on_halfspace_problem_h
@@ -13,15 +17,14 @@
 
 #include <deal.II/lac/vector.h>
 
-#include <plate_on_halfspace/contact/direct_solver.h>
+#include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/halfspace/interface.h>
+#include <plate_on_halfspace/io/results_output.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
 #include <plate_on_halfspace/scene/parameters.h>
-#include <plate_on_halfspace/io/results_output.h>
 
 #include <memory>
-#include <optional>
 #include <ostream>
 #include <vector>
 
@@ -39,7 +42,7 @@ namespace PlateOnHalfspace
 
     /**
      * Run all cycles and the verification checks. Throws on bad input or a
-     * failed solve (results of completed cycles stay on disk). Returns false
+     * failed solve (the earlier run's results stay on disk). Returns false
      * if a verification check failed.
      */
     bool
@@ -55,10 +58,16 @@ namespace PlateOnHalfspace
     {
       return *mindlin_plate;
     }
+    /** The last cycle's plate, e.g. to solve it again in a test. */
+    MindlinPlate &
+    plate()
+    {
+      return *mindlin_plate;
+    }
     const Vector<double> &
     solution() const
     {
-      return plate_solution;
+      return contact.plate_solution;
     }
     const ContactState &
     contact_state() const
@@ -70,43 +79,92 @@ namespace PlateOnHalfspace
     {
       return *foundation_operator;
     }
+    FoundationOperator &
+    foundation()
+    {
+      return *foundation_operator;
+    }
 
     /** w, q, Mx, My at a point of the plate (last cycle). */
     PointValues
     values_at(const Point<2> &x) const;
 
   private:
+    /**
+     * The coarse mesh, the mirror planes the scene is solved with, its
+     * loads on the computed part (mirror_symmetry.h) and the initial
+     * global refinements.
+     */
     void
-    solve_cycle(const unsigned int cycle, const std::vector<bool> &seed);
-    /** Refine, set up the plate anew and transfer the contact set; none if
-     *  Adaptivity/Max cells stops the refinement. */
-    std::optional<std::vector<bool>>
-    refine_and_transfer_contact();
+    make_mesh();
+
+    /** Distribute DoFs and assemble the plate's stiffness. */
+    void
+    setup_plate();
+
+    /**
+     * Refine for the next cycle, set up the plate anew and transfer the
+     * active set as the next seed. Returns false if Adaptivity/Max cells
+     * stops the refinement.
+     */
     bool
-    run_checks() const;
+    refine_mesh();
+
+    /** The plate's loads and the cycle's first summary entries. */
+    void
+    assemble_loads(const unsigned int cycle);
+
+    /**
+     * Make (when the storage changes) and build the half-space operator
+     * on the plate's foundation space, after the memory guard.
+     */
+    void
+    build_foundation_operator();
+
+    /** Solve contact from the seed with the cycle's contact solver. */
+    void
+    solve_contact();
+
+    /** Fill the cycle's summary: equilibrium, extremes, probes. */
+    void
+    postprocess();
+
+    /** The result files of the cycle and the per-cycle log lines. */
+    void
+    write_output();
+
     /** Append the cycle's row to convergence.txt's table. */
     void
     add_convergence_row(const CycleSummary &summary);
 
+    bool
+    run_checks() const;
+
     const SceneParameters parameters;
     std::ostream         &log;
-    /** The mirror planes the scene is solved with, and its loads on the
-     *  computed part (mirror_symmetry.h). */
-    MirrorSymmetry    symmetry;
-    Parameters::Loads computed_loads;
-    /** Wall time of the plate setup (DoFs, constraints, stiffness) of the
-     *  current cycle. */
-    double                              setup_time_s = 0;
-    Triangulation<2>                    triangulation;
+    MirrorSymmetry        symmetry;
+    Parameters::Loads     computed_loads;
+    Triangulation<2>      triangulation;
+
     std::unique_ptr<MindlinPlate>       mindlin_plate;
     std::unique_ptr<FoundationOperator> foundation_operator;
-    Vector<double>                      plate_solution;
+    /** The storage foundation_operator was made with. */
+    Parameters::FoundationOperator::Storage operator_storage;
+    /** The active set of the previous cycle on the current mesh. */
+    std::vector<bool> seed;
+    ContactState      contact;
     /** q as a field on the plate's w-space (for point values). */
-    Vector<double>                 pressure_field;
-    ContactState                   contact;
+    Vector<double> pressure_field;
+
+    /** The cycle being solved and the summaries of all cycles so far. */
+    CycleSummary                   summary;
     std::vector<CycleSummary>      cycle_summaries;
     ConvergenceTable               convergence;
     std::unique_ptr<ResultsOutput> output;
+
+    /** Wall times of the cycle (s): plate setup, and the cycle so far. */
+    double setup_time_s = 0;
+    Timer  cycle_timer;
     /** Wall times per phase, printed with Output/Verbosity = 2. */
     TimerOutput timer_output;
   };

@@ -16,6 +16,7 @@ namespace PlateOnHalfspace
     const std::vector<bool> &cell_in_foundation)
   {
     build_mass_matrix(space, cell_in_foundation);
+    use_identity_test_coupling();
     const unsigned int n = space.n_nodes();
     flexibility.reinit(n);
     flexibility = 0.;
@@ -81,19 +82,6 @@ namespace PlateOnHalfspace
                 }
             }
       }
-    set_contact_nodes(node_supported);
-  }
-
-  void
-  BoussinesqCollocationOperator::set_contact_nodes(
-    const std::vector<bool> &requested)
-  {
-    // G is unsymmetric and not guaranteed definite: LU (P16).
-    factorise_contact_block(requested,
-                            flexibility,
-                            false,
-                            "The collocation flexibility matrix G of the "
-                            "contact set is singular.");
   }
 
   void
@@ -105,37 +93,20 @@ namespace PlateOnHalfspace
   }
 
   void
-  BoussinesqCollocationOperator::plate_settlement(const Vector<double> &w,
-                                                  Vector<double>       &b) const
+  BoussinesqCollocationOperator::copy_block(
+    const std::vector<unsigned int> &nodes,
+    LAPACKFullMatrix<double>        &block) const
   {
-    b = w;
-  }
-
-  void
-  BoussinesqCollocationOperator::solve(const Vector<double> &w,
-                                       Vector<double>       &q) const
-  {
-    solve_contact_block(w, q); // B = I
-  }
-
-  void
-  BoussinesqCollocationOperator::add_stiffness(
-    LAPACKFullMatrix<double> &matrix) const
-  {
-    // K_G = E G^{-1} (P17) restricted to the contact set: the contact rows
-    // of B = I.
-    LAPACKFullMatrix<double> rows(contact_index.size(), mass.m());
-    rows = 0.;
-    for (unsigned int i = 0; i < contact_index.size(); ++i)
-      rows(i, contact_index[i]) = 1.;
-    add_mass_times_contact_inverse(rows, matrix);
+    const unsigned int m = nodes.size();
+    block.reinit(m, m);
+    for (unsigned int j = 0; j < m; ++j)
+      for (unsigned int i = 0; i < m; ++i)
+        block(i, j) = flexibility(nodes[i], nodes[j]);
   }
 
   std::size_t
   BoussinesqCollocationOperator::memory_consumption() const
   {
-    return flexibility.memory_consumption() +
-           contact_factor.memory_consumption() + mass.memory_consumption() +
-           mass_sparsity.memory_consumption();
+    return flexibility.memory_consumption() + coupling_memory_consumption();
   }
 } // namespace PlateOnHalfspace

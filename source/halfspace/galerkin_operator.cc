@@ -103,28 +103,28 @@ namespace PlateOnHalfspace
 
     // The contact conditions in the positive pressure basis
     // (foundation_space.h): A <- T^T A T, M <- T^T M.
-    if (positive_pressure_basis)
-      use_positive_pressure_basis(space);
+    set_pressure_basis(space, positive_pressure_basis);
     transform_flexibility(flexibility);
     if (partial_foundation)
       {
         transform_flexibility(system_flexibility);
         transform_tests(full_mass, full_tested_sparsity, full_tested_mass);
       }
-    set_contact_nodes(node_supported);
   }
 
   void
-  BoussinesqGalerkinOperator::set_contact_nodes(
-    const std::vector<bool> &requested)
+  BoussinesqGalerkinOperator::copy_block(const std::vector<unsigned int> &nodes,
+                                         LAPACKFullMatrix<double> &block) const
   {
-    factorise_contact_block(
-      requested,
-      partial_foundation ? system_flexibility : flexibility,
-      true,
-      "The Galerkin half-space matrix A of the contact set is not positive "
-      "definite; the singular quadrature is too coarse for this mesh (raise "
-      "Discretization/Singular quadrature order).");
+    // The paper's exclusion removes a cell's contribution to A of the
+    // contact conditions: both test and pressure over the foundation cells.
+    const LAPACKFullMatrix<double> &matrix =
+      partial_foundation ? system_flexibility : flexibility;
+    const unsigned int m = nodes.size();
+    block.reinit(m, m);
+    for (unsigned int j = 0; j < m; ++j)
+      for (unsigned int i = 0; i < m; ++i)
+        block(i, j) = matrix(nodes[i], nodes[j]);
   }
 
   void
@@ -143,33 +143,6 @@ namespace PlateOnHalfspace
     (partial_foundation ? full_tested_mass : test_coupling()).vmult(b, w);
   }
 
-  void
-  BoussinesqGalerkinOperator::solve(const Vector<double> &w,
-                                    Vector<double>       &q) const
-  {
-    // (B w)_C with the system's M (over the foundation cells).
-    Vector<double> b(w.size());
-    test_coupling().vmult(b, w);
-    solve_contact_block(b, q);
-  }
-
-  void
-  BoussinesqGalerkinOperator::add_stiffness(
-    LAPACKFullMatrix<double> &matrix) const
-  {
-    // S = M_{:,C} A_CC^{-1} M_{C,:} (doc/formulation.md: the foundation
-    // stiffness M A^{-1} M restricted to the contact set).
-    const SparseMatrix<double> &coupling = test_coupling();
-    LAPACKFullMatrix<double>    rows(contact_index.size(), coupling.m());
-    rows = 0.;
-    for (unsigned int i = 0; i < contact_index.size(); ++i)
-      for (auto entry = coupling.begin(contact_index[i]);
-           entry != coupling.end(contact_index[i]);
-           ++entry)
-        rows(i, entry->column()) = entry->value();
-    add_mass_times_contact_inverse(rows, matrix);
-  }
-
   std::size_t
   BoussinesqGalerkinOperator::memory_consumption() const
   {
@@ -177,9 +150,6 @@ namespace PlateOnHalfspace
            system_flexibility.memory_consumption() +
            full_mass.memory_consumption() +
            full_tested_mass.memory_consumption() +
-           tested_mass.memory_consumption() + force_mass.memory_consumption() +
-           transform.memory_consumption() +
-           contact_factor.memory_consumption() + mass.memory_consumption() +
-           mass_sparsity.memory_consumption();
+           coupling_memory_consumption();
   }
 } // namespace PlateOnHalfspace

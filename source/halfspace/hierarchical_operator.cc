@@ -14,10 +14,32 @@ namespace PlateOnHalfspace
       return settings;
     }
 
-    const std::string needs_iterative_solver =
-      "Foundation operator/Storage = hierarchical needs Contact/Solver = "
-      "iterative or auto (the direct solver would form the dense foundation "
-      "block the hierarchical matrix avoids).";
+
+    /** The operator's H-Cholesky solve as an ApproximateInverse. */
+    class HierarchicalCholeskyInverse : public ApproximateInverse
+    {
+    public:
+      explicit HierarchicalCholeskyInverse(
+        const HierarchicalGalerkinOperator &foundation)
+        : foundation(foundation)
+      {}
+
+      void
+      vmult(Vector<double> &q, const Vector<double> &s) const override
+      {
+        foundation.solve(q, s);
+      }
+
+      std::size_t
+      memory_consumption() const override
+      {
+        // The factor is held (and counted) by the operator.
+        return 0;
+      }
+
+    private:
+      const HierarchicalGalerkinOperator &foundation;
+    };
   } // namespace
 
   HierarchicalGalerkinOperator::HierarchicalGalerkinOperator(
@@ -41,22 +63,16 @@ namespace PlateOnHalfspace
                            "not support Contact/Method = element exclusion "
                            "(use active set)."));
     build_mass_matrix(space, cell_in_foundation);
-    use_positive_pressure_basis(space);
+    set_pressure_basis(space, true);
     flexibility.build(space, alpha, singular_order);
-    flexibility.factorize();
-    times.compression   = flexibility.build_times().compression;
-    times.factorization = flexibility.build_times().factorization;
+    times.compression = flexibility.build_times().compression;
   }
 
-  void
-  HierarchicalGalerkinOperator::set_contact_nodes(
-    const std::vector<bool> &requested)
+  std::unique_ptr<ApproximateInverse>
+  HierarchicalGalerkinOperator::make_approximate_inverse()
   {
-    // The iterative solver restricts products itself; only the flags are
-    // kept (for contact_nodes()).
-    AssertDimension(requested.size(), node_supported.size());
-    for (unsigned int i = 0; i < requested.size(); ++i)
-      in_contact[i] = requested[i] && node_supported[i];
+    flexibility.factorize();
+    return std::make_unique<HierarchicalCholeskyInverse>(*this);
   }
 
   void
@@ -72,40 +88,6 @@ namespace PlateOnHalfspace
       transform.Tvmult(s, settlement);
     else
       s = settlement;
-  }
-
-  void
-  HierarchicalGalerkinOperator::plate_settlement(const Vector<double> &w,
-                                                 Vector<double>       &b) const
-  {
-    b.reinit(w.size());
-    test_coupling().vmult(b, w);
-  }
-
-  void
-  HierarchicalGalerkinOperator::solve(const Vector<double> &,
-                                      Vector<double> &) const
-  {
-    AssertThrow(false, ExcMessage(needs_iterative_solver));
-  }
-
-  void
-  HierarchicalGalerkinOperator::add_stiffness(LAPACKFullMatrix<double> &) const
-  {
-    AssertThrow(false, ExcMessage(needs_iterative_solver));
-  }
-
-  unsigned int
-  HierarchicalGalerkinOperator::size() const
-  {
-    return flexibility.size();
-  }
-
-  void
-  HierarchicalGalerkinOperator::vmult(Vector<double>       &s,
-                                      const Vector<double> &q) const
-  {
-    apply(q, s);
   }
 
   void
@@ -146,8 +128,8 @@ namespace PlateOnHalfspace
   }
 
   void
-  HierarchicalGalerkinOperator::precondition(Vector<double>       &q,
-                                             const Vector<double> &s) const
+  HierarchicalGalerkinOperator::solve(Vector<double>       &q,
+                                      const Vector<double> &s) const
   {
     // (T^T A T)^{-1} s = T^{-1} A^{-1} T^{-T} s, A^{-1} by the H-Cholesky
     // factor.
@@ -167,9 +149,6 @@ namespace PlateOnHalfspace
   std::size_t
   HierarchicalGalerkinOperator::memory_consumption() const
   {
-    return flexibility.memory_consumption() + mass.memory_consumption() +
-           mass_sparsity.memory_consumption() +
-           tested_mass.memory_consumption() + force_mass.memory_consumption() +
-           transform.memory_consumption();
+    return flexibility.memory_consumption() + coupling_memory_consumption();
   }
 } // namespace PlateOnHalfspace

@@ -1,16 +1,93 @@
-#include <deal.II/base/multithread_info.h>
-#include <deal.II/base/thread_management.h>
-#include <deal.II/base/timer.h>
+#include <deal.II/base/exceptions.h>
 
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/collocation_operator.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
-#include <plate_on_halfspace/base/condition_estimate.h>
-#include <plate_on_halfspace/halfspace/interface.h>
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
+#include <plate_on_halfspace/halfspace/interface.h>
 
 namespace PlateOnHalfspace
 {
+  namespace
+  {
+    /** The Cholesky factor of a dense SPD flexibility. */
+    class DenseCholeskyInverse : public ApproximateInverse
+    {
+    public:
+      explicit DenseCholeskyInverse(LAPACKFullMatrix<double> &&flexibility)
+        : factor(std::move(flexibility))
+      {
+        try
+          {
+            factor.compute_cholesky_factorization();
+          }
+        catch (...)
+          {
+            AssertThrow(false,
+                        ExcMessage(
+                          "The Galerkin half-space matrix A is not positive "
+                          "definite; the singular quadrature is too coarse "
+                          "for this mesh (raise Discretization/Singular "
+                          "quadrature order)."));
+          }
+      }
+
+      void
+      vmult(Vector<double> &q, const Vector<double> &s) const override
+      {
+        q = s;
+        factor.solve(q);
+      }
+
+      std::size_t
+      memory_consumption() const override
+      {
+        return factor.memory_consumption();
+      }
+
+    private:
+      LAPACKFullMatrix<double> factor;
+    };
+  } // namespace
+
+  void
+  FoundationOperator::plate_settlement(const Vector<double> &w,
+                                       Vector<double>       &b) const
+  {
+    b.reinit(w.size());
+    test_coupling().vmult(b, w);
+  }
+
+  void
+  FoundationOperator::copy_block(const std::vector<unsigned int> &nodes,
+                                 LAPACKFullMatrix<double>        &block) const
+  {
+    const unsigned int m = nodes.size();
+    block.reinit(m, m);
+    Vector<double> unit(n_nodes()), column;
+    for (unsigned int j = 0; j < m; ++j)
+      {
+        unit[nodes[j]] = 1.;
+        apply(unit, column);
+        unit[nodes[j]] = 0.;
+        for (unsigned int i = 0; i < m; ++i)
+          block(i, j) = column[nodes[i]];
+      }
+  }
+
+  std::unique_ptr<ApproximateInverse>
+  FoundationOperator::make_approximate_inverse()
+  {
+    std::vector<unsigned int> all(n_nodes());
+    for (unsigned int i = 0; i < all.size(); ++i)
+      all[i] = i;
+    LAPACKFullMatrix<double> flexibility;
+    copy_block(all, flexibility);
+    return std::make_unique<DenseCholeskyInverse>(std::move(flexibility));
+  }
+
   void
   FoundationOperator::nodal_forces(const Vector<double> &q,
                                    Vector<double>       &forces) const
@@ -31,17 +108,45 @@ namespace PlateOnHalfspace
   }
 
   void
-  FoundationOperator::use_positive_pressure_basis(const FoundationSpace &space)
+  FoundationOperator::gap(const Vector<double> &w,
+                          const Vector<double> &q,
+                          Vector<double>       &g) const
+  {
+    Vector<double> plate(w.size());
+    apply(q, g);
+    plate_settlement(w, plate);
+    g -= plate;
+  }
+
+  void
+  FoundationOperator::set_pressure_basis(const FoundationSpace &space,
+                                         const bool positive_pressure_basis)
   {
     positive_basis =
+      positive_pressure_basis &&
       space.positive_pressure_transform(transform_sparsity, transform);
-    tested_mass.clear();
+    if (!positive_basis)
+      transform.clear();
     force_mass.clear();
+    transform_tests(mass, tests_sparsity, tests);
     if (!positive_basis)
       return;
-    transform_tests(mass, tested_sparsity, tested_mass);
     force_mass.reinit(force_sparsity);
     mass.mmult(force_mass, transform);
+  }
+
+  void
+  FoundationOperator::use_identity_test_coupling()
+  {
+    const unsigned int    n = n_nodes();
+    DynamicSparsityPattern pattern(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      pattern.add(i, i);
+    tests.clear();
+    tests_sparsity.copy_from(pattern);
+    tests.reinit(tests_sparsity);
+    for (unsigned int i = 0; i < n; ++i)
+      tests.set(i, i, 1.);
   }
 
   void
@@ -92,17 +197,6 @@ namespace PlateOnHalfspace
   }
 
   void
-  FoundationOperator::gap(const Vector<double> &w,
-                          const Vector<double> &q,
-                          Vector<double>       &g) const
-  {
-    Vector<double> plate(w.size());
-    apply(q, g);
-    plate_settlement(w, plate);
-    g -= plate;
-  }
-
-  void
   FoundationOperator::build_mass_matrix(
     const FoundationSpace   &space,
     const std::vector<bool> &cell_in_foundation)
@@ -114,116 +208,27 @@ namespace PlateOnHalfspace
         for (const auto &terms : space.cells[c].expansion)
           for (const auto &t : terms)
             node_supported[t.first] = true;
-    in_contact = node_supported;
   }
 
-  void
-  FoundationOperator::factorise_contact_block(
-    const std::vector<bool>        &requested,
-    const LAPACKFullMatrix<double> &flexibility,
-    const bool                      symmetric,
-    const std::string              &failure)
+  std::size_t
+  FoundationOperator::coupling_memory_consumption() const
   {
-    const Timer timer;
-    AssertDimension(requested.size(), node_supported.size());
-    contact_index.clear();
-    for (unsigned int i = 0; i < requested.size(); ++i)
-      {
-        in_contact[i] = requested[i] && node_supported[i];
-        if (in_contact[i])
-          contact_index.push_back(i);
-      }
-    const unsigned int m = contact_index.size();
-    contact_factor.reinit(m);
-    for (unsigned int i = 0; i < m; ++i)
-      for (unsigned int j = 0; j < m; ++j)
-        contact_factor(i, j) = flexibility(contact_index[i], contact_index[j]);
-    contact_block_rcond = 1.;
-    if (m == 0)
-      return;
-    const double l1_norm = contact_factor.l1_norm();
-    try
-      {
-        if (symmetric)
-          contact_factor.compute_cholesky_factorization();
-        else
-          contact_factor.compute_lu_factorization();
-      }
-    catch (...)
-      {
-        AssertThrow(false, ExcMessage(failure));
-      }
-    contact_block_rcond =
-      reciprocal_condition_number(contact_factor, l1_norm, symmetric);
-    times.factorization = timer.wall_time();
-  }
-
-  void
-  FoundationOperator::solve_contact_block(const Vector<double> &b,
-                                          Vector<double>       &q) const
-  {
-    Vector<double> b_contact(contact_index.size());
-    for (unsigned int i = 0; i < contact_index.size(); ++i)
-      b_contact[i] = b[contact_index[i]];
-    if (!contact_index.empty())
-      contact_factor.solve(b_contact);
-    q.reinit(b.size());
-    for (unsigned int i = 0; i < contact_index.size(); ++i)
-      q[contact_index[i]] = b_contact[i];
-  }
-
-  void
-  FoundationOperator::add_mass_times_contact_inverse(
-    LAPACKFullMatrix<double> &rows,
-    LAPACKFullMatrix<double> &matrix) const
-  {
-    const unsigned int n = force_coupling().m();
-    if (contact_index.empty())
-      return;
-    contact_factor.solve(rows);
-    // M_{:,C} restricted to the contact columns, row by row.
-    std::vector<int> position(n, -1);
-    for (unsigned int i = 0; i < contact_index.size(); ++i)
-      position[contact_index[i]] = i;
-    std::vector<std::vector<std::pair<unsigned int, double>>> mass_rows(n);
-    for (unsigned int r = 0; r < n; ++r)
-      for (auto entry = force_coupling().begin(r);
-           entry != force_coupling().end(r);
-           ++entry)
-        if (position[entry->column()] >= 0)
-          mass_rows[r].emplace_back(position[entry->column()], entry->value());
-    // matrix(:, c) += M_{:,C} rows(:, c): both columns are contiguous in
-    // LAPACK's column-major storage; the columns are independent, so they
-    // are split over the threads.
-    const auto add_columns = [&](const unsigned int begin,
-                                 const unsigned int end) {
-      for (unsigned int c = begin; c < end; ++c)
-        for (unsigned int r = 0; r < n; ++r)
-          {
-            double sum = 0;
-            for (const auto &kv : mass_rows[r])
-              sum += kv.second * rows(kv.first, c);
-            matrix(r, c) += sum;
-          }
-    };
-    Threads::TaskGroup<void> tasks;
-    const unsigned int       n_chunks = MultithreadInfo::n_threads();
-    for (unsigned int t = 0; t < n_chunks; ++t)
-      tasks += Threads::new_task(
-        [&, t]() { add_columns(n * t / n_chunks, n * (t + 1) / n_chunks); });
-    tasks.join_all();
+    return mass.memory_consumption() + mass_sparsity.memory_consumption() +
+           tests.memory_consumption() + force_mass.memory_consumption() +
+           transform.memory_consumption();
   }
 
   std::unique_ptr<FoundationOperator>
-  create_foundation_operator(const SceneParameters &parameters,
-                             const std::string     &storage)
+  create_foundation_operator(
+    const SceneParameters                        &parameters,
+    const Parameters::FoundationOperator::Storage storage)
   {
     const double alpha =
       boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
                                       parameters.foundation.poissons_ratio);
-    // SceneParameters allows hierarchical only with the Galerkin operator
-    // and the iterative contact solver.
-    if (storage == "hierarchical")
+    // SceneParameters allows hierarchical storage only with the Galerkin
+    // operator.
+    if (storage == Parameters::FoundationOperator::Storage::hierarchical)
       return std::make_unique<HierarchicalGalerkinOperator>(
         alpha,
         parameters.discretization.singular_quadrature_order,

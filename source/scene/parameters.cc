@@ -241,9 +241,8 @@ namespace PlateOnHalfspace
                         Patterns::Integer(0),
                         "Storage = auto: the number of foundation nodes from "
                         "which a cycle uses the hierarchical operator (below "
-                        "it the dense one, exact and fast enough; at 4961 "
-                        "nodes dense took 60 s and 1.2 GB, hierarchical 5 s "
-                        "and 0.27 GB on example 2).");
+                        "it the dense one, exact and fast enough; "
+                        "doc/performance.md has the measurements).");
       prm.leave_subsection();
     }
 
@@ -251,7 +250,10 @@ namespace PlateOnHalfspace
     FoundationOperator::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Foundation operator");
-      storage           = prm.get("Storage");
+      const std::string name = prm.get("Storage");
+      storage = (name == "dense"        ? Storage::dense :
+                 name == "hierarchical" ? Storage::hierarchical :
+                                          Storage::automatic);
       tolerance         = prm.get_double("Tolerance");
       hierarchical_from = prm.get_integer("Hierarchical from");
       prm.leave_subsection();
@@ -709,7 +711,8 @@ namespace PlateOnHalfspace
               "Discretization/Flexibility = collocation needs axis-aligned "
               "rectangular cells (the paper's closed-form integral); use "
               "galerkin for Plate/Shape = disk.");
-    if (foundation_operator.storage == "hierarchical")
+    if (foundation_operator.storage ==
+        Parameters::FoundationOperator::Storage::hierarchical)
       {
         const std::string obstacle = hierarchical_storage_obstacle(*this);
         require(obstacle.empty(), obstacle);
@@ -727,26 +730,30 @@ namespace PlateOnHalfspace
       }
   }
 
-  std::string
+  Parameters::FoundationOperator::Storage
   SceneParameters::foundation_storage(
     const unsigned int n_foundation_nodes) const
   {
-    if (foundation_operator.storage != "auto")
+    using Storage = Parameters::FoundationOperator::Storage;
+    if (foundation_operator.storage != Storage::automatic)
       return foundation_operator.storage;
     const bool allowed = hierarchical_storage_obstacle(*this).empty();
     return (allowed &&
             n_foundation_nodes >= foundation_operator.hierarchical_from) ?
-             "hierarchical" :
-             "dense";
+             Storage::hierarchical :
+             Storage::dense;
   }
 
-  bool
-  SceneParameters::iterative_contact_solver(
-    const unsigned int n_foundation_nodes) const
+  Parameters::Contact::Solver
+  SceneParameters::contact_solver(const unsigned int n_foundation_nodes) const
   {
-    return contact.solver == Parameters::Contact::Solver::iterative ||
-           (contact.solver == Parameters::Contact::Solver::automatic &&
-            foundation_storage(n_foundation_nodes) == "hierarchical");
+    using Solver = Parameters::Contact::Solver;
+    if (contact.solver != Solver::automatic)
+      return contact.solver;
+    return foundation_storage(n_foundation_nodes) ==
+               Parameters::FoundationOperator::Storage::hierarchical ?
+             Solver::iterative :
+             Solver::direct;
   }
 
   void

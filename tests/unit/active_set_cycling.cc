@@ -1,21 +1,22 @@
-// The active-set solver's safeguard against cycling. Full primal-dual
-// active-set steps can cycle on a linear complementarity problem whose
-// matrix is a P-matrix but not symmetric (as the paper's collocation
-// operator is). This test builds such a problem in the contact solver's own
-// terms: a small foundation operator with F = A - I/k, B = M = I and a
-// plate K̄ = k I, so that the gap is g = A q - P̄/k with the 3x3 P-matrix A
-// below
-// (found by a random search; full steps from "all in contact" return to a
-// set seen before after two steps), plus three anchor nodes that always
-// stay in contact so that the plate is never a mechanism. The solver must
-// detect the cycle, switch to single (least-index) pivots and reach the
-// unique solution, which the test finds independently by enumerating all
-// 2^3 contact sets.
+// The active-set step's safeguard against cycling (ActiveSetUpdate, which
+// both contact solvers use). Full primal-dual active-set steps can cycle on
+// a linear complementarity problem whose matrix is a P-matrix but not
+// symmetric (as the paper's collocation operator is). This test builds such
+// a problem in the contact solvers' own terms: a flexibility F = A - I/k,
+// B = M = I and a condensed plate K̄ = k I, so that the gap is
+// g = A q - P̄/k with the 3x3 P-matrix A below (found by a random search;
+// full steps from "all in contact" return to a set seen before after two
+// steps), plus three anchor nodes that always stay in contact so that the
+// plate is never a mechanism. Each set's coupled problem is solved here as
+// the direct solver does it; the active-set step must detect the cycle,
+// switch to single (least-index) pivots and reach the unique solution,
+// which the test finds independently by enumerating all 2^3 contact sets.
 
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 
-#include <plate_on_halfspace/contact/direct_solver.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+
+#include <plate_on_halfspace/contact/active_set.h>
 
 #include "../tests.h"
 
@@ -33,80 +34,66 @@ namespace
   const unsigned int n    = 6;     // 3 cycling nodes, 3 anchors
   const double       k    = 1000.; // plate stiffness K̄ = k I
 
-  /** A dense operator F with M = B = I on the nodes of a FoundationSpace. */
-  class MatrixFoundation : public FoundationOperator
+  /** F on all nodes: A - I/k on the cycling nodes, 1 on the anchors. */
+  FullMatrix<double>
+  flexibility()
   {
-  public:
-    void
-    build(const FoundationSpace &space, const std::vector<bool> &) override
-    {
-      DynamicSparsityPattern dsp(n, n);
-      for (unsigned int i = 0; i < n; ++i)
-        dsp.add(i, i);
-      mass_sparsity.copy_from(dsp);
-      mass.reinit(mass_sparsity);
-      for (unsigned int i = 0; i < n; ++i)
-        mass.set(i, i, 1.);
-      node_supported.assign(space.n_nodes(), true);
-      in_contact = node_supported;
-      flexibility.reinit(n);
-      flexibility = 0.;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-          flexibility(i, j) = A[i][j] - (i == j ? 1. / k : 0.);
-      for (unsigned int i = 3; i < n; ++i)
-        flexibility(i, i) = 1.;
-      set_contact_nodes(node_supported);
-    }
-    void
-    set_contact_nodes(const std::vector<bool> &requested) override
-    {
-      factorise_contact_block(requested, flexibility, false, "singular");
-    }
-    void
-    apply(const Vector<double> &q, Vector<double> &s) const override
-    {
-      s.reinit(n);
-      flexibility.vmult(s, q);
-    }
-    void
-    plate_settlement(const Vector<double> &w, Vector<double> &s) const override
-    {
-      s = w;
-    }
-    void
-    solve(const Vector<double> &w, Vector<double> &q) const override
-    {
-      solve_contact_block(w, q);
-    }
-    void
-    add_stiffness(LAPACKFullMatrix<double> &matrix) const override
-    {
-      LAPACKFullMatrix<double> rows(contact_index.size(), n);
-      rows = 0.;
-      for (unsigned int i = 0; i < contact_index.size(); ++i)
-        rows(i, contact_index[i]) = 1.;
-      add_mass_times_contact_inverse(rows, matrix);
-    }
-    bool
-    is_symmetric() const override
-    {
-      return false;
-    }
-    std::string
-    storage_name() const override
-    {
-      return "test";
-    }
-    std::size_t
-    memory_consumption() const override
-    {
-      return 0;
-    }
+    FullMatrix<double> f(n, n);
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        f(i, j) = A[i][j] - (i == j ? 1. / k : 0.);
+    for (unsigned int i = 3; i < n; ++i)
+      f(i, i) = 1.;
+    return f;
+  }
 
-  private:
-    LAPACKFullMatrix<double> flexibility;
-  };
+  /**
+   * The coupled problem on @p set as the direct solver states it with
+   * B = M = I: (K̄ + S) w = P̄ with S = I_{:,C} F_CC^{-1} I_{C,:}, then
+   * q_C = F_CC^{-1} w_C and the gap g = F q - w.
+   */
+  void
+  solve_on_set(const std::vector<bool>  &set,
+               const FullMatrix<double> &f,
+               const Vector<double>     &load,
+               ContactState             &state)
+  {
+    std::vector<unsigned int> c;
+    for (unsigned int i = 0; i < n; ++i)
+      if (set[i])
+        c.push_back(i);
+    LAPACKFullMatrix<double> f_cc(c.size(), c.size());
+    for (unsigned int i = 0; i < c.size(); ++i)
+      for (unsigned int j = 0; j < c.size(); ++j)
+        f_cc(i, j) = f(c[i], c[j]);
+    f_cc.compute_lu_factorization();
+    LAPACKFullMatrix<double> coupled(n);
+    coupled = 0.;
+    for (unsigned int i = 0; i < n; ++i)
+      coupled(i, i) = k;
+    for (unsigned int j = 0; j < c.size(); ++j)
+      {
+        Vector<double> column(c.size());
+        column[j] = 1.;
+        f_cc.solve(column);
+        for (unsigned int i = 0; i < c.size(); ++i)
+          coupled(c[i], c[j]) += column[i];
+      }
+    coupled.compute_lu_factorization();
+    state.w = load;
+    coupled.solve(state.w);
+    Vector<double> q_c(c.size());
+    for (unsigned int i = 0; i < c.size(); ++i)
+      q_c[i] = state.w[c[i]];
+    f_cc.solve(q_c);
+    state.q.reinit(n);
+    for (unsigned int i = 0; i < c.size(); ++i)
+      state.q[c[i]] = q_c[i];
+    state.gap.reinit(n);
+    f.vmult(state.gap, state.q);
+    state.gap -= state.w;
+    state.in_contact = set;
+  }
 } // namespace
 
 int
@@ -123,25 +110,35 @@ main()
                           Point<2>(0, 1)};
   // K̄ = k I, P̄ = -k b for the cycling nodes, k for the anchors (there
   // F = 1 and q = k/(k+1) > 0).
-  LAPACKFullMatrix<double> plate(n);
-  plate = 0.;
-  for (unsigned int i = 0; i < n; ++i)
-    plate(i, i) = k;
   Vector<double> load(n);
   for (unsigned int i = 0; i < 3; ++i)
     load[i] = -k * b[i];
   for (unsigned int i = 3; i < n; ++i)
     load[i] = k;
 
-  MatrixFoundation foundation;
-  foundation.build(space, {});
-  Parameters::Contact contact;
-  contact.method         = Parameters::Contact::Method::active_set;
-  contact.max_iterations = 50;
-  contact.tolerance      = 1e-8;
-  std::ostringstream  log;
-  const ContactSolver solver(contact, true, 1, log);
-  const ContactState  state = solver.solve(plate, load, foundation, space, {});
+  const FullMatrix<double> f = flexibility();
+  const std::vector<bool>  supported(n, true);
+  ActiveSetUpdate          active_set(space, supported, {});
+  std::ostringstream       log;
+  ContactState             state;
+  for (state.iterations = 1; state.iterations <= 50; ++state.iterations)
+    {
+      solve_on_set(active_set.contact_set(), f, load, state);
+      const double q_scale   = std::max(state.q.linfty_norm(), 1e-300);
+      const double gap_scale = std::max(state.w.linfty_norm(), 1e-300);
+      if (active_set.step(state.q,
+                          state.gap,
+                          1e-12 * q_scale,
+                          1e-12 * gap_scale,
+                          state.iterations,
+                          1,
+                          log))
+        {
+          state.converged = true;
+          break;
+        }
+    }
+  evaluate_contact_conditions(state.w, supported, state);
   deallog << log.str();
   const bool cycle_seen = log.str().find("cycle detected") != std::string::npos;
   deallog << "cycle detected and handled: " << (cycle_seen ? "ok" : "FAILED")

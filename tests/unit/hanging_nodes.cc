@@ -46,19 +46,13 @@ namespace
                                                   parameters.discretization);
     result.plate->setup(mesh);
     result.plate->assemble_loads(parameters.loads, 0.);
-    LAPACKFullMatrix<double> stiffness;
-    Vector<double>           load;
-    result.plate->condense(stiffness, load);
-    result.foundation = create_foundation_operator(parameters, "dense");
+    result.foundation = create_foundation_operator(
+      parameters, Parameters::FoundationOperator::Storage::dense);
     result.foundation->build(result.plate->get_foundation_space(), {});
     std::ostringstream  log;
-    const ContactSolver solver(parameters.contact, false, 0, log);
-    result.state = solver.solve(stiffness,
-                                load,
-                                *result.foundation,
-                                result.plate->get_foundation_space(),
-                                {});
-    result.plate->expand(result.state.w, result.solution);
+    DirectContactSolver solver(parameters.contact, false, 0, log);
+    result.state    = solver.solve(*result.plate, *result.foundation, {});
+    result.solution = result.state.plate_solution;
     return result;
   }
 } // namespace

@@ -1,6 +1,6 @@
-// The iterative contact solver (iterative_contact_solver.h: projected
+// The iterative contact solver (contact/iterative_solver.h: projected
 // preconditioned conjugate gradients on the contact pressures, sparse plate,
-// no dense coupled matrix) against the direct ContactSolver on the same
+// no dense coupled matrix) against the direct contact solver on the same
 // plate and half-space operator:
 //  - the flexible square as a thin concrete slab (t = 0.1 m, E = 30 GPa:
 //    characteristic length l = 0.46 m on a 4 m square; bonded, Galerkin,
@@ -12,7 +12,7 @@
 //  - example 2 on a quarter (Symmetry = xy: only w = 1 is a rigid motion)
 //    and the eccentric disk on a half (Symmetry = y: w = 1 and x).
 // The scenes use the serendipity element, so both solvers state contact in
-// the positive pressure basis (foundation_operator.h): q = T qt. Same w,
+// the positive pressure basis (halfspace/interface.h): q = T qt. Same w,
 // nodal q and coefficients qt to 1e-8 relative to their largest values, the
 // same active set and reported contact (where q > 0), the same active-set
 // steps when every set is solved to the tolerance, fewer CG iterations in
@@ -49,7 +49,7 @@ namespace
   }
 
   ContactState
-  solve_iteratively(const PlateOnHalfspaceProblem  &problem,
+  solve_iteratively(PlateOnHalfspaceProblem        &problem,
                     const bool                      tensionless,
                     const ConjugateGradientControl &control)
   {
@@ -57,10 +57,9 @@ namespace
     contact.method         = Parameters::Contact::Method::active_set;
     contact.max_iterations = 100;
     contact.tolerance      = 1e-10;
-    std::ostringstream             log;
-    const DenseGalerkinFlexibility flexibility(problem.foundation());
-    const IterativeContactSolver solver(contact, tensionless, control, 0, log);
-    return solver.solve(problem.plate(), problem.foundation(), flexibility, {});
+    std::ostringstream     log;
+    IterativeContactSolver solver(contact, tensionless, control, 0, log);
+    return solver.solve(problem.plate(), problem.foundation(), {});
   }
 
   void
@@ -261,7 +260,7 @@ main()
 
   // A CG that cannot reach the tolerance fails loudly.
   const auto expect_error = [](const std::string              &name,
-                               const PlateOnHalfspaceProblem  &problem,
+                               PlateOnHalfspaceProblem        &problem,
                                const bool                      tensionless,
                                const ConjugateGradientControl &control) {
     try

@@ -1,5 +1,5 @@
 // The plate-to-soil stiffness ratio R = E t^3 / (E0 L^3) (L = span) over
-// 16 decades at each end, issue 5. Two limits are exact:
+// 16 decades at each end. Two limits are exact:
 // - very flexible: the settlement of a uniformly loaded rectangle,
 //   1.1221997 q B (1 - nu0^2) / E0 at the centre of a square (the closed
 //   form of doc/formulation.md; parameters/flexible-square.prm, collocation,
@@ -33,10 +33,24 @@ namespace
   rigid_plate_deflection(const PlateOnHalfspaceProblem &problem,
                          const double                   load)
   {
+    // q = F^{-1} B 1 on the supported nodes, F from the operator's entries
     const FoundationOperator &foundation = problem.foundation();
-    Vector<double>            ones(problem.contact_state().w.size()), q, forces;
+    const unsigned int        n          = foundation.n_nodes();
+    std::vector<unsigned int> nodes;
+    for (unsigned int i = 0; i < n; ++i)
+      if (foundation.supported_nodes()[i])
+        nodes.push_back(i);
+    LAPACKFullMatrix<double> flexibility;
+    foundation.copy_block(nodes, flexibility);
+    flexibility.compute_lu_factorization();
+    Vector<double> ones(n), tested(n), q_nodes(nodes.size()), q(n), forces;
     ones = 1.;
-    foundation.solve(ones, q);
+    foundation.test_coupling().vmult(tested, ones);
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      q_nodes[i] = tested[nodes[i]];
+    flexibility.solve(q_nodes);
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      q[nodes[i]] = q_nodes[i];
     foundation.nodal_forces(q, forces);
     return load / std::accumulate(forces.begin(), forces.end(), 0.);
   }

@@ -1,5 +1,5 @@
 /**
- * The paper's collocation half-space operator (doc/formulation.md, "Paper
+ * The paper's collocation half-space operator (doc/formulation.md, "Paper's
  * variant"; (P4)-(P17)): each cell split into 3x3 sub-rectangles around its
  * Gauss points, the pressure constant on each and equal to its Gauss-point
  * value, the settlement collocated at the nodes with the closed-form
@@ -13,7 +13,8 @@
 namespace PlateOnHalfspace
 {
   /**
-   * Dense collocation operator: F = G (LU), B = I, S = E G^{-1} = K_G (P17).
+   * Dense collocation operator: F = G, B = I; the foundation stiffness of a
+   * direct solver is then E G^{-1} = K_G (P17).
    * Needs axis-aligned rectangular cells (the closed-form integral (P5)).
    */
   class BoussinesqCollocationOperator : public FoundationOperator
@@ -26,15 +27,11 @@ namespace PlateOnHalfspace
     build(const FoundationSpace   &space,
           const std::vector<bool> &cell_in_foundation) override;
     void
-    set_contact_nodes(const std::vector<bool> &in_contact) override;
-    void
     apply(const Vector<double> &q, Vector<double> &s) const override;
+    /** Copies from the dense G. */
     void
-    plate_settlement(const Vector<double> &w, Vector<double> &b) const override;
-    void
-    solve(const Vector<double> &w, Vector<double> &q) const override;
-    void
-    add_stiffness(LAPACKFullMatrix<double> &matrix) const override;
+    copy_block(const std::vector<unsigned int> &nodes,
+               LAPACKFullMatrix<double>        &block) const override;
     bool
     is_symmetric() const override
     {

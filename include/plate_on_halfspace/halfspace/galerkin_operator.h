@@ -15,7 +15,7 @@ namespace PlateOnHalfspace
    * integrate the inner integral with deal.II's QSplit(QDuffy) rule split at
    * the (projected) outer point, which removes the 1/r singularity, so
    * general straight-sided quadrilaterals work (disks, Gmsh meshes).
-   * F = A (SPD, Cholesky), B = M.
+   * F = A (SPD), B = M (T^T A T and T^T M in the positive pressure basis).
    */
   class BoussinesqGalerkinOperator : public FoundationOperator
   {
@@ -37,15 +37,13 @@ namespace PlateOnHalfspace
     build(const FoundationSpace   &space,
           const std::vector<bool> &cell_in_foundation) override;
     void
-    set_contact_nodes(const std::vector<bool> &in_contact) override;
-    void
     apply(const Vector<double> &q, Vector<double> &s) const override;
     void
     plate_settlement(const Vector<double> &w, Vector<double> &b) const override;
+    /** Copies from the dense flexibility of the foundation cells. */
     void
-    solve(const Vector<double> &w, Vector<double> &q) const override;
-    void
-    add_stiffness(LAPACKFullMatrix<double> &matrix) const override;
+    copy_block(const std::vector<unsigned int> &nodes,
+               LAPACKFullMatrix<double>        &block) const override;
     bool
     is_symmetric() const override
     {

@@ -1,25 +1,26 @@
 /**
- * The interface behind which the half-space sits (doc/formulation.md,
- * "Half-space"): build it for a mesh, apply it to pressures, and solve it for
- * the pressures that produce a given plate deflection on the set of nodes in
- * contact. The plate, the contact solver and the output only talk to this
- * interface, so that a compressed (hierarchical) or distributed operator can
- * replace the dense ones without touching them.
+ * The half-space family's interface (doc/architecture.md, "Half-space";
+ * doc/formulation.md, "Half-space"): an operator built on the foundation
+ * space of the plate that applies the soil's flexibility to pressures and
+ * couples it to the plate. Every storage (dense, hierarchical) and every
+ * flexibility (Galerkin, collocation) honours all of it; how a contact
+ * solver factorises or preconditions the flexibility is the solver's
+ * business, built from what this interface offers.
  *
- * Both variants share the same algebraic form. With F the flexibility
- * (galerkin: the symmetric A, weak settlements; collocation: the paper's
- * nodal G) and B the matching plate operator (galerkin: M, collocation: I),
+ * The algebraic form shared by all variants. With F the flexibility
+ * (Galerkin: the symmetric A, weak settlements; collocation: the paper's
+ * nodal G) and B the matching test coupling (Galerkin: M, collocation: I),
  *   settlement of the soil surface       s = F q,
  *   the same for the plate               b = B w,
  *   gap (soil surface minus plate)       g = s - b,
  *   pressures on the contact set C       q_C = F_CC^{-1} b_C,  q = 0 off C,
- *   nodal forces on the plate            Q = M q   (the paper's E q),
- *   foundation stiffness                 S = M_{:,C} F_CC^{-1} B_{C,:}.
+ *   nodal forces on the plate            Q = M q   (the paper's E q).
  * With serendipity elements the Galerkin variant states the contact
- * conditions in the positive pressure basis of foundation_space.h: q are
- * its coefficients, F = T^T A T, B = T^T M, the forces M T q, and
- * nodal_pressure() gives the nodal values T q.
- * Units: q force/length^2, w and s length (galerkin s: length^3).
+ * conditions in the positive pressure basis (doc/formulation.md,
+ * "Positive pressure basis"): q are its coefficients, F = T^T A T,
+ * B = T^T M, the forces M T q, and nodal_pressure() gives the nodal values
+ * T q.
+ * Units: q force/length^2, w and s length (Galerkin s: length^3).
  */
 #ifndef plate_on_halfspace_halfspace_interface_h
 #define plate_on_halfspace_halfspace_interface_h
@@ -40,6 +41,26 @@ namespace PlateOnHalfspace
 {
   using namespace dealii;
 
+  /**
+   * An approximation of F^{-1} on all foundation nodes, symmetric positive
+   * definite for a symmetric F: what an iterative contact solver
+   * preconditions with. Each storage makes the one it can afford
+   * (FoundationOperator::make_approximate_inverse()).
+   */
+  class ApproximateInverse
+  {
+  public:
+    virtual ~ApproximateInverse() = default;
+
+    /** q = F̃^{-1} s. Must not change between calls. */
+    virtual void
+    vmult(Vector<double> &q, const Vector<double> &s) const = 0;
+
+    /** Bytes held by the approximation. */
+    virtual std::size_t
+    memory_consumption() const = 0;
+  };
+
   /** Abstract half-space operator (see the file documentation). */
   class FoundationOperator
   {
@@ -49,43 +70,62 @@ namespace PlateOnHalfspace
     /**
      * Build the operator on @p space. @p cell_in_foundation (one flag per
      * cell of the space; empty = all) lists the cells whose area carries
-     * pressure: the paper's element exclusion removes cells here. All nodes
-     * start in contact.
+     * pressure: the paper's element exclusion removes cells here.
      */
     virtual void
     build(const FoundationSpace   &space,
           const std::vector<bool> &cell_in_foundation) = 0;
 
-    /**
-     * Restrict to the nodes in contact (one flag per node) and factorise
-     * F_CC. Nodes that no foundation cell touches are never in contact.
-     * Throws if F_CC cannot be factorised.
-     */
-    virtual void
-    set_contact_nodes(const std::vector<bool> &in_contact) = 0;
-
-    /** s = F q (settlement of the soil surface, in the operator's sense). */
+    /** s = F q on all nodes (the settlement, tested over the plate). */
     virtual void
     apply(const Vector<double> &q, Vector<double> &s) const = 0;
 
-    /** b = B w (the plate deflection, in the same sense as apply()). */
-    virtual void
-    plate_settlement(const Vector<double> &w, Vector<double> &b) const = 0;
-
-    /** q with q_C = F_CC^{-1} (B w)_C and q = 0 off the contact set. */
-    virtual void
-    solve(const Vector<double> &w, Vector<double> &q) const = 0;
-
     /**
-     * Add the foundation stiffness S (see file doc) to the dense matrix
-     * @p matrix of size n_nodes x n_nodes.
+     * b = B w on all nodes: the plate deflection in the sense of apply()
+     * (tested over the whole plate, also under excluded cells).
      */
     virtual void
-    add_stiffness(LAPACKFullMatrix<double> &matrix) const = 0;
+    plate_settlement(const Vector<double> &w, Vector<double> &b) const;
 
-    /** Whether S is symmetric (then the coupled matrix is SPD). */
+    /**
+     * The block F_NN of the flexibility of the foundation cells on the
+     * nodes @p nodes (in that order): what the contact conditions invert on
+     * a contact set N. With every cell in the foundation these are entries
+     * of apply()'s matrix. The default applies the operator to unit vectors
+     * (any storage can do it; the dense ones copy).
+     */
+    virtual void
+    copy_block(const std::vector<unsigned int> &nodes,
+               LAPACKFullMatrix<double>        &block) const;
+
+    /**
+     * An approximate inverse of apply()'s F on all nodes (built with every
+     * cell in the foundation). The default is the Cholesky factor of the
+     * dense F (n^2 memory, n^3/3 operations); a compressed storage gives
+     * its own factorisation. The operator must outlive the result. Throws
+     * ExcMessage naming the entry to change if F is not positive definite.
+     */
+    virtual std::unique_ptr<ApproximateInverse>
+    make_approximate_inverse();
+
+    /** Whether F is symmetric (then the coupled problem is SPD). */
     virtual bool
     is_symmetric() const = 0;
+
+    /** "dense" or the name of a compressed storage. */
+    virtual std::string
+    storage_name() const = 0;
+
+    /** Bytes held by the operator's matrices. */
+    virtual std::size_t
+    memory_consumption() const = 0;
+
+    /** Number of foundation nodes. */
+    unsigned int
+    n_nodes() const
+    {
+      return node_supported.size();
+    }
 
     /** Nodal forces Q = M q (M T q in the positive basis) on the plate. */
     void
@@ -104,13 +144,6 @@ namespace PlateOnHalfspace
         const Vector<double> &q,
         Vector<double>       &g) const;
 
-    /** Contact flags of the nodes. */
-    const std::vector<bool> &
-    contact_nodes() const
-    {
-      return in_contact;
-    }
-
     /** Nodes that some foundation cell touches. */
     const std::vector<bool> &
     supported_nodes() const
@@ -118,10 +151,7 @@ namespace PlateOnHalfspace
       return node_supported;
     }
 
-    /**
-     * The mass matrix M (the paper's E) of the nodal values; the contact
-     * conditions use test_coupling() and force_coupling().
-     */
+    /** The mass matrix M (the paper's E) of the nodal values. */
     const SparseMatrix<double> &
     mass_matrix() const
     {
@@ -129,21 +159,19 @@ namespace PlateOnHalfspace
     }
 
     /**
-     * B of the Galerkin variant over the foundation cells: T^T M (M without
-     * the positive basis). It tests the plate's deflection with the
-     * pressure basis: plate_settlement() when every cell is in the
-     * foundation.
+     * B over the foundation cells, the test coupling of the contact
+     * conditions: T^T M in the positive basis, M for the other Galerkin
+     * variants, the identity for collocation.
      */
     const SparseMatrix<double> &
     test_coupling() const
     {
-      return positive_basis ? tested_mass : mass;
+      return tests;
     }
 
     /**
      * The forces' matrix: M T (M without the positive basis), the nodal
-     * forces M T q of pressure coefficients q (nodal_forces()); the
-     * transpose of test_coupling().
+     * forces M T q of pressure coefficients q (nodal_forces()).
      */
     const SparseMatrix<double> &
     force_coupling() const
@@ -152,27 +180,13 @@ namespace PlateOnHalfspace
     }
 
     /**
-     * LAPACK's estimate of 1/κ₁ of the flexibility block F_CC of the
-     * current contact set (condition_estimate.h).
-     */
-    double
-    contact_block_reciprocal_condition_number() const
-    {
-      return contact_block_rcond;
-    }
-
-    /**
      * Wall times (seconds) of the parts of build() that are not
-     * integration: compressing the flexibility (hierarchical storage) and
-     * factorising it (the H-Cholesky factor of A, or the dense F_CC of all
-     * nodes in contact; for the dense operators the latest factorisation,
-     * so read it right after build(), before set_contact_nodes()). The
+     * integration: compressing the flexibility (compressed storage). The
      * rest of build() integrates.
      */
     struct BuildTimes
     {
-      double compression   = 0;
-      double factorization = 0;
+      double compression = 0;
     };
 
     const BuildTimes &
@@ -180,14 +194,6 @@ namespace PlateOnHalfspace
     {
       return times;
     }
-
-    /** "dense" or the name of a compressed storage. */
-    virtual std::string
-    storage_name() const = 0;
-
-    /** Bytes held by the operator's matrices and factorisations. */
-    virtual std::size_t
-    memory_consumption() const = 0;
 
   protected:
     /** Assemble M over the foundation cells and mark supported nodes. */
@@ -197,11 +203,17 @@ namespace PlateOnHalfspace
 
     /**
      * State the pressure in the positive basis of @p space where it has
-     * one (foundation_space.h): sets T and the couplings T^T M and M T.
-     * Call after build_mass_matrix().
+     * one (foundation_space.h), or keep nodal values if
+     * @p positive_pressure_basis is false: sets T and the couplings B and
+     * M T. Call after build_mass_matrix().
      */
     void
-    use_positive_pressure_basis(const FoundationSpace &space);
+    set_pressure_basis(const FoundationSpace &space,
+                       const bool             positive_pressure_basis);
+
+    /** Make the test coupling B the identity (collocation). */
+    void
+    use_identity_test_coupling();
 
     /** F <- T^T F T in place (nothing without the positive basis). */
     void
@@ -213,53 +225,31 @@ namespace PlateOnHalfspace
                     SparsityPattern            &sparsity,
                     SparseMatrix<double>       &tested) const;
 
-    /**
-     * Store the contact set (restricted to supported nodes) and factorise
-     * F_CC of the dense @p flexibility: Cholesky if @p symmetric, else LU.
-     * Throws ExcMessage(@p failure) if the factorisation fails.
-     */
-    void
-    factorise_contact_block(const std::vector<bool>        &requested,
-                            const LAPACKFullMatrix<double> &flexibility,
-                            const bool                      symmetric,
-                            const std::string              &failure);
+    /** Bytes of the members of this class. */
+    std::size_t
+    coupling_memory_consumption() const;
 
-    /** q_C = F_CC^{-1} b_C and q = 0 off the contact set. */
-    void
-    solve_contact_block(const Vector<double> &b, Vector<double> &q) const;
-
-    /**
-     * matrix += M_{:,C} F_CC^{-1} @p rows, where @p rows (|C| x n, the
-     * contact rows of B) is overwritten.
-     */
-    void
-    add_mass_times_contact_inverse(LAPACKFullMatrix<double> &rows,
-                                   LAPACKFullMatrix<double> &matrix) const;
-
-    SparsityPattern           mass_sparsity;
-    SparseMatrix<double>      mass;
-    std::vector<bool>         node_supported;
-    std::vector<bool>         in_contact;
-    std::vector<unsigned int> contact_index;  ///< the nodes of C
-    LAPACKFullMatrix<double>  contact_factor; ///< factor of F_CC
-    double                    contact_block_rcond = 1.;
-    BuildTimes                times;
+    SparsityPattern      mass_sparsity;
+    SparseMatrix<double> mass;
+    std::vector<bool>    node_supported;
+    BuildTimes           times;
 
     bool                 positive_basis = false;
-    SparsityPattern      transform_sparsity, tested_sparsity, force_sparsity;
-    SparseMatrix<double> transform;   ///< T: nodal values from coefficients
-    SparseMatrix<double> tested_mass; ///< T^T M
-    SparseMatrix<double> force_mass;  ///< M T
+    SparsityPattern      transform_sparsity, tests_sparsity, force_sparsity;
+    SparseMatrix<double> transform;  ///< T: nodal values from coefficients
+    SparseMatrix<double> tests;      ///< B
+    SparseMatrix<double> force_mass; ///< M T
   };
 
   /**
    * Make the operator the scene asks for (Discretization/Flexibility and
-   * Foundation operator/Tolerance) with @p storage, "dense" or
-   * "hierarchical" (SceneParameters::foundation_storage()).
+   * Foundation operator/Tolerance) with @p storage, dense or hierarchical
+   * (SceneParameters::foundation_storage(), auto resolved).
    */
   std::unique_ptr<FoundationOperator>
-  create_foundation_operator(const SceneParameters &parameters,
-                             const std::string     &storage);
+  create_foundation_operator(
+    const SceneParameters                        &parameters,
+    const Parameters::FoundationOperator::Storage storage);
 } // namespace PlateOnHalfspace
 
 #endif

@@ -1,5 +1,5 @@
 /**
- * Results of a run in the output directory (doc/parameters.md, "Results"):
+ * Results of a run in the output directory (doc/outputs.md):
  * summary.json (written atomically after every cycle), profile-NN.csv,
  * solution-NN.vtu with solution.pvd, and convergence.txt.
  */
@@ -11,7 +11,7 @@
 
 #include <deal.II/lac/vector.h>
 
-#include <plate_on_halfspace/contact/direct_solver.h>
+#include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
 #include <string>
@@ -87,7 +87,7 @@ namespace PlateOnHalfspace
     std::string
     abandon();
 
-    /** Whether @p name is one of the files a run writes (doc/parameters.md). */
+    /** Whether @p name is one of the files a run writes (doc/outputs.md). */
     static bool
     is_result_file(const std::string &name);
 

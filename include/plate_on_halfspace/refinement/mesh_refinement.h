@@ -12,7 +12,7 @@
 
 #include <deal.II/lac/vector.h>
 
-#include <plate_on_halfspace/contact/direct_solver.h>
+#include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 #include <plate_on_halfspace/scene/parameters.h>
 

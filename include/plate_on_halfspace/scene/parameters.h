@@ -64,11 +64,17 @@ namespace PlateOnHalfspace
       parse_parameters(ParameterHandler &prm);
     };
 
-    /** subsection Foundation operator: storage of the dense blocks. */
+    /** subsection Foundation operator: how the half-space is stored. */
     struct FoundationOperator
     {
-      std::string storage; ///< auto | dense | hierarchical
-      double      tolerance;
+      enum class Storage
+      {
+        dense,        ///< every entry (LAPACK)
+        hierarchical, ///< an H-matrix (hmat-oss)
+        automatic     ///< hierarchical from Hierarchical from nodes
+      };
+      Storage storage;
+      double  tolerance;
       /** Storage = auto: hierarchical from this many foundation nodes. */
       unsigned int hierarchical_from;
 
@@ -159,7 +165,7 @@ namespace PlateOnHalfspace
       /** How each contact set's coupled problem is solved. */
       enum class Solver
       {
-        direct,    ///< ContactSolver: dense condensed plate + LAPACK
+        direct,    ///< DirectContactSolver: dense condensed plate + LAPACK
         iterative, ///< IterativeContactSolver: sparse plate + CG
         automatic  ///< iterative with hierarchical storage, else direct
       };
@@ -256,16 +262,16 @@ namespace PlateOnHalfspace
 
     /**
      * The storage of the half-space operator in a cycle with
-     * @p n_foundation_nodes nodes: "dense" or "hierarchical" (Foundation
+     * @p n_foundation_nodes nodes: dense or hierarchical (Foundation
      * operator/Storage, with auto resolved).
      */
-    std::string
+    Parameters::FoundationOperator::Storage
     foundation_storage(const unsigned int n_foundation_nodes) const;
 
-    /** Whether such a cycle solves contact iteratively (Contact/Solver,
-     *  with auto resolved). */
-    bool
-    iterative_contact_solver(const unsigned int n_foundation_nodes) const;
+    /** The contact solver of such a cycle: direct or iterative
+     *  (Contact/Solver, with auto resolved). */
+    Parameters::Contact::Solver
+    contact_solver(const unsigned int n_foundation_nodes) const;
 
     /** Declare, read @p filename, parse and check. Throws on bad input. */
     void

@@ -1,0 +1,143 @@
+/**
+ * What both contact solvers share of the primal-dual active set method
+ * (doc/formulation.md, "Tensionless contact"; deal.II step-41): whether a
+ * contact set can carry the plate, the one message for a plate that it
+ * cannot, the measures of the contact conditions, and the set update.
+ */
+#ifndef plate_on_halfspace_contact_active_set_h
+#define plate_on_halfspace_contact_active_set_h
+
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/contact/interface.h>
+#include <plate_on_halfspace/plate/foundation_space.h>
+
+#include <ostream>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /**
+   * The message of every refusal of a contact set that cannot carry the
+   * plate, with what the user can change.
+   */
+  std::string
+  plate_is_mechanism_message();
+
+  /**
+   * Whether the nodes flagged in @p in_contact can carry a plate: at least
+   * three of them (with their mirror images), not on one line
+   * (doc/formulation.md: fewer than three non-collinear supporting points make
+   * the plate a mechanism).
+   */
+  bool
+  contact_set_supports_plate(const FoundationSpace   &space,
+                             const std::vector<bool> &in_contact);
+
+  /**
+   * Fill complementarity_violation, tensile_nodes and max_penetration of
+   * @p state from its q and gap (which must be set), with @p plate_settlement
+   * = B w giving the gap's scale and @p supported the nodes under the
+   * foundation (the only ones whose gap is constrained).
+   */
+  void
+  evaluate_contact_conditions(const Vector<double>    &plate_settlement,
+                              const std::vector<bool> &supported,
+                              ContactState            &state);
+
+  /**
+   * The set update of the primal-dual active set method (doc/formulation.md,
+   * "Tensionless contact"; deal.II step-41): C = {i : q_i + c g_i > 0}.
+   * On C the gap is zero and off C the pressure is, so the test reads
+   * q_i < 0 on C and g_i < 0 (penetration) off C; c only balances the units.
+   * If a full step returns to a set seen before (a cycle), it falls back to
+   * Murty's least-index rule, one status change per step, which terminates
+   * for the SPD Galerkin problem. Every step keeps a set that carries the
+   * plate (contact_set_supports_plate()): a full step that would leave a
+   * mechanism takes every entry, then the exits in order while the rest
+   * still carries the plate; a single pivot is the least index whose change
+   * keeps the set carrying. Shared by the direct and the iterative contact
+   * solvers so that both walk the same sequence of sets.
+   */
+  class ActiveSetUpdate
+  {
+  public:
+    /**
+     * Start from the @p supported nodes, restricted to @p initial_contact
+     * (e.g. the previous cycle's set) if that has the right size and can
+     * carry the plate.
+     */
+    ActiveSetUpdate(const FoundationSpace   &space,
+                    const std::vector<bool> &supported,
+                    const std::vector<bool> &initial_contact);
+
+    /** The current contact set. */
+    const std::vector<bool> &
+    contact_set() const
+    {
+      return active;
+    }
+
+    /**
+     * One step after a solve on the current set with solution (@p q,
+     * @p gap): count the violated conditions (signs below @p q_tolerance
+     * and @p g_tolerance are rounding), log iteration @p iteration at
+     * @p verbosity > 0, and return true if none is violated (converged).
+     * Otherwise move to the next set: the full step, or one status change
+     * once a cycle has switched on single pivots, kept to a set that
+     * carries the plate (see the class documentation). Throws ExcMessage
+     * if no change keeps the plate carried (a load at the edge of a
+     * weightless plate).
+     */
+    bool
+    step(const Vector<double> &q,
+         const Vector<double> &gap,
+         const double          q_tolerance,
+         const double          g_tolerance,
+         const unsigned int    iteration,
+         const unsigned int    verbosity,
+         std::ostream         &log);
+
+  private:
+    /** Size of the current contact set. */
+    unsigned int
+    n_contact_nodes() const;
+
+    /**
+     * Count the violated conditions of (@p q, @p gap) on the current set
+     * and prepare the full step. Returns the number of changes.
+     */
+    unsigned int
+    find_violations(const Vector<double> &q,
+                    const Vector<double> &gap,
+                    const double          q_tolerance,
+                    const double          g_tolerance);
+
+    /**
+     * Record the current set; if the full step find_violations() prepared
+     * returns to a set seen before (a cycle), switch to single pivots and
+     * return true.
+     */
+    bool
+    detect_cycle();
+
+    /** Move to the next set (see step()). */
+    void
+    advance();
+
+    const FoundationSpace      &space;
+    std::vector<bool>           supported;
+    std::vector<bool>           active;
+    std::vector<bool>           next;
+    std::vector<unsigned int>   changes; ///< violated entries, least first
+    std::set<std::vector<bool>> visited;
+    bool                        single_pivot_mode = false;
+  };
+
+} // namespace PlateOnHalfspace
+
+#endif

@@ -1,0 +1,101 @@
+/**
+ * The contact iteration both contact solvers run (doc/formulation.md,
+ * "Tensionless contact"): the scene checks, bonded contact as one solve,
+ * the paper's element exclusion, and the primal-dual active set with
+ * inexact solves while the set changes. A solver supplies only what
+ * differs: how it prepares a cycle and how it solves the coupled problem on
+ * one contact set.
+ */
+#ifndef plate_on_halfspace_contact_contact_iteration_h
+#define plate_on_halfspace_contact_contact_iteration_h
+
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/contact/interface.h>
+
+#include <ostream>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /** The shared part of every contact solver (see the file documentation). */
+  class ContactIteration : public ContactSolver
+  {
+  public:
+    ContactIteration(const Parameters::Contact &contact,
+                     const bool                 tensionless,
+                     const unsigned int         verbosity,
+                     std::ostream              &log);
+
+    ContactState
+    solve(MindlinPlate            &plate,
+          FoundationOperator      &foundation,
+          const std::vector<bool> &seed) final;
+
+  protected:
+    /**
+     * Once per solve(), before any contact set: set up what every set
+     * shares, and record in @p state the time and memory of the solver's
+     * factorisation of the flexibility.
+     */
+    virtual void
+    prepare(MindlinPlate       &plate,
+            FoundationOperator &foundation,
+            ContactState       &state) = 0;
+
+    /**
+     * The coupled problem with the gap closed on @p contact_set (a subset
+     * of the supported nodes that carries the plate) and no pressure off
+     * it, solved to the relative accuracy @p tolerance (0: a direct solve),
+     * warm started from state.q if it has the right size. Fills w, q (the
+     * coefficients of the contact basis), gap, plate_solution and
+     * in_contact of @p state and returns B w.
+     */
+    virtual Vector<double>
+    solve_on_set(const std::vector<bool> &contact_set,
+                 const double             tolerance,
+                 ContactState            &state) = 0;
+
+    /** Relative accuracy of the solves while the active set changes. */
+    virtual double
+    changing_set_tolerance() const
+    {
+      return 0;
+    }
+
+    /** Relative accuracy of the solve that confirms the last set. */
+    virtual double
+    final_tolerance() const
+    {
+      return 0;
+    }
+
+    const Parameters::Contact contact;
+    const bool                tensionless;
+    const unsigned int        verbosity;
+    std::ostream             &log;
+    /** The problem of the current solve() (set for its duration). */
+    MindlinPlate       *plate      = nullptr;
+    FoundationOperator *foundation = nullptr;
+
+  private:
+    void
+    solve_bonded(ContactState &state);
+
+    /**
+     * The paper's iteration: drop every cell with more than half of its
+     * nodal pressures tensile, rebuild the operator, repeat until the
+     * displacements stop changing.
+     */
+    void
+    solve_by_element_exclusion(ContactState &state);
+
+    /** The primal-dual active set from @p seed (ActiveSetUpdate). */
+    void
+    solve_by_active_set(const std::vector<bool> &seed, ContactState &state);
+  };
+} // namespace PlateOnHalfspace
+
+#endif

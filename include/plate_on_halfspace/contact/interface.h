@@ -1,0 +1,127 @@
+/**
+ * The contact family's interface (doc/architecture.md, "Contact";
+ * doc/formulation.md, "Tensionless contact"): solve the plate on the
+ * half-space, bonded or tensionless, starting from a seed of the contact
+ * set, and return the state of the foundation. The direct solver (the plate
+ * condensed onto the foundation nodes, dense LAPACK) and the iterative one
+ * (the sparse plate, projected conjugate gradients on the contact
+ * pressures) both implement it; the active-set step, the scene checks, the
+ * rigid motions and the mechanism diagnosis they share are written once
+ * (contact_iteration.h, active_set.h, plate/generalized_inverse.h).
+ */
+#ifndef plate_on_halfspace_contact_interface_h
+#define plate_on_halfspace_contact_interface_h
+
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/scene/parameters.h>
+
+#include <memory>
+#include <ostream>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  class FoundationOperator;
+  class MindlinPlate;
+
+  /** The state of the foundation after a contact solve (foundation nodes). */
+  struct ContactState
+  {
+    Vector<double> w; ///< plate deflection at the foundation nodes
+    Vector<double> q; ///< nodal contact pressure, compression positive
+    /**
+     * The pressure's coefficients in the basis of the contact conditions
+     * (equal to q unless the positive pressure basis is used,
+     * doc/formulation.md, "Positive pressure basis"): what complementarity,
+     * tensile_nodes and FoundationOperator::nodal_forces() refer to.
+     */
+    Vector<double> pressure_coefficients;
+    Vector<double> gap; ///< F q - B w: soil surface minus plate
+    /**
+     * The plate's full solution vector (w, beta_x, beta_y at every DoF,
+     * constraints distributed).
+     */
+    Vector<double> plate_solution;
+    /** Where the pressure acts: the active set and every node with q > 0. */
+    std::vector<bool> in_contact;
+    /**
+     * The solver's active set (coefficients free to carry pressure): what
+     * the next cycle's iteration starts from.
+     */
+    std::vector<bool> active_set;
+    std::vector<bool> cell_in_foundation; ///< element exclusion's cell set
+    unsigned int      iterations = 0;
+    bool              converged  = false;
+    /**
+     * max of (-min q)+, (-min gap)+, max |q gap|, each relative to the
+     * problem's scale (max |q|, max |B w|) (doc/outputs.md).
+     */
+    double complementarity_violation = 0;
+    /** Nodes in contact with a tensile pressure (q < 0). */
+    unsigned int tensile_nodes = 0;
+    /** Largest penetration -gap, relative to max |B w| (0 if none). */
+    double max_penetration = 0;
+    /**
+     * LAPACK's estimates of 1/κ₁ of the coupled matrix K̄ + S and of the
+     * flexibility block F_CC of the last contact set (direct solver;
+     * condition_estimate.h); 1 where the solver forms no such matrix.
+     */
+    double coupled_rcond = 1, contact_block_rcond = 1;
+    /**
+     * Wall time (s) the solver spent factorising the half-space flexibility
+     * (the first contact block, or the approximate inverse), and the bytes
+     * that factor holds.
+     */
+    double      factorization_time_s = 0;
+    std::size_t factor_memory_bytes  = 0;
+
+    /** One linear solve of an iterative contact solver. */
+    struct LinearSolve
+    {
+      unsigned int contact_iteration = 0; ///< 1, 2, ... of the active set
+      unsigned int contact_nodes     = 0; ///< size of the contact set
+      unsigned int iterations        = 0; ///< conjugate gradient iterations
+      /** Achieved |residual| / |settlement| on the contact set
+       *  (recomputed, not the recursive estimate). */
+      double relative_residual = 0;
+    };
+    /** One entry per contact iteration (iterative solvers only). */
+    std::vector<LinearSolve> linear_solves;
+  };
+
+  /** A contact solver (see the file documentation). */
+  class ContactSolver
+  {
+  public:
+    virtual ~ContactSolver() = default;
+
+    /**
+     * Solve for @p plate (set up, loads assembled) on @p foundation (built
+     * on the plate's foundation space with every cell in the foundation).
+     * @p seed (may be empty) seeds the contact set, e.g. transferred from
+     * the previous cycle. Throws ExcMessage naming the reason if the scene
+     * has no load, lifts off as a whole, leaves the plate a mechanism or
+     * cannot be solved to the solver's tolerance.
+     */
+    virtual ContactState
+    solve(MindlinPlate            &plate,
+          FoundationOperator      &foundation,
+          const std::vector<bool> &seed) = 0;
+  };
+
+  /**
+   * The solver @p solver (direct or iterative; SceneParameters::
+   * contact_solver() resolves auto) for the scene's Contact and Foundation
+   * entries. Per-iteration lines go to @p log when @p verbosity > 0.
+   */
+  std::unique_ptr<ContactSolver>
+  create_contact_solver(const SceneParameters            &parameters,
+                        const Parameters::Contact::Solver solver,
+                        const unsigned int                verbosity,
+                        std::ostream                     &log);
+} // namespace PlateOnHalfspace
+
+#endif

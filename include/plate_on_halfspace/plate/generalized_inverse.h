@@ -1,0 +1,68 @@
+/**
+ * The free plate's rigid-body motions and its flexibility without
+ * condensing it (doc/formulation.md, "Plate"): what a contact solver needs
+ * of a plate that only the foundation holds in place.
+ */
+#ifndef plate_on_halfspace_plate_generalized_inverse_h
+#define plate_on_halfspace_plate_generalized_inverse_h
+
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/base/sparse_cholesky.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /**
+   * The rigid-body motions in the kernel of the plate's stiffness K (full
+   * DoF vectors, zero at constrained DoFs): of w = 1, (x - c_x)/L,
+   * (y - c_y)/L with beta = grad w (c the centre of the foundation nodes, L
+   * their largest distance from it), those that the plate's constraints
+   * allow. A mirror plane's beta_n = 0 removes the tilt about that plane;
+   * supports remove all.
+   */
+  std::vector<Vector<double>>
+  rigid_body_motions(const MindlinPlate &plate);
+
+  /**
+   * K^+, a generalised inverse of the sparse stiffness on the unconstrained
+   * DoFs, from one CHOLMOD factorisation with one foundation deflection per
+   * rigid-body motion pinned (chosen by pivoting so that the motions are
+   * well conditioned at the pinned nodes).
+   */
+  class PlateGeneralizedInverse
+  {
+  public:
+    /** Throws ExcMessage if the plate has a mechanism of its own. */
+    explicit PlateGeneralizedInverse(const MindlinPlate &plate);
+
+    /** u = K^+ f (full DoF vectors; zero at constrained and pinned DoFs). */
+    void
+    solve(const Vector<double> &f, Vector<double> &u) const;
+
+    /** y = N K^+ N^T x: deflections at the foundation nodes from nodal
+     *  forces there. */
+    void
+    foundation_flexibility(const Vector<double> &x, Vector<double> &y) const;
+
+    /** rigid_body_motions() of the plate. */
+    const std::vector<Vector<double>> &
+    rigid_motions() const
+    {
+      return motions;
+    }
+
+  private:
+    const std::vector<types::global_dof_index> &foundation_dofs;
+    const unsigned int                          n_dofs;
+    std::vector<Vector<double>>                 motions;
+    std::vector<types::global_dof_index>        solved_dofs;
+    SparseCholesky                              factor;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

@@ -1,0 +1,209 @@
+#include <deal.II/base/exceptions.h>
+
+#include <plate_on_halfspace/contact/active_set.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    double
+    max_abs(const Vector<double> &v)
+    {
+      return v.size() > 0 ? v.linfty_norm() : 0.;
+    }
+  } // namespace
+
+  std::string
+  plate_is_mechanism_message()
+  {
+    return "The plate is a mechanism: the nodes left in contact cannot carry "
+           "it (fewer than three non-collinear supporting nodes). A load on "
+           "or very near the edge of a weightless plate tilts it about that "
+           "edge: move the load inward, refine the mesh there or give the "
+           "plate its weight (Plate/Unit weight).";
+  }
+
+  bool
+  contact_set_supports_plate(const FoundationSpace   &space,
+                             const std::vector<bool> &in_contact)
+  {
+    // The nodes in contact on the whole plate: those of the computed
+    // part and, for a symmetric scene, their mirror images.
+    std::vector<Point<2>> points;
+    for (unsigned int i = 0; i < in_contact.size(); ++i)
+      if (in_contact[i])
+        for (const Point<2> &x : space.symmetry.images(space.node_locations[i]))
+          points.push_back(x);
+    const unsigned int n = points.size();
+    if (n < 3)
+      return false;
+    Point<2> centre;
+    for (const Point<2> &p : points)
+      centre += p / n;
+    double xx = 0, xy = 0, yy = 0, extent = 0;
+    for (const Point<2> &p : points)
+      {
+        const Tensor<1, 2> d = p - centre;
+        xx += d[0] * d[0];
+        xy += d[0] * d[1];
+        yy += d[1] * d[1];
+        extent = std::max(extent, d.norm_square());
+      }
+    // smallest eigenvalue of the 2x2 second-moment matrix
+    const double mean = 0.5 * (xx + yy);
+    const double smallest =
+      mean - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
+    return smallest > 1e-10 * n * extent;
+  }
+
+  void
+  evaluate_contact_conditions(const Vector<double>    &plate_settlement,
+                              const std::vector<bool> &supported,
+                              ContactState            &state)
+  {
+    const double q_scale   = std::max(max_abs(state.q), 1e-300);
+    const double gap_scale = std::max(max_abs(plate_settlement), 1e-300);
+    double       tension = 0, penetration = 0, product = 0;
+    state.tensile_nodes = 0;
+    for (unsigned int i = 0; i < state.q.size(); ++i)
+      {
+        tension = std::max(tension, -state.q[i] / q_scale);
+        if (state.q[i] < 0)
+          ++state.tensile_nodes;
+        // Only the soil under the plate's foundation area is constrained.
+        if (supported[i])
+          {
+            penetration = std::max(penetration, -state.gap[i] / gap_scale);
+            product     = std::max(product,
+                               std::abs(state.q[i] * state.gap[i]) /
+                                 (q_scale * gap_scale));
+          }
+      }
+    state.complementarity_violation =
+      std::max({tension, penetration, product, 0.});
+    state.max_penetration = std::max(penetration, 0.);
+  }
+
+  ActiveSetUpdate::ActiveSetUpdate(const FoundationSpace   &space,
+                                   const std::vector<bool> &supported,
+                                   const std::vector<bool> &initial_contact)
+    : space(space)
+    , supported(supported)
+    , active(supported)
+  {
+    if (initial_contact.size() == active.size() &&
+        contact_set_supports_plate(space, initial_contact))
+      for (unsigned int i = 0; i < active.size(); ++i)
+        active[i] = active[i] && initial_contact[i];
+  }
+
+  unsigned int
+  ActiveSetUpdate::n_contact_nodes() const
+  {
+    return std::count(active.begin(), active.end(), true);
+  }
+
+  unsigned int
+  ActiveSetUpdate::find_violations(const Vector<double> &q,
+                                   const Vector<double> &gap,
+                                   const double          q_tolerance,
+                                   const double          g_tolerance)
+  {
+    next = active;
+    changes.clear();
+    for (unsigned int i = 0; i < active.size(); ++i)
+      {
+        if (!supported[i])
+          continue;
+        const bool violated =
+          active[i] ? (q[i] < -q_tolerance) : (gap[i] < -g_tolerance);
+        if (violated)
+          {
+            next[i] = !active[i];
+            changes.push_back(i);
+          }
+      }
+    return changes.size();
+  }
+
+  bool
+  ActiveSetUpdate::step(const Vector<double> &q,
+                        const Vector<double> &gap,
+                        const double          q_tolerance,
+                        const double          g_tolerance,
+                        const unsigned int    iteration,
+                        const unsigned int    verbosity,
+                        std::ostream         &log)
+  {
+    const unsigned int n_changes =
+      find_violations(q, gap, q_tolerance, g_tolerance);
+    if (verbosity > 0)
+      log << "   contact iteration " << iteration << ": nodes in contact "
+          << n_contact_nodes() << ", changes " << n_changes
+          << (single_pivot_mode ? " (single pivots)" : "") << std::endl;
+    if (n_changes == 0)
+      return true;
+    if (detect_cycle() && verbosity > 0)
+      log << "   contact iteration " << iteration
+          << ": cycle detected, switching to single pivots" << std::endl;
+    advance();
+    return false;
+  }
+
+  bool
+  ActiveSetUpdate::detect_cycle()
+  {
+    visited.insert(active);
+    if (visited.count(next) > 0 && !single_pivot_mode)
+      {
+        // The full step returns to a set seen before: a cycle. Fall back
+        // to Murty's least-index rule, one status change per iteration,
+        // which terminates for the SPD Galerkin problem.
+        single_pivot_mode = true;
+        return true;
+      }
+    return false;
+  }
+
+  void
+  ActiveSetUpdate::advance()
+  {
+    if (single_pivot_mode)
+      {
+        // the least index whose change leaves a set that carries the plate
+        next = active;
+        for (const unsigned int i : changes)
+          {
+            next[i] = !active[i];
+            if (contact_set_supports_plate(space, next))
+              break;
+            next[i] = active[i];
+          }
+      }
+    else if (!contact_set_supports_plate(space, next))
+      {
+        // A plate that lifts off almost entirely (a load at an edge or a
+        // corner) can make the full step drop too many nodes at once. Take
+        // every entry, then the exits in order for as long as the rest
+        // still carries the plate.
+        next = active;
+        for (const unsigned int i : changes)
+          if (!active[i])
+            next[i] = true;
+        for (const unsigned int i : changes)
+          if (active[i])
+            {
+              next[i] = false;
+              if (!contact_set_supports_plate(space, next))
+                next[i] = true;
+            }
+      }
+    AssertThrow(next != active, ExcMessage(plate_is_mechanism_message()));
+    active = next;
+  }
+
+} // namespace PlateOnHalfspace

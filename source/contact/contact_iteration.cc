@@ -1,0 +1,212 @@
+#include <deal.II/base/exceptions.h>
+
+#include <plate_on_halfspace/contact/active_set.h>
+#include <plate_on_halfspace/contact/contact_iteration.h>
+#include <plate_on_halfspace/halfspace/interface.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    double
+    max_abs(const Vector<double> &v)
+    {
+      return v.size() > 0 ? v.linfty_norm() : 0.;
+    }
+
+    /**
+     * Finish a solve done in the contact basis (q holds the coefficients):
+     * store them as pressure_coefficients, make q the nodal values, keep
+     * the active set, and report contact where the pressure acts (the
+     * active set and every node with q > 0: in the positive basis a
+     * mid-side node whose own coefficient is zero still carries
+     * q_m = alpha (qt_c0 + qt_c1)).
+     */
+    void
+    express_in_nodal_values(const FoundationOperator &foundation,
+                            ContactState             &state)
+    {
+      state.pressure_coefficients = state.q;
+      foundation.nodal_pressure(state.pressure_coefficients, state.q);
+      state.active_set                = state.in_contact;
+      const double pressure_tolerance = 1e-12 * max_abs(state.q);
+      for (unsigned int i = 0; i < state.q.size(); ++i)
+        if (state.q[i] > pressure_tolerance)
+          state.in_contact[i] = true;
+    }
+  } // namespace
+
+  ContactIteration::ContactIteration(const Parameters::Contact &contact,
+                                     const bool                 tensionless,
+                                     const unsigned int         verbosity,
+                                     std::ostream              &log)
+    : contact(contact)
+    , tensionless(tensionless)
+    , verbosity(verbosity)
+    , log(log)
+  {}
+
+  ContactState
+  ContactIteration::solve(MindlinPlate            &plate,
+                          FoundationOperator      &foundation,
+                          const std::vector<bool> &seed)
+  {
+    this->plate      = &plate;
+    this->foundation = &foundation;
+    ContactState state;
+    state.cell_in_foundation.assign(plate.get_foundation_space().cells.size(),
+                                    true);
+
+    // Without any load the answer is w = q = 0 whatever the scene: a user
+    // who asks for it has forgotten a load (or put every load off the
+    // plate, which the load assembly refuses first).
+    AssertThrow(plate.get_load_vector().linfty_norm() > 0,
+                ExcMessage("Loads: the total load is zero (Loads/Uniform "
+                           "pressure, Rectangular patches, Circular patches, "
+                           "Point loads and Plate/Unit weight give no load); "
+                           "set at least one non-zero load."));
+    AssertThrow(!tensionless || plate.applied_load() > 0,
+                ExcMessage("The loads lift the plate off a tensionless "
+                           "foundation: their resultant is not downward."));
+
+    prepare(plate, foundation, state);
+    if (!tensionless)
+      solve_bonded(state);
+    else if (contact.method ==
+             Parameters::Contact::Method::element_exclusion)
+      solve_by_element_exclusion(state);
+    else
+      solve_by_active_set(seed, state);
+    express_in_nodal_values(foundation, state);
+    return state;
+  }
+
+  void
+  ContactIteration::solve_bonded(ContactState &state)
+  {
+    const Vector<double> plate_settlement =
+      solve_on_set(foundation->supported_nodes(), final_tolerance(), state);
+    state.iterations = 1;
+    state.converged  = true;
+    evaluate_contact_conditions(plate_settlement,
+                                foundation->supported_nodes(),
+                                state);
+  }
+
+  void
+  ContactIteration::solve_by_element_exclusion(ContactState &state)
+  {
+    const FoundationSpace &space         = plate->get_foundation_space();
+    double                 previous_norm = 0;
+    Vector<double>         plate_settlement;
+    for (state.iterations = 1; state.iterations <= contact.max_iterations;
+         ++state.iterations)
+      {
+        if (state.iterations > 1)
+          foundation->build(space, state.cell_in_foundation);
+        AssertThrow(contact_set_supports_plate(space,
+                                               foundation->supported_nodes()),
+                    ExcMessage(plate_is_mechanism_message()));
+        plate_settlement =
+          solve_on_set(foundation->supported_nodes(), final_tolerance(), state);
+        const double norm = state.w.l2_norm();
+        const double change =
+          std::abs(norm - previous_norm) / std::max(norm, 1e-300);
+        previous_norm = norm;
+
+        // the paper's criterion is on the nodal pressures
+        Vector<double> nodal_q;
+        foundation->nodal_pressure(state.q, nodal_q);
+        unsigned int n_excluded = 0;
+        bool         changed    = false;
+        for (unsigned int c = 0; c < space.cells.size(); ++c)
+          {
+            if (!state.cell_in_foundation[c])
+              {
+                ++n_excluded;
+                continue;
+              }
+            const std::vector<unsigned int> nodes = space.cells[c].nodes();
+            unsigned int                    n_tensile = 0;
+            for (const unsigned int i : nodes)
+              if (nodal_q[i] < 0)
+                ++n_tensile;
+            if (2 * n_tensile > nodes.size())
+              {
+                state.cell_in_foundation[c] = false;
+                changed                     = true;
+                ++n_excluded;
+              }
+          }
+        if (verbosity > 0)
+          log << "   contact iteration " << state.iterations
+              << ": excluded cells " << n_excluded
+              << ", relative change of |w| " << std::scientific
+              << std::setprecision(2) << change << std::defaultfloat
+              << std::endl;
+        if (!changed || change < contact.tolerance)
+          {
+            state.converged = true;
+            break;
+          }
+      }
+    state.iterations = std::min(state.iterations, contact.max_iterations);
+    evaluate_contact_conditions(plate_settlement,
+                                foundation->supported_nodes(),
+                                state);
+  }
+
+  void
+  ContactIteration::solve_by_active_set(const std::vector<bool> &seed,
+                                        ContactState            &state)
+  {
+    // Inexact solves while the set changes (as inexact Newton methods do):
+    // a set that is about to change needs only the signs of q and of the
+    // gap away from the contact boundary, which a loose solve gets right.
+    // Once a loose solve leaves nothing to change, the same set is solved
+    // to the final accuracy and checked again; only that check converges.
+    // A direct solver solves every set exactly (both accuracies 0).
+    const FoundationSpace &space = plate->get_foundation_space();
+    ActiveSetUpdate        active_set(space,
+                               foundation->supported_nodes(),
+                               seed);
+    Vector<double>         plate_settlement;
+    double tolerance = std::max(final_tolerance(), changing_set_tolerance());
+    for (state.iterations = 1; state.iterations <= contact.max_iterations;
+         ++state.iterations)
+      {
+        AssertThrow(contact_set_supports_plate(space, active_set.contact_set()),
+                    ExcMessage(plate_is_mechanism_message()));
+        plate_settlement =
+          solve_on_set(active_set.contact_set(), tolerance, state);
+        // A sign below the solve's accuracy is rounding, not a violation.
+        const double accuracy  = std::max(1e-12, tolerance);
+        const double q_scale   = std::max(max_abs(state.q), 1e-300);
+        const double gap_scale = std::max(max_abs(plate_settlement), 1e-300);
+        if (active_set.step(state.q,
+                            state.gap,
+                            accuracy * q_scale,
+                            accuracy * gap_scale,
+                            state.iterations,
+                            verbosity,
+                            log))
+          {
+            if (tolerance <= final_tolerance())
+              {
+                state.converged = true;
+                break;
+              }
+            tolerance = final_tolerance();
+          }
+      }
+    state.iterations = std::min(state.iterations, contact.max_iterations);
+    evaluate_contact_conditions(plate_settlement,
+                                foundation->supported_nodes(),
+                                state);
+  }
+} // namespace PlateOnHalfspace

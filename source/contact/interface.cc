@@ -1,0 +1,23 @@
+#include <plate_on_halfspace/contact/direct_solver.h>
+#include <plate_on_halfspace/contact/interface.h>
+#include <plate_on_halfspace/contact/iterative_solver.h>
+
+namespace PlateOnHalfspace
+{
+  std::unique_ptr<ContactSolver>
+  create_contact_solver(const SceneParameters            &parameters,
+                        const Parameters::Contact::Solver solver,
+                        const unsigned int                verbosity,
+                        std::ostream                     &log)
+  {
+    if (solver == Parameters::Contact::Solver::iterative)
+      return std::make_unique<IterativeContactSolver>(
+        parameters.contact,
+        parameters.foundation.tensionless,
+        ConjugateGradientControl(),
+        verbosity,
+        log);
+    return std::make_unique<DirectContactSolver>(
+      parameters.contact, parameters.foundation.tensionless, verbosity, log);
+  }
+} // namespace PlateOnHalfspace

@@ -1,0 +1,174 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/mapping_q1.h>
+
+#include <plate_on_halfspace/plate/generalized_inverse.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace PlateOnHalfspace
+{
+  std::vector<Vector<double>>
+  rigid_body_motions(const MindlinPlate &plate)
+  {
+    const auto        &foundation_dofs = plate.get_foundation_dofs();
+    const unsigned int n_dofs          = plate.get_dof_handler().n_dofs();
+    std::vector<Vector<double>> motions;
+    const DoFHandler<2>             &dof_handler = plate.get_dof_handler();
+    const AffineConstraints<double> &constraints = plate.get_constraints();
+    const SparseMatrix<double>      &stiffness = plate.get_stiffness_matrix();
+
+    std::vector<Point<2>> points(n_dofs);
+    DoFTools::map_dofs_to_support_points(MappingQ1<2>(), dof_handler, points);
+    std::vector<unsigned int>            component(n_dofs, 0);
+    std::vector<types::global_dof_index> dofs(
+      dof_handler.get_fe().n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          component[dofs[i]] =
+            dof_handler.get_fe().system_to_component_index(i).first;
+      }
+
+    // The candidates w = 1, (x - c_x)/L, (y - c_y)/L with beta = grad w,
+    // scaled to O(1) over the plate so that the pinned rows are well
+    // conditioned.
+    Point<2>     centre;
+    double       extent = 0;
+    const double n_f    = foundation_dofs.size();
+    for (const auto dof : foundation_dofs)
+      centre += points[dof] / n_f;
+    for (const auto dof : foundation_dofs)
+      extent = std::max(extent, points[dof].distance(centre));
+    extent = std::max(extent, 1e-300);
+
+    const double stiffness_scale = stiffness.linfty_norm();
+    for (unsigned int mode = 0; mode < 3; ++mode)
+      {
+        Vector<double> motion(n_dofs);
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          {
+            if (component[i] == 0)
+              motion[i] =
+                (mode == 0 ?
+                   1. :
+                   (points[i][mode - 1] - centre[mode - 1]) / extent);
+            else if (mode > 0 && component[i] == mode)
+              motion[i] = 1. / extent;
+          }
+        // Allowed by the constraints (hanging nodes and the serendipity
+        // centres reproduce linear fields; supports and mirror planes
+        // may not): distribute() from the unconstrained values gives it
+        // back.
+        Vector<double> distributed(motion);
+        constraints.distribute(distributed);
+        distributed -= motion;
+        if (distributed.linfty_norm() > 1e-10 * motion.linfty_norm())
+          continue;
+        // In the kernel of the stiffness on the unconstrained DoFs (the
+        // constrained rows and columns of K only hold a diagonal entry).
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          if (constraints.is_constrained(i))
+            motion[i] = 0;
+        Vector<double> image(n_dofs);
+        stiffness.vmult(image, motion);
+        double largest = 0;
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          if (!constraints.is_constrained(i))
+            largest = std::max(largest, std::abs(image[i]));
+        if (largest <= 1e-8 * stiffness_scale * motion.linfty_norm())
+          motions.push_back(motion);
+      }
+    return motions;
+  }
+
+  PlateGeneralizedInverse::PlateGeneralizedInverse(const MindlinPlate &plate)
+    : foundation_dofs(plate.get_foundation_dofs())
+    , n_dofs(plate.get_dof_handler().n_dofs())
+    , motions(rigid_body_motions(plate))
+  {
+    const AffineConstraints<double> &constraints = plate.get_constraints();
+    const SparseMatrix<double>      &stiffness   = plate.get_stiffness_matrix();
+    // Pin one foundation deflection per motion, chosen by Gaussian
+    // elimination with row pivoting on R restricted to the foundation
+    // nodes, so that R at the pinned nodes is well conditioned and K
+    // without them is positive definite.
+    const unsigned int               n_motions = motions.size();
+    std::vector<std::vector<double>> rows(foundation_dofs.size(),
+                                          std::vector<double>(n_motions));
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      for (unsigned int j = 0; j < n_motions; ++j)
+        rows[i][j] = motions[j][foundation_dofs[i]];
+    std::vector<bool> pinned(n_dofs, false);
+    std::vector<bool> row_used(foundation_dofs.size(), false);
+    for (unsigned int k = 0; k < n_motions; ++k)
+      {
+        unsigned int pivot   = foundation_dofs.size();
+        double       largest = 0;
+        for (unsigned int i = 0; i < rows.size(); ++i)
+          if (!row_used[i] && std::abs(rows[i][k]) > largest)
+            {
+              largest = std::abs(rows[i][k]);
+              pivot   = i;
+            }
+        AssertThrow(largest > 1e-8,
+                  ExcMessage("The plate's rigid-body motions cannot be "
+                             "pinned at its foundation nodes: fewer than "
+                             "three non-collinear foundation nodes."));
+        row_used[pivot]                = true;
+        pinned[foundation_dofs[pivot]] = true;
+        for (unsigned int i = 0; i < rows.size(); ++i)
+          if (!row_used[i])
+            {
+              const double factor = rows[i][k] / rows[pivot][k];
+              for (unsigned int j = k; j < n_motions; ++j)
+                rows[i][j] -= factor * rows[pivot][j];
+            }
+      }
+
+    for (types::global_dof_index i = 0; i < n_dofs; ++i)
+      if (!constraints.is_constrained(i) && !pinned[i])
+        solved_dofs.push_back(i);
+    try
+      {
+        factor.factorize(stiffness, solved_dofs);
+      }
+    catch (...)
+      {
+        AssertThrow(false,
+                    ExcMessage("The plate stiffness with its rigid-body "
+                               "motions pinned is not positive definite: "
+                               "the plate has a mechanism of its own."));
+      }
+  }
+
+  void
+  PlateGeneralizedInverse::solve(const Vector<double> &f,
+                                 Vector<double>       &u) const
+  {
+    std::vector<double> block(solved_dofs.size());
+    for (unsigned int c = 0; c < solved_dofs.size(); ++c)
+      block[c] = f[solved_dofs[c]];
+    factor.solve(block, 1);
+    u.reinit(n_dofs);
+    for (unsigned int c = 0; c < solved_dofs.size(); ++c)
+      u[solved_dofs[c]] = block[c];
+  }
+
+  void
+  PlateGeneralizedInverse::foundation_flexibility(const Vector<double> &x,
+                                                  Vector<double> &y) const
+  {
+    Vector<double> f(n_dofs), u;
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      f[foundation_dofs[i]] = x[i];
+    solve(f, u);
+    y.reinit(foundation_dofs.size());
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      y[i] = u[foundation_dofs[i]];
+  }
+} // namespace PlateOnHalfspace
