@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Scale: the hierarchical foundation operator with the iterative contact
-solver against the dense operator (issue 6).
+solver against the dense operator.
 
     python3 benchmarks/hierarchical_scaling.py build/plate-on-halfspace [MAX_N [DIRECT_MAX_N [DENSE_MAX_N [SCENE]]]]
 
@@ -25,7 +25,7 @@ active-set iterations; total wall time), the peak memory of the process
 (getrusage of the child), active-set and CG iterations, and the largest
 difference of the probes from the dense answer (direct if run, else
 dense-iterative) relative to each field's scale. Fits the growth exponent of
-the total time of each path over n >= 9000 for hierarchical (9976 on: the issue's
+the total time of each path over n >= 9000 for hierarchical (9976 on: the target
 range) and n >= 1e3 for the dense paths. Writes output/benchmarks/
 hierarchical_scaling.{md,csv,png} (with -SCENE when only SCENE, tensionless
 or bonded, is run). A benchmark, not a test: timings depend on the machine.

@@ -8,9 +8,9 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/scene/input_checks.h>
 #include <plate_on_halfspace/scene/parameters.h>
-#include <plate_on_halfspace/plate_on_halfspace_problem.h>
 
 #include <iostream>
 #include <string>

@@ -44,11 +44,11 @@ namespace PlateOnHalfspace
             solve_contact();
             postprocess();
             write_output();
-            AssertThrow(
-              contact.converged,
-              ExcMessage("Contact/Max iterations (" +
-                         std::to_string(parameters.contact.max_iterations) +
-                         ") reached before the contact set settled."));
+            AssertThrow(contact.converged,
+                        ExcMessage(
+                          "Contact/Max iterations (" +
+                          std::to_string(parameters.contact.max_iterations) +
+                          ") reached before the contact set settled."));
           }
       }
     catch (...)
@@ -178,22 +178,20 @@ namespace PlateOnHalfspace
   {
     TimerOutput::Scope scope(timer_output, "contact solve");
     Timer              phase;
-    const auto         solver =
-      create_contact_solver(parameters,
-                            parameters.contact_solver(summary.n_foundation_dofs),
-                            parameters.output.verbosity,
-                            log);
-    contact = solver->solve(*mindlin_plate, *foundation_operator, seed);
+    const auto         solver = create_contact_solver(parameters,
+                                              parameters.contact_solver(
+                                                summary.n_foundation_dofs),
+                                              parameters.output.verbosity,
+                                              log);
+    contact        = solver->solve(*mindlin_plate, *foundation_operator, seed);
     pressure_field = mindlin_plate->foundation_field_to_solution(contact.q);
     // The solver's factorisation of the flexibility belongs to the
     // foundation's time (doc/outputs.md, the time split).
     const double factorization = contact.factorization_time_s;
     summary.solve_time_s = std::max(0., phase.wall_time() - factorization);
     summary.foundation_factorization_time_s = factorization;
-    summary.foundation_integration_time_s =
-      std::max(0.,
-               summary.foundation_time_s -
-                 summary.foundation_compression_time_s);
+    summary.foundation_integration_time_s   = std::max(
+      0., summary.foundation_time_s - summary.foundation_compression_time_s);
     summary.foundation_time_s += factorization;
   }
 
@@ -204,8 +202,8 @@ namespace PlateOnHalfspace
     // Equilibrium: the integral of q is the sum of the nodal forces M q.
     Vector<double> forces;
     foundation_operator->nodal_forces(contact.pressure_coefficients, forces);
-    summary.contact_force = symmetry.n_copies() *
-                            std::accumulate(forces.begin(), forces.end(), 0.);
+    summary.contact_force =
+      symmetry.n_copies() * std::accumulate(forces.begin(), forces.end(), 0.);
     output->evaluate(*mindlin_plate, contact.plate_solution, contact, summary);
     summary.foundation_storage = foundation_operator->storage_name();
     summary.foundation_memory_bytes =

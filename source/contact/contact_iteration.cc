@@ -77,8 +77,7 @@ namespace PlateOnHalfspace
     prepare(plate, foundation, state);
     if (!tensionless)
       solve_bonded(state);
-    else if (contact.method ==
-             Parameters::Contact::Method::element_exclusion)
+    else if (contact.method == Parameters::Contact::Method::element_exclusion)
       solve_by_element_exclusion(state);
     else
       solve_by_active_set(seed, state);
@@ -131,7 +130,7 @@ namespace PlateOnHalfspace
                 ++n_excluded;
                 continue;
               }
-            const std::vector<unsigned int> nodes = space.cells[c].nodes();
+            const std::vector<unsigned int> nodes     = space.cells[c].nodes();
             unsigned int                    n_tensile = 0;
             for (const unsigned int i : nodes)
               if (nodal_q[i] < 0)
@@ -172,10 +171,8 @@ namespace PlateOnHalfspace
     // to the final accuracy and checked again; only that check converges.
     // A direct solver solves every set exactly (both accuracies 0).
     const FoundationSpace &space = plate->get_foundation_space();
-    ActiveSetUpdate        active_set(space,
-                               foundation->supported_nodes(),
-                               seed);
-    Vector<double>         plate_settlement;
+    ActiveSetUpdate active_set(space, foundation->supported_nodes(), seed);
+    Vector<double>  plate_settlement;
     double tolerance = std::max(final_tolerance(), changing_set_tolerance());
     for (state.iterations = 1; state.iterations <= contact.max_iterations;
          ++state.iterations)

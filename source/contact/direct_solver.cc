@@ -124,8 +124,7 @@ namespace PlateOnHalfspace
     for (unsigned int r = 0; r < n; ++r)
       for (auto entry = forces.begin(r); entry != forces.end(r); ++entry)
         if (position[entry->column()] >= 0)
-          force_rows[r].emplace_back(position[entry->column()],
-                                     entry->value());
+          force_rows[r].emplace_back(position[entry->column()], entry->value());
     // matrix(:, c) += (M T)_{:,C} rows(:, c): both columns are contiguous
     // in LAPACK's column-major storage; the columns are independent, so
     // they are split over the threads.
@@ -191,8 +190,7 @@ namespace PlateOnHalfspace
   }
 
   void
-  DirectContactSolver::correct_rigid_body_equilibrium(
-    ContactState &state) const
+  DirectContactSolver::correct_rigid_body_equilibrium(ContactState &state) const
   {
     // The rigid-body motions r of the free plate are exactly in the kernel
     // of K̄, so the equations r^T (K̄ + S) w = r^T P̄ read r^T S w = r^T P̄:
@@ -210,8 +208,7 @@ namespace PlateOnHalfspace
     foundation->nodal_forces(state.q, forces);
     for (unsigned int j = 0; j < n_modes; ++j)
       {
-        residual[j] =
-          rigid_motions[j] * plate_load - rigid_motions[j] * forces;
+        residual[j] = rigid_motions[j] * plate_load - rigid_motions[j] * forces;
         Vector<double> s_mode;
         pressures(rigid_motions[j], q);
         foundation->nodal_forces(q, s_mode);

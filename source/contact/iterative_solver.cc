@@ -86,16 +86,16 @@ namespace PlateOnHalfspace
       Vector<double>
       constraint_values(const Vector<double> &x) const;
 
-      const SparseMatrix<double>      &test_coupling;
-      const SparseMatrix<double>      &force_coupling;
-      const PlateGeneralizedInverse   &plate;
-      const FoundationOperator        &foundation;
-      const ApproximateInverse        &preconditioner;
-      std::vector<unsigned int>        nodes;
-      Vector<double>                   d;
-      std::vector<Vector<double>>      g; ///< the columns of G
-      FullMatrix<double>               gram_inverse;
-      Vector<double>                   motion_loads;
+      const SparseMatrix<double>    &test_coupling;
+      const SparseMatrix<double>    &force_coupling;
+      const PlateGeneralizedInverse &plate;
+      const FoundationOperator      &foundation;
+      const ApproximateInverse      &preconditioner;
+      std::vector<unsigned int>      nodes;
+      Vector<double>                 d;
+      std::vector<Vector<double>>    g; ///< the columns of G
+      FullMatrix<double>             gram_inverse;
+      Vector<double>                 motion_loads;
     };
 
     ContactSetProblem::ContactSetProblem(
@@ -134,7 +134,8 @@ namespace PlateOnHalfspace
           Vector<double> scale(n_motions);
           for (unsigned int i = 0; i < n_motions; ++i)
             {
-              AssertThrow(gram(i, i) > 0, ExcMessage(plate_is_mechanism_message()));
+              AssertThrow(gram(i, i) > 0,
+                          ExcMessage(plate_is_mechanism_message()));
               scale[i] = 1. / std::sqrt(gram(i, i));
             }
           FullMatrix<double> scaled(n_motions, n_motions);
@@ -408,9 +409,9 @@ namespace PlateOnHalfspace
                                     tested_plate_load,
                                     tested_motions,
                                     motion_loads);
-    Vector<double>           q = state.q.size() == n ?
-                                   problem.restrict_to_contact_set(state.q) :
-                                   Vector<double>(problem.size());
+    Vector<double>           q             = state.q.size() == n ?
+                                               problem.restrict_to_contact_set(state.q) :
+                                               Vector<double>(problem.size());
     ConjugateGradientControl solve_control = control;
     solve_control.tolerance                = tolerance;
     const ConjugateGradientResult cg =
@@ -444,8 +445,8 @@ namespace PlateOnHalfspace
     // u = K^+ (P - N^T M T q) + R alpha, w = N u.
     const auto          &foundation_dofs = plate->get_foundation_dofs();
     const auto          &motions         = inverse->rigid_motions();
-    const Vector<double> alpha = problem.rigid_motion_amplitudes(q);
-    state.q                    = problem.extend_by_zero(q);
+    const Vector<double> alpha           = problem.rigid_motion_amplitudes(q);
+    state.q                              = problem.extend_by_zero(q);
     Vector<double> forces(n), f(plate->get_load_vector()), u;
     foundation->force_coupling().vmult(forces, state.q);
     for (unsigned int i = 0; i < n; ++i)

@@ -1,5 +1,5 @@
-#include <plate_on_halfspace/halfspace/collocation_operator.h>
 #include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
+#include <plate_on_halfspace/halfspace/collocation_operator.h>
 
 #include <cmath>
 

@@ -138,7 +138,7 @@ namespace PlateOnHalfspace
   void
   FoundationOperator::use_identity_test_coupling()
   {
-    const unsigned int    n = n_nodes();
+    const unsigned int     n = n_nodes();
     DynamicSparsityPattern pattern(n, n);
     for (unsigned int i = 0; i < n; ++i)
       pattern.add(i, i);

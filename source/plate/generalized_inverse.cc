@@ -14,12 +14,12 @@ namespace PlateOnHalfspace
   std::vector<Vector<double>>
   rigid_body_motions(const MindlinPlate &plate)
   {
-    const auto        &foundation_dofs = plate.get_foundation_dofs();
-    const unsigned int n_dofs          = plate.get_dof_handler().n_dofs();
+    const auto                 &foundation_dofs = plate.get_foundation_dofs();
+    const unsigned int          n_dofs = plate.get_dof_handler().n_dofs();
     std::vector<Vector<double>> motions;
-    const DoFHandler<2>             &dof_handler = plate.get_dof_handler();
+    const DoFHandler<2>        &dof_handler      = plate.get_dof_handler();
     const AffineConstraints<double> &constraints = plate.get_constraints();
-    const SparseMatrix<double>      &stiffness = plate.get_stiffness_matrix();
+    const SparseMatrix<double>      &stiffness   = plate.get_stiffness_matrix();
 
     std::vector<Point<2>> points(n_dofs);
     DoFTools::map_dofs_to_support_points(MappingQ1<2>(), dof_handler, points);
@@ -54,9 +54,8 @@ namespace PlateOnHalfspace
           {
             if (component[i] == 0)
               motion[i] =
-                (mode == 0 ?
-                   1. :
-                   (points[i][mode - 1] - centre[mode - 1]) / extent);
+                (mode == 0 ? 1. :
+                             (points[i][mode - 1] - centre[mode - 1]) / extent);
             else if (mode > 0 && component[i] == mode)
               motion[i] = 1. / extent;
           }
@@ -116,9 +115,9 @@ namespace PlateOnHalfspace
               pivot   = i;
             }
         AssertThrow(largest > 1e-8,
-                  ExcMessage("The plate's rigid-body motions cannot be "
-                             "pinned at its foundation nodes: fewer than "
-                             "three non-collinear foundation nodes."));
+                    ExcMessage("The plate's rigid-body motions cannot be "
+                               "pinned at its foundation nodes: fewer than "
+                               "three non-collinear foundation nodes."));
         row_used[pivot]                = true;
         pinned[foundation_dofs[pivot]] = true;
         for (unsigned int i = 0; i < rows.size(); ++i)
@@ -161,7 +160,7 @@ namespace PlateOnHalfspace
 
   void
   PlateGeneralizedInverse::foundation_flexibility(const Vector<double> &x,
-                                                  Vector<double> &y) const
+                                                  Vector<double>       &y) const
   {
     Vector<double> f(n_dofs), u;
     for (unsigned int i = 0; i < foundation_dofs.size(); ++i)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The table of malformed scenes (issue 5): every tests/app/bad_input/NAME.prm
+# The table of malformed scenes: every tests/app/bad_input/NAME.prm
 # is a scene with one mistake, run through the real executable. Each must
 # exit with status 1 (no signal, no time-out) and one "Error: ..." line on
 # stderr that contains every "# expect: TEXT" line of the file (the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The same scene gives the same numbers (issue 5): parameters/example2.prm
+# The same scene gives the same numbers: parameters/example2.prm
 # made Galerkin + active set (tensionless, lift-off) run twice with one
 # thread and once with two (deal.II's DEAL_II_NUM_THREADS and OpenBLAS's
 # OPENBLAS_NUM_THREADS); every number of summary.json except the wall times (*time_s)

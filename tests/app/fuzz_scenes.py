@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fuzz-style test of the executable (issue 5): randomly perturbed versions
+"""Fuzz-style test of the executable: randomly perturbed versions
 of a small valid scene (tests/app/bad_input_base.prm made tensionless with a
 patch and a point load), a fixed seed, each run with a time limit. Every run
 must either succeed (status 0, summary.json without NaN/null, "converged":

@@ -13,7 +13,6 @@
 // which the test finds independently by enumerating all 2^3 contact sets.
 
 #include <deal.II/lac/full_matrix.h>
-
 #include <deal.II/lac/lapack_full_matrix.h>
 
 #include <plate_on_halfspace/contact/active_set.h>

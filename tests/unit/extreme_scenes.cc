@@ -1,4 +1,4 @@
-// Extremes of issue 5 other than thickness and stiffness ratio
+// Extreme scenes other than thickness and stiffness ratio
 // (thin_plate_limit, stiffness_ratio_sweep): Poisson's ratios, load
 // magnitude, awkward geometry and contact on the edge of lift-off. Base
 // scene: a 4 m square of parameters/flexible-square.prm made a 0.2 m
@@ -27,8 +27,8 @@
 //   lifts more as e grows and almost entirely (contact < 0.1) at 0.95 a.
 
 #include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
-#include <plate_on_halfspace/scene/input_checks.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
+#include <plate_on_halfspace/scene/input_checks.h>
 
 #include "../tests.h"
 

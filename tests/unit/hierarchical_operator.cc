@@ -16,8 +16,8 @@
 // - an absurd tolerance (1) and the direct solver are refused with clear
 //   messages.
 
-#include <plate_on_halfspace/scene/input_checks.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
+#include <plate_on_halfspace/scene/input_checks.h>
 
 #include "../tests.h"
 

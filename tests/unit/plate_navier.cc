@@ -15,8 +15,8 @@
 //   m, n of 1 / (m^2 + n^2)^2 (the Mindlin point-load deflection is
 //   infinite: only the thin plate is compared, see below).
 // The series (m, n <= 4001) are first checked against the values of
-// doc/verification.md (0.00406235, 0.04789, 0.011601, Mindlin factors 1.0005 for
-// a/t = 100 and 1.0518 for a/t = 10). Then the finite-element centre
+// doc/verification.md (0.00406235, 0.04789, 0.011601, Mindlin factors 1.0005
+// for a/t = 100 and 1.0518 for a/t = 10). Then the finite-element centre
 // deflection and centre moment Mx for every element with reduced and
 // selective integration (and full integration for a/t = 10) on 4x4, 8x8,
 // 16x16 meshes (and 32x32 for serendipity, reduced) of [-a/2, a/2]^2: the

@@ -86,7 +86,8 @@ main()
                   << "; reference within the node bracket (+-0.02): "
                   << (bracket_ok ? "ok" : "FAILED") << std::endl;
           AssertThrow(area_ok && bracket_ok,
-                      ExcMessage("contact radius differs from doc/verification.md"));
+                      ExcMessage(
+                        "contact radius differs from doc/verification.md"));
         }
     }
 }

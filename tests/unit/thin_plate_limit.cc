@@ -1,4 +1,4 @@
-// Thin plates at constant bending stiffness (issue 5): a simply supported
+// Thin plates at constant bending stiffness: a simply supported
 // square (side a = 1, hard support, nu = 0.3, D = 1, uniform q = 1) on
 // 8 x 8 cells with a/t = 5 ... 10^4 (E = 12 (1 - nu^2) D / t^3). The
 // reference is the Navier series of the Mindlin plate,
@@ -18,8 +18,8 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
-#include <plate_on_halfspace/scene/input_checks.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/scene/input_checks.h>
 
 #include "../tests.h"
 

@@ -68,7 +68,7 @@ namespace PlateOnHalfspace
     Vector<double>           plate_load;      ///< P̄
     /** The rigid-body motions of the free plate at the foundation nodes. */
     std::vector<Vector<double>> rigid_motions;
-    std::vector<unsigned int>   contact_index; ///< the nodes of C
+    std::vector<unsigned int>   contact_index;  ///< the nodes of C
     LAPACKFullMatrix<double>    contact_factor; ///< factor of F_CC
     bool                        factorised_once = false;
   };

@@ -29,8 +29,8 @@ namespace PlateOnHalfspace
    * the boundary or outside the rectangle:
    *   F(X,Y) = X ln(Y + r) + Y ln(X + r),  X = x' - x_j, Y = y' - y_j,
    *   I = F(X2,Y2) - F(X1,Y2) - F(X2,Y1) + F(X1,Y1),
-   * where a term is zero when its leading factor is zero (doc/formulation.md; the
-   * paper's (P5) without its typesetting errors). Units: length.
+   * where a term is zero when its leading factor is zero (doc/formulation.md;
+   * the paper's (P5) without its typesetting errors). Units: length.
    */
   double
   integral_of_inverse_distance_over_rectangle(const Point<2> &x,

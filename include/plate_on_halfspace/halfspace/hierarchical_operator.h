@@ -20,8 +20,8 @@
 #ifndef plate_on_halfspace_halfspace_hierarchical_operator_h
 #define plate_on_halfspace_halfspace_hierarchical_operator_h
 
-#include <plate_on_halfspace/halfspace/interface.h>
 #include <plate_on_halfspace/halfspace/hierarchical_flexibility.h>
+#include <plate_on_halfspace/halfspace/interface.h>
 
 namespace PlateOnHalfspace
 {

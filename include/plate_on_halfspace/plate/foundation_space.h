@@ -17,8 +17,8 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
-#include <plate_on_halfspace/scene/mirror_symmetry.h>
 #include <plate_on_halfspace/base/quadrilateral_geometry.h>
+#include <plate_on_halfspace/scene/mirror_symmetry.h>
 
 #include <array>
 #include <utility>

@@ -23,9 +23,9 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/plate/foundation_space.h>
 #include <plate_on_halfspace/scene/parameters.h>
-#include <plate_on_halfspace/base/sparse_cholesky.h>
 
 #include <functional>
 #include <vector>

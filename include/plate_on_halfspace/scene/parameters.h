@@ -1,6 +1,6 @@
 /**
- * The scene: every entry of the parameter file (doc/parameters.md), one struct per
- * subsection, each with declare_parameters() and parse_parameters() (the
+ * The scene: every entry of the parameter file (doc/parameters.md), one struct
+ * per subsection, each with declare_parameters() and parse_parameters() (the
  * code-gallery step-44 pattern). Cross-entry checks happen in
  * parse_parameters() and throw an ExcMessage that names the entry and the
  * allowed range.
