@@ -16,6 +16,34 @@
 
 namespace PlateOnHalfspace
 {
+  namespace
+  {
+    /**
+     * Factorise @p matrix in place (Cholesky if @p symmetric, else LU) and
+     * return LAPACK's estimate of 1/κ₁; throw ExcMessage(@p failure) if it
+     * cannot be factorised.
+     */
+    double
+    factorise(LAPACKFullMatrix<double> &matrix,
+              const bool                symmetric,
+              const std::string        &failure)
+    {
+      const double l1_norm = matrix.l1_norm();
+      try
+        {
+          if (symmetric)
+            matrix.compute_cholesky_factorization();
+          else
+            matrix.compute_lu_factorization();
+        }
+      catch (...)
+        {
+          AssertThrow(false, ExcMessage(failure));
+        }
+      return reciprocal_condition_number(matrix, l1_norm, symmetric);
+    }
+  } // namespace
+
   DirectContactSolver::DirectContactSolver(const Parameters::Contact &contact,
                                            const bool         tensionless,
                                            const unsigned int verbosity,
@@ -50,29 +78,17 @@ namespace PlateOnHalfspace
     state.contact_block_rcond = 1.;
     if (contact_index.empty())
       return;
-    const bool   symmetric = foundation->is_symmetric();
-    const double l1_norm   = contact_factor.l1_norm();
-    try
-      {
-        if (symmetric)
-          contact_factor.compute_cholesky_factorization();
-        else
-          contact_factor.compute_lu_factorization();
-      }
-    catch (...)
-      {
-        AssertThrow(false,
-                    ExcMessage(
-                      symmetric ?
-                        "The Galerkin half-space matrix A of the contact set "
-                        "is not positive definite; the singular quadrature "
-                        "is too coarse for this mesh (raise Discretization/"
-                        "Singular quadrature order)." :
-                        "The collocation flexibility matrix G of the contact "
-                        "set is singular."));
-      }
+    const bool symmetric = foundation->is_symmetric();
     state.contact_block_rcond =
-      reciprocal_condition_number(contact_factor, l1_norm, symmetric);
+      factorise(contact_factor,
+                symmetric,
+                symmetric ?
+                  "The Galerkin half-space matrix A of the contact set is not "
+                  "positive definite; the singular quadrature is too coarse "
+                  "for this mesh (raise Discretization/Singular quadrature "
+                  "order)." :
+                  "The collocation flexibility matrix G of the contact set is "
+                  "singular.");
     if (!factorised_once)
       {
         state.factorization_time_s = timer.wall_time();
@@ -157,22 +173,10 @@ namespace PlateOnHalfspace
     // (K̄ + S) w = P̄ (P21), S the foundation stiffness on the contact set.
     LAPACKFullMatrix<double> coupled(plate_stiffness);
     add_foundation_stiffness(coupled);
-    const bool   symmetric = foundation->is_symmetric();
-    const double l1_norm   = coupled.l1_norm();
-    try
-      {
-        if (symmetric)
-          coupled.compute_cholesky_factorization();
-        else
-          coupled.compute_lu_factorization();
-      }
-    catch (...)
-      {
-        AssertThrow(false, ExcMessage(plate_is_mechanism_message()));
-      }
-    state.coupled_rcond =
-      reciprocal_condition_number(coupled, l1_norm, symmetric);
-    state.w = plate_load;
+    state.coupled_rcond = factorise(coupled,
+                                    foundation->is_symmetric(),
+                                    plate_is_mechanism_message());
+    state.w             = plate_load;
     coupled.solve(state.w);
     for (const double v : state.w)
       AssertThrow(std::isfinite(v), ExcMessage(plate_is_mechanism_message()));

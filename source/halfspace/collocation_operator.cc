@@ -97,11 +97,7 @@ namespace PlateOnHalfspace
     const std::vector<unsigned int> &nodes,
     LAPACKFullMatrix<double>        &block) const
   {
-    const unsigned int m = nodes.size();
-    block.reinit(m, m);
-    for (unsigned int j = 0; j < m; ++j)
-      for (unsigned int i = 0; i < m; ++i)
-        block(i, j) = flexibility(nodes[i], nodes[j]);
+    copy_dense_block(flexibility, nodes, block);
   }
 
   std::size_t

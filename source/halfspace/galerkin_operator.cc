@@ -118,13 +118,9 @@ namespace PlateOnHalfspace
   {
     // The paper's exclusion removes a cell's contribution to A of the
     // contact conditions: both test and pressure over the foundation cells.
-    const LAPACKFullMatrix<double> &matrix =
-      partial_foundation ? system_flexibility : flexibility;
-    const unsigned int m = nodes.size();
-    block.reinit(m, m);
-    for (unsigned int j = 0; j < m; ++j)
-      for (unsigned int i = 0; i < m; ++i)
-        block(i, j) = matrix(nodes[i], nodes[j]);
+    copy_dense_block(partial_foundation ? system_flexibility : flexibility,
+                     nodes,
+                     block);
   }
 
   void

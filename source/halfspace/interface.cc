@@ -77,6 +77,18 @@ namespace PlateOnHalfspace
       }
   }
 
+  void
+  FoundationOperator::copy_dense_block(const LAPACKFullMatrix<double>  &matrix,
+                                       const std::vector<unsigned int> &nodes,
+                                       LAPACKFullMatrix<double>        &block)
+  {
+    const unsigned int m = nodes.size();
+    block.reinit(m, m);
+    for (unsigned int j = 0; j < m; ++j)
+      for (unsigned int i = 0; i < m; ++i)
+        block(i, j) = matrix(nodes[i], nodes[j]);
+  }
+
   std::unique_ptr<ApproximateInverse>
   FoundationOperator::make_approximate_inverse()
   {

@@ -225,6 +225,13 @@ namespace PlateOnHalfspace
                     SparsityPattern            &sparsity,
                     SparseMatrix<double>       &tested) const;
 
+    /** @p block = @p matrix on the nodes @p nodes (copy_block of a dense
+     *  storage). */
+    static void
+    copy_dense_block(const LAPACKFullMatrix<double>  &matrix,
+                     const std::vector<unsigned int> &nodes,
+                     LAPACKFullMatrix<double>        &block);
+
     /** Bytes of the members of this class. */
     std::size_t
     coupling_memory_consumption() const;
