@@ -5,7 +5,7 @@
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
-#include <plate_on_halfspace/refinement/mesh_refinement.h>
+#include <plate_on_halfspace/refinement/interface.h>
 
 #include <cmath>
 #include <iomanip>
@@ -105,12 +105,8 @@ namespace PlateOnHalfspace
     const Vector<double> old_field =
       mindlin_plate->foundation_field_to_solution(indicator);
 
-    if (!mark_cells_for_refinement(parameters.adaptivity,
-                                   *mindlin_plate,
-                                   contact.plate_solution,
-                                   contact,
-                                   parameters.loads,
-                                   triangulation))
+    if (!create_refinement_strategy(parameters)
+           ->mark(*mindlin_plate, contact, triangulation))
       return false;
     SolutionTransfer<2> transfer(mindlin_plate->get_dof_handler());
     triangulation.prepare_coarsening_and_refinement();

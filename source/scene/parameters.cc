@@ -502,8 +502,9 @@ namespace PlateOnHalfspace
     Adaptivity::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Adaptivity");
-      cycles           = prm.get_integer("Cycles");
-      adaptive         = (prm.get("Refinement") == "adaptive");
+      cycles     = prm.get_integer("Cycles");
+      refinement = (prm.get("Refinement") == "adaptive" ? Refinement::adaptive :
+                                                          Refinement::global);
       refine_fraction  = prm.get_double("Refine fraction");
       coarsen_fraction = prm.get_double("Coarsen fraction");
       max_cells        = prm.get_integer("Max cells");

@@ -183,8 +183,14 @@ namespace PlateOnHalfspace
     /** subsection Adaptivity. */
     struct Adaptivity
     {
+      /** How the mesh of the next cycle is made (refinement/interface.h). */
+      enum class Refinement
+      {
+        global,  ///< every cell
+        adaptive ///< Kelly with the contact and load indicators
+      };
       unsigned int cycles;
-      bool         adaptive; ///< Refinement = adaptive (else global)
+      Refinement   refinement;
       double       refine_fraction;
       double       coarsen_fraction;
       unsigned int max_cells;

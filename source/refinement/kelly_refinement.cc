@@ -7,7 +7,7 @@
 
 #include <deal.II/numerics/error_estimator.h>
 
-#include <plate_on_halfspace/refinement/mesh_refinement.h>
+#include <plate_on_halfspace/refinement/interface.h>
 
 #include <algorithm>
 #include <cmath>
@@ -69,23 +69,35 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
+  GlobalRefinement::GlobalRefinement(const Parameters::Adaptivity &adaptivity)
+    : adaptivity(adaptivity)
+  {}
+
   bool
-  mark_cells_for_refinement(const Parameters::Adaptivity &adaptivity,
-                            const MindlinPlate           &plate,
-                            const Vector<double>         &solution,
-                            const ContactState           &contact,
-                            const Parameters::Loads      &loads,
-                            Triangulation<2>             &triangulation)
+  GlobalRefinement::mark(const MindlinPlate &,
+                         const ContactState &,
+                         Triangulation<2> &triangulation) const
   {
-    const unsigned int n_cells = triangulation.n_active_cells();
-    if (!adaptivity.adaptive)
-      {
-        if (4 * n_cells > adaptivity.max_cells)
-          return false;
-        for (const auto &cell : triangulation.active_cell_iterators())
-          cell->set_refine_flag();
-        return true;
-      }
+    if (4 * triangulation.n_active_cells() > adaptivity.max_cells)
+      return false;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      cell->set_refine_flag();
+    return true;
+  }
+
+  KellyRefinement::KellyRefinement(const Parameters::Adaptivity &adaptivity,
+                                   const Parameters::Loads      &loads)
+    : adaptivity(adaptivity)
+    , loads(loads)
+  {}
+
+  bool
+  KellyRefinement::mark(const MindlinPlate &plate,
+                        const ContactState &contact,
+                        Triangulation<2>   &triangulation) const
+  {
+    const Vector<double> &solution = contact.plate_solution;
+    const unsigned int    n_cells  = triangulation.n_active_cells();
 
     // The numbers to mark are those of the whole plate: its n-th cell in
     // the order of the indicators is the computed part's ceil(n / copies)-th
@@ -215,5 +227,15 @@ namespace PlateOnHalfspace
         ++index_c;
       }
     return true;
+  }
+
+  std::unique_ptr<RefinementStrategy>
+  create_refinement_strategy(const SceneParameters &parameters)
+  {
+    if (parameters.adaptivity.refinement ==
+        Parameters::Adaptivity::Refinement::adaptive)
+      return std::make_unique<KellyRefinement>(parameters.adaptivity,
+                                               parameters.loads);
+    return std::make_unique<GlobalRefinement>(parameters.adaptivity);
   }
 } // namespace PlateOnHalfspace
