@@ -1,5 +1,5 @@
 /**
- * The contact family's interface (doc/architecture.md, "Contact";
+ * The contact family's interface (doc/architecture.md, "The contact family";
  * doc/formulation.md, "Tensionless contact"): solve the plate on the
  * half-space, bonded or tensionless, starting from a seed of the contact
  * set, and return the state of the foundation. The direct solver (the plate

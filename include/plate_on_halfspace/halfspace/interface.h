@@ -1,10 +1,10 @@
 /**
- * The half-space family's interface (doc/architecture.md, "Half-space";
- * doc/formulation.md, "Half-space"): an operator built on the foundation
- * space of the plate that applies the soil's flexibility to pressures and
- * couples it to the plate. Every storage (dense, hierarchical) and every
- * flexibility (Galerkin, collocation) honours all of it; how a contact
- * solver factorises or preconditions the flexibility is the solver's
+ * The half-space family's interface (doc/architecture.md, "The half-space
+ * family"; doc/formulation.md, "Half-space"): an operator built on the
+ * foundation space of the plate that applies the soil's flexibility to
+ * pressures and couples it to the plate. Every storage (dense, hierarchical)
+ * and every flexibility (Galerkin, collocation) honours all of it; how a
+ * contact solver factorises or preconditions the flexibility is the solver's
  * business, built from what this interface offers.
  *
  * The algebraic form shared by all variants. With F the flexibility
