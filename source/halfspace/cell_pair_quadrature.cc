@@ -2,6 +2,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/thread_management.h>
 
+#include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
 
@@ -340,16 +341,21 @@ namespace PlateOnHalfspace
     }
     std::vector<FullMatrix<double>> blocks(representatives.size());
     const unsigned int              n_tasks = MultithreadInfo::n_threads();
-    Threads::TaskGroup<void>        tasks;
+    ProgressReport           progress("Singular cell pairs", blocks.size());
+    Threads::TaskGroup<void> tasks;
     for (unsigned int t = 0; t < n_tasks; ++t)
       tasks += Threads::new_task([&, t]() {
         for (std::size_t p = representatives.size() * t / n_tasks;
              p < representatives.size() * (t + 1) / n_tasks;
              ++p)
-          blocks[p] = normalised_singular_q2_block(representatives[p].first,
-                                                   representatives[p].second);
+          {
+            blocks[p] = normalised_singular_q2_block(representatives[p].first,
+                                                     representatives[p].second);
+            progress.add();
+          }
       });
     tasks.join_all();
+    progress.finish();
     const std::lock_guard<std::mutex> lock(singular_cache_mutex);
     for (std::size_t p = 0; p < representatives.size(); ++p)
       singular_cache.emplace(configuration(representatives[p].first,

@@ -1,7 +1,6 @@
-#include <deal.II/base/quadrature_lib.h>
-
+#include <plate_on_halfspace/base/progress.h>
+#include <plate_on_halfspace/halfspace/cell_pair_summation.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
-#include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,9 +21,6 @@ namespace PlateOnHalfspace
                                     const std::vector<bool> &cell_in_foundation)
   {
     build_mass_matrix(space, cell_in_foundation);
-    const auto included = [&](const unsigned int c) {
-      return cell_in_foundation.empty() || cell_in_foundation[c];
-    };
     partial_foundation =
       std::find(cell_in_foundation.begin(), cell_in_foundation.end(), false) !=
       cell_in_foundation.end();
@@ -43,63 +39,31 @@ namespace PlateOnHalfspace
     // flexibility(i,j): test functions over the whole plate, pressures over
     // the foundation cells (the settlement everywhere); system_flexibility:
     // both over the foundation cells (the paper's exclusion removes a cell's
-    // contribution to A). They coincide when every cell is in.
-    const auto add = [&](const unsigned int               a,
-                         const unsigned int               b,
-                         const FullMatrix<double>        &block,
-                         const std::vector<unsigned int> &nodes_a,
-                         const std::vector<unsigned int> &nodes_b) {
-      for (unsigned int i = 0; i < nodes_a.size(); ++i)
-        for (unsigned int j = 0; j < nodes_b.size(); ++j)
-          {
-            const double value = alpha * block(i, j);
-            if (included(b))
-              flexibility(nodes_a[i], nodes_b[j]) += value;
-            if (a != b && included(a))
-              flexibility(nodes_b[j], nodes_a[i]) += value;
-            if (partial_foundation && included(a) && included(b))
-              {
-                system_flexibility(nodes_a[i], nodes_b[j]) += value;
-                if (a != b)
-                  system_flexibility(nodes_b[j], nodes_a[i]) += value;
-              }
-          }
-    };
-
-    // A symmetric scene (mirror_symmetry.h): the pressure of the computed
-    // part has mirror images, so cell b acts on cell a also through its
-    // images R b: A_ij = alpha sum_R ∫_K ∫_{R L} psi_i(x) psi_j(R y) /
-    // |x - y|. The image pair (b, R a) is the transpose of (a, R b) (R is an
-    // isometry and an involution), so the loop over b >= a covers all.
-    std::vector<FoundationSpace::Cell> cells = space.cells;
-    {
-      const auto images = space.mirror_image_cells();
-      cells.insert(cells.end(), images.begin(), images.end());
-    }
-    const CellPairIntegrator integrator(cells, singular_order);
-    const unsigned int       n_cells  = space.cells.size();
-    const unsigned int       n_images = space.symmetry.reflections().size();
-    FullMatrix<double>       block;
-    for (unsigned int a = 0; a < n_cells; ++a)
-      for (unsigned int b = a; b < n_cells; ++b)
-        {
-          if (!included(a) && !included(b))
-            continue;
-          // block(i,j) = ∫_K ∫_L psi_i(x) psi_j(y) / |x - y| over the node
-          // shape functions psi of the two cells.
-          integrator.integrate_inverse_distance(a, b, block);
-          add(a, b, block, integrator.nodes(a), integrator.nodes(b));
-          for (unsigned int r = 1; r <= n_images; ++r)
-            {
-              const unsigned int image = r * n_cells + b;
-              integrator.integrate_inverse_distance(a, image, block);
-              if (a == b)
-                symmetrise_self_image_block(integrator.nodes(a),
-                                            integrator.nodes(image),
-                                            block);
-              add(a, b, block, integrator.nodes(a), integrator.nodes(image));
-            }
-        }
+    // contribution to A). They coincide when every cell is in. The sum over
+    // cell pairs and mirror images, its order and the symmetrisation of a
+    // cell against its own image are CellPairSummation's
+    // (cell_pair_summation.h; doc/formulation.md, "Default variant" and
+    // "Symmetry"), shared with the hierarchical operator.
+    const std::vector<FoundationSpace::Cell> cells =
+      CellPairSummation::cells_with_images(space);
+    const CellPairSummation summation(cells,
+                                      space.symmetry.n_copies(),
+                                      n,
+                                      alpha,
+                                      singular_order,
+                                      cell_in_foundation);
+    ProgressReport progress("Dense Galerkin flexibility", summation.n_pairs());
+    summation.add_all(
+      [&](const unsigned int i,
+          const unsigned int j,
+          const double       value,
+          const bool         in_system) {
+        flexibility(i, j) += value;
+        if (partial_foundation && in_system)
+          system_flexibility(i, j) += value;
+      },
+      &progress);
+    progress.finish();
 
     // The contact conditions in the positive pressure basis
     // (foundation_space.h): A <- T^T A T, M <- T^T M.

@@ -24,8 +24,8 @@ namespace PlateOnHalfspace
    * mirror_symmetry.h): @p block (i, k) couples node @p rows[i] with node
    * @p columns[k], the same nodes in another order. The integral is
    * symmetric in the two nodes, the quadrature only nearly: average each
-   * entry with its transpose, so that A stays exactly symmetric (the dense
-   * and the hierarchical Galerkin operators both use this).
+   * entry with its transpose, so that A stays exactly symmetric
+   * (CellPairSummation decides when, cell_pair_summation.h).
    */
   void
   symmetrise_self_image_block(const std::vector<unsigned int> &rows,
@@ -87,7 +87,8 @@ namespace PlateOnHalfspace
      * Integrate the singular pairs (k, l) of @p pairs into the cache of
      * configurations, in parallel, each new configuration from its first
      * pair in the list (so the result does not depend on the threads).
-     * Callers that integrate pairs concurrently call this first.
+     * Callers that integrate pairs concurrently call this first. Shows its
+     * progress (ProgressReport, "Singular cell pairs").
      */
     void
     integrate_singular_pairs(

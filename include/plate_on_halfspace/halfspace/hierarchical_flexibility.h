@@ -30,12 +30,13 @@ namespace PlateOnHalfspace
   /**
    * The Galerkin flexibility A as an H-matrix.
    *
-   * Entries: every entry hmat-oss asks for comes from the CellPairIntegrator
-   * (cell_pair_quadrature.h), summed over the cell pairs (and mirror images)
-   * that touch the two nodes exactly as BoussinesqGalerkinOperator::build()
-   * sums them, so the near-field blocks are the dense matrix's entries (to
-   * rounding) with their singular quadrature, and only admissible blocks are
-   * approximated.
+   * Entries: every entry hmat-oss asks for is a sum of CellPairSummation
+   * (cell_pair_summation.h), the one the dense
+   * BoussinesqGalerkinOperator::build() sums too: the same cell pairs,
+   * mirror images, symmetrisation and order, so the near-field blocks are
+   * the dense matrix's entries (to rounding) with their singular
+   * quadrature, and only admissible blocks are approximated
+   * (doc/formulation.md, "Hierarchical storage").
    *
    * Admissibility: a node's extent for the cluster tree is its support (the
    * vertices of the cells that contain it), so a block is admissible only
@@ -53,10 +54,15 @@ namespace PlateOnHalfspace
    * factorisation throws ExcMessage naming Foundation operator/Tolerance.
    *
    * Threading: hmat-oss's default (sequential) engine is used; it calls the
-   * entry callback from the calling thread only. Whole near-field blocks are
-   * integrated with deal.II's task-based parallelism inside that callback
-   * (the cell pairs are independent; only the summation into the block is
-   * serial). Calls to one object must not overlap.
+   * entry callback from the calling thread only. Inside that callback the
+   * cell pairs of a request are integrated and summed with deal.II's
+   * task-based parallelism (CellPairSummation::add_entries()), with the
+   * same result for any number of threads. Calls to one object must not
+   * overlap.
+   *
+   * Progress: the integration of the singular pairs, the assembly (blocks
+   * done) and the H-Cholesky factorisation (rows done, as hmat-oss reports
+   * them) show a ProgressReport (base/progress.h) when enabled.
    */
   class HierarchicalFlexibility
   {

@@ -1,0 +1,95 @@
+/**
+ * Internal to HierarchicalFlexibility (hierarchical_flexibility.h): the
+ * hmat-oss C interface and the assembly of the flexibility's H-matrix from
+ * the cell-pair sum. A private header, so that hmat-oss stays out of the
+ * public ones.
+ *  - hmat_glue.cc: the interface object, status checks, BLAS threads;
+ *  - hierarchical_assembly.cc: the block callbacks of the assembly and the
+ *    exactly integrated rows of the accuracy check.
+ */
+#ifndef plate_on_halfspace_source_halfspace_hmat_glue_h
+#define plate_on_halfspace_source_halfspace_hmat_glue_h
+
+#include <hmat/hmat.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  class CellPairSummation;
+
+  namespace HmatGlue
+  {
+    /** The advice every failure ends with. */
+    extern const std::string tolerance_advice;
+
+    /**
+     * hmat-oss's C interface for doubles with its default (sequential)
+     * engine, initialised once per process. The default engine runs every
+     * callback in the calling thread, so deal.II's task scheduler inside
+     * the callbacks cannot re-enter hmat-oss.
+     */
+    hmat_interface_t &
+    hmat();
+
+    /** Throw the message of a failed hmat-oss call @p what. */
+    void
+    check_hmat(const int status, const std::string &what);
+
+    bool
+    all_finite(const double *values, const std::size_t n);
+
+    /** Statistics of an H-matrix (leaf counts, stored entries). */
+    hmat_info_t
+    info_of(hmat_matrix_t *matrix);
+
+    /**
+     * One BLAS thread while it lives. hmat-oss calls BLAS on many small
+     * blocks; OpenBLAS's pthreads busy-wait between such calls, which on
+     * a 2-core machine made the H-Cholesky 5 times and the product 4 times
+     * slower (5373 nodes: 10.6 s against 1.9 s) whenever anything else
+     * ran. hmat-oss's own switch for this is compiled out of Debian's
+     * build, so OpenBLAS's is looked up at run time (absent with another
+     * BLAS: then nothing to do). The dense LAPACK paths keep their threads.
+     */
+    class SingleThreadedBlas
+    {
+    public:
+      SingleThreadedBlas();
+      ~SingleThreadedBlas();
+
+      SingleThreadedBlas(const SingleThreadedBlas &) = delete;
+      SingleThreadedBlas &
+      operator=(const SingleThreadedBlas &) = delete;
+
+    private:
+      void (*const set_threads)(int);
+      int (*const get_threads)();
+      int previous = 1;
+    };
+
+    /**
+     * Assemble the empty lower-symmetric H-matrix @p matrix (hmat-oss's
+     * numbering) with ACA+ at @p tolerance, every entry from @p summation
+     * (doc/formulation.md, "Hierarchical storage"). Shows the progress in
+     * blocks (ProgressReport). Returns the wall time spent integrating
+     * entries inside the callbacks; throws with the callbacks' first error
+     * or hmat-oss's failure.
+     */
+    double
+    assemble_flexibility(hmat_matrix_t           *matrix,
+                         const CellPairSummation &summation,
+                         const double             tolerance);
+
+    /** Row @p i of A (natural numbering, @p n_nodes entries), exactly
+     *  integrated: the reference of the sampled-row check. */
+    std::vector<double>
+    exact_row(const CellPairSummation &summation,
+              const unsigned int       i,
+              const unsigned int       n_nodes);
+  } // namespace HmatGlue
+} // namespace PlateOnHalfspace
+
+#endif
