@@ -2,6 +2,7 @@
 
 #include <deal.II/numerics/solution_transfer.h>
 
+#include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
@@ -24,6 +25,8 @@ namespace PlateOnHalfspace
   bool
   PlateOnHalfspaceProblem::run()
   {
+    // Long phases report their progress on a terminal (base/progress.h).
+    ProgressReport::enable(parameters.output.verbosity > 0);
     output = std::make_unique<ResultsOutput>(parameters.output_directory);
     // A run that fails keeps the earlier run's results (results_output.h).
     try
