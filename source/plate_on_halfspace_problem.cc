@@ -1,13 +1,17 @@
 #include <deal.II/base/timer.h>
 
+#include <deal.II/fe/fe_values.h>
+
 #include <deal.II/numerics/solution_transfer.h>
 
 #include <plate_on_halfspace/base/progress.h>
+#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/refinement/interface.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <numeric>
@@ -45,6 +49,8 @@ namespace PlateOnHalfspace
             assemble_loads(cycle);
             build_foundation_operator();
             solve_contact();
+            if (contact.converged)
+              estimate_goal_error();
             postprocess();
             write_output();
             AssertThrow(contact.converged,
@@ -52,6 +58,16 @@ namespace PlateOnHalfspace
                           "Contact/Max iterations (" +
                           std::to_string(parameters.contact.max_iterations) +
                           ") reached before the contact set settled."));
+            if (goal_target_met())
+              {
+                log << "Adaptivity/Target error met: estimated relative "
+                       "error of <"
+                    << goal->name() << "> " << std::scientific
+                    << std::setprecision(2) << summary.goal.relative_error
+                    << " <= " << parameters.adaptivity.target_error
+                    << std::defaultfloat << "." << std::endl;
+                break;
+              }
           }
       }
     catch (...)
@@ -73,6 +89,10 @@ namespace PlateOnHalfspace
     // A symmetric scene is solved on the part x >= 0 and/or y >= 0 of the
     // plate (mirror_symmetry.h), cut from the coarse mesh so that its
     // refinements are those of the whole plate's mesh.
+    // The goal's error estimate reconstructs on patches of 2 x 2 cells
+    // (refinement/dual_weighted_residual.h): keep every cell's siblings.
+    if (parameters.adaptivity.goal.kind != Parameters::Goal::Kind::none)
+      triangulation.set_mesh_smoothing(Triangulation<2>::patch_level_1);
     make_coarse_plate_mesh(parameters.plate,
                            parameters.discretization,
                            triangulation);
@@ -87,6 +107,9 @@ namespace PlateOnHalfspace
     mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
                                                    parameters.discretization);
     mindlin_plate->set_mirror_symmetry(symmetry);
+    if (parameters.adaptivity.goal.kind != Parameters::Goal::Kind::none)
+      goal = std::make_unique<GoalFunctional>(parameters.adaptivity.goal,
+                                              symmetry);
   }
 
   void
@@ -109,7 +132,7 @@ namespace PlateOnHalfspace
       mindlin_plate->foundation_field_to_solution(indicator);
 
     if (!create_refinement_strategy(parameters)
-           ->mark(*mindlin_plate, contact, triangulation))
+           ->mark(*mindlin_plate, contact, goal_estimate, triangulation))
       return false;
     SolutionTransfer<2> transfer(mindlin_plate->get_dof_handler());
     triangulation.prepare_coarsening_and_refinement();
@@ -177,12 +200,12 @@ namespace PlateOnHalfspace
   {
     TimerOutput::Scope scope(timer_output, "contact solve");
     Timer              phase;
-    const auto         solver = create_contact_solver(parameters,
-                                              parameters.contact_solver(
-                                                summary.n_foundation_dofs),
-                                              parameters.output.verbosity,
-                                              log);
-    contact        = solver->solve(*mindlin_plate, *foundation_operator, seed);
+    contact_solver = create_contact_solver(
+      parameters,
+      parameters.contact_solver(summary.n_foundation_dofs),
+      parameters.output.verbosity,
+      log);
+    contact = contact_solver->solve(*mindlin_plate, *foundation_operator, seed);
     pressure_field = mindlin_plate->foundation_field_to_solution(contact.q);
     // The solver's factorisation of the flexibility belongs to the
     // foundation's time (doc/outputs.md, the time split).
@@ -192,6 +215,111 @@ namespace PlateOnHalfspace
     summary.foundation_integration_time_s   = std::max(
       0., summary.foundation_time_s - summary.foundation_compression_time_s);
     summary.foundation_time_s += factorization;
+  }
+
+  void
+  PlateOnHalfspaceProblem::estimate_goal_error()
+  {
+    goal_estimate = GoalErrorEstimate();
+    if (!goal)
+      return;
+    TimerOutput::Scope scope(timer_output, "goal error estimate");
+    Timer              phase;
+    const GoalFunctional::Evaluation value = goal->evaluate(
+      *mindlin_plate, contact.plate_solution, pressure_field, contact);
+    if (goal->depends_on_plate_only())
+      {
+        const Vector<double> goal_load =
+          goal->derivative(*mindlin_plate, contact.plate_solution, value);
+        const ContactState adjoint =
+          contact_solver->solve_linearised(goal_load);
+        // The adjoint pressure without the part of the goal density the
+        // soil carries at the goal's points, which the estimate takes
+        // exactly (dual_weighted_residual.h): the share theta of a point's
+        // density M^{-1} c delta that the adjoint pressure holds there, 1
+        // for a plate too flexible to spread the point's load over the
+        // cells around it, 0 for one stiff enough to spread it far.
+        Vector<double> reaction = adjoint.q;
+        std::vector<std::pair<Point<2>, double>> terms =
+          goal->deflection_terms();
+        const Vector<double> adjoint_field =
+          mindlin_plate->foundation_field_to_solution(adjoint.q);
+        for (auto &term : terms)
+          {
+            Vector<double> point_load(goal_load.size());
+            const auto     located = mindlin_plate->locate(term.first);
+            FEValues<2>    values(mindlin_plate->get_fe(),
+                               Quadrature<2>(std::vector<Point<2>>{
+                                 located.second}),
+                               update_values);
+            values.reinit(located.first);
+            std::vector<types::global_dof_index> dofs(
+              mindlin_plate->get_fe().n_dofs_per_cell());
+            located.first->get_dof_indices(dofs);
+            Vector<double> local(dofs.size());
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              local[i] = term.second * values.shape_value_component(i, 0, 0);
+            mindlin_plate->get_constraints().distribute_local_to_global(
+              local, dofs, point_load);
+            const Vector<double> density = goal_density_pressure(
+              foundation_operator->mass_matrix(),
+              contact.active_set,
+              mindlin_plate->restrict_to_foundation(point_load));
+            const double density_at_point = mindlin_plate->point_value(
+              mindlin_plate->foundation_field_to_solution(density),
+              term.first,
+              0);
+            const double theta =
+              density_at_point != 0 ?
+                std::clamp(mindlin_plate->point_value(adjoint_field,
+                                                      term.first,
+                                                      0) /
+                             density_at_point,
+                           0.,
+                           1.) :
+                0.;
+            reaction.add(-theta, density);
+            term.second *= theta;
+          }
+        const Vector<double> adjoint_pressure =
+          mindlin_plate->foundation_field_to_solution(reaction);
+        const FoundationResidualData soil{
+          contact.q,
+          contact.active_set,
+          adjoint_pressure,
+          boussinesq_flexibility_constant(
+            parameters.foundation.youngs_modulus,
+            parameters.foundation.poissons_ratio),
+          parameters.discretization.singular_quadrature_order,
+          terms};
+        goal_estimate =
+          PlateOnHalfspace::estimate_goal_error(*mindlin_plate,
+                              contact.plate_solution,
+                              pressure_field,
+                              adjoint.plate_solution,
+                              soil,
+                              computed_loads,
+                              parameters.plate.unit_weight *
+                                parameters.plate.thickness);
+      }
+    summary.has_goal              = true;
+    summary.goal.quantity         = goal->name();
+    summary.goal.value            = value.value;
+    summary.goal.has_location     = value.has_location;
+    summary.goal.location         = value.location;
+    summary.goal.estimated_error  = goal_estimate.estimated_error;
+    summary.goal.indicator_sum    = goal_estimate.indicator_sum;
+    summary.goal.relative_error   = std::abs(goal_estimate.estimated_error) /
+                                  std::max(std::abs(value.value), 1e-300);
+    summary.goal.target_error     = parameters.adaptivity.target_error;
+    summary.goal.time_s           = phase.wall_time();
+  }
+
+  bool
+  PlateOnHalfspaceProblem::goal_target_met() const
+  {
+    return goal && parameters.adaptivity.target_error > 0 &&
+           summary.goal.relative_error <= parameters.adaptivity.target_error;
   }
 
   void
@@ -335,6 +463,17 @@ namespace PlateOnHalfspace
     add_quantity("contact fraction",
                  summary.contact_area_fraction,
                  previous ? previous->contact_area_fraction : 0.);
+    if (summary.has_goal)
+      {
+        // the goal, its estimated error relative to |value|, and the
+        // relative change of the value
+        add_quantity("goal",
+                     summary.goal.value,
+                     previous ? previous->goal.value : 0.);
+        convergence.add_value("goal est. error", summary.goal.relative_error);
+        convergence.set_scientific("goal est. error", true);
+        convergence.set_precision("goal est. error", 2);
+      }
     convergence.add_value("contact force", summary.contact_force);
     convergence.set_scientific("contact force", true);
     convergence.set_precision("contact force", 6);

@@ -21,6 +21,8 @@
 #include <plate_on_halfspace/halfspace/interface.h>
 #include <plate_on_halfspace/io/results_output.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/refinement/dual_weighted_residual.h>
+#include <plate_on_halfspace/refinement/goal.h>
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
@@ -125,6 +127,19 @@ namespace PlateOnHalfspace
     void
     solve_contact();
 
+    /**
+     * The goal's value and the dual-weighted residual estimate of its
+     * error (doc/formulation.md, "Goal-oriented refinement"): the adjoint
+     * problem on the cycle's contact set, solved by the cycle's contact
+     * solver.
+     */
+    void
+    estimate_goal_error();
+
+    /** Whether the cycle's estimate meets Adaptivity/Target error. */
+    bool
+    goal_target_met() const;
+
     /** Fill the cycle's summary: equilibrium, extremes, probes. */
     void
     postprocess();
@@ -147,6 +162,11 @@ namespace PlateOnHalfspace
     Triangulation<2>      triangulation;
 
     std::unique_ptr<MindlinPlate>       mindlin_plate;
+    /** The cycle's contact solver (the adjoint problem reuses it). */
+    std::unique_ptr<ContactSolver> contact_solver;
+    /** Adaptivity/Goal (none: no estimate) and the cycle's estimate. */
+    std::unique_ptr<GoalFunctional> goal;
+    GoalErrorEstimate               goal_estimate;
     std::unique_ptr<FoundationOperator> foundation_operator;
     /** The storage foundation_operator was made with. */
     Parameters::FoundationOperator::Storage operator_storage;

@@ -85,11 +85,42 @@ namespace PlateOnHalfspace
     return state;
   }
 
+  ContactState
+  ContactIteration::solve_linearised(const Vector<double> &plate_load)
+  {
+    AssertThrow(plate != nullptr && !final_contact_set.empty(),
+                ExcMessage("ContactSolver::solve_linearised() needs a "
+                           "solve() first."));
+    const Vector<double> scene_load = plate->get_load_vector();
+    plate->set_load_vector(plate_load);
+    load_changed();
+    ContactState state;
+    state.cell_in_foundation.assign(plate->get_foundation_space().cells.size(),
+                                    true);
+    try
+      {
+        solve_on_set(final_contact_set, final_tolerance(), state);
+      }
+    catch (...)
+      {
+        plate->set_load_vector(scene_load);
+        load_changed();
+        throw;
+      }
+    plate->set_load_vector(scene_load);
+    load_changed();
+    state.iterations = 1;
+    state.converged  = true;
+    express_in_nodal_values(*foundation, state);
+    return state;
+  }
+
   void
   ContactIteration::solve_bonded(ContactState &state)
   {
+    final_contact_set = foundation->supported_nodes();
     const Vector<double> plate_settlement =
-      solve_on_set(foundation->supported_nodes(), final_tolerance(), state);
+      solve_on_set(final_contact_set, final_tolerance(), state);
     state.iterations = 1;
     state.converged  = true;
     evaluate_contact_conditions(plate_settlement,
@@ -111,8 +142,9 @@ namespace PlateOnHalfspace
         AssertThrow(contact_set_supports_plate(space,
                                                foundation->supported_nodes()),
                     ExcMessage(plate_is_mechanism_message()));
+        final_contact_set = foundation->supported_nodes();
         plate_settlement =
-          solve_on_set(foundation->supported_nodes(), final_tolerance(), state);
+          solve_on_set(final_contact_set, final_tolerance(), state);
         const double norm = state.w.l2_norm();
         const double change =
           std::abs(norm - previous_norm) / std::max(norm, 1e-300);
@@ -179,8 +211,8 @@ namespace PlateOnHalfspace
       {
         AssertThrow(contact_set_supports_plate(space, active_set.contact_set()),
                     ExcMessage(plate_is_mechanism_message()));
-        plate_settlement =
-          solve_on_set(active_set.contact_set(), tolerance, state);
+        final_contact_set = active_set.contact_set();
+        plate_settlement  = solve_on_set(final_contact_set, tolerance, state);
         // A sign below the solve's accuracy is rounding, not a violation.
         const double accuracy  = std::max(1e-12, tolerance);
         const double q_scale   = std::max(max_abs(state.q), 1e-300);

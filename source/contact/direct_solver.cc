@@ -61,6 +61,13 @@ namespace PlateOnHalfspace
     for (const Vector<double> &motion : rigid_body_motions(plate))
       rigid_motions.push_back(plate.restrict_to_foundation(motion));
     factorised_once = false;
+    factorised_set.clear();
+  }
+
+  void
+  DirectContactSolver::load_changed()
+  {
+    plate_load = plate->condensed_load();
   }
 
   void
@@ -168,15 +175,24 @@ namespace PlateOnHalfspace
                                     const double,
                                     ContactState &state)
   {
-    factorise_contact_block(contact_set, state);
-
-    // (K̄ + S) w = P̄ (P21), S the foundation stiffness on the contact set.
-    LAPACKFullMatrix<double> coupled(plate_stiffness);
-    add_foundation_stiffness(coupled);
-    state.coupled_rcond = factorise(coupled,
-                                    foundation->is_symmetric(),
-                                    plate_is_mechanism_message());
-    state.w             = plate_load;
+    // A set solved before (the adjoint problem of solve_linearised()
+    // shares the last set of solve()) reuses both factors.
+    if (contact_set != factorised_set)
+      {
+        factorise_contact_block(contact_set, state);
+        // (K̄ + S) w = P̄ (P21), S the foundation stiffness on the contact
+        // set.
+        coupled = plate_stiffness;
+        add_foundation_stiffness(coupled);
+        coupled_rcond  = factorise(coupled,
+                                  foundation->is_symmetric(),
+                                  plate_is_mechanism_message());
+        block_rcond    = state.contact_block_rcond;
+        factorised_set = contact_set;
+      }
+    state.coupled_rcond       = coupled_rcond;
+    state.contact_block_rcond = block_rcond;
+    state.w                   = plate_load;
     coupled.solve(state.w);
     for (const double v : state.w)
       AssertThrow(std::isfinite(v), ExcMessage(plate_is_mechanism_message()));

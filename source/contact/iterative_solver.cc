@@ -376,22 +376,34 @@ namespace PlateOnHalfspace
     // same G that the gap equation H q - G alpha = d has.
     inverse = std::make_unique<PlateGeneralizedInverse>(plate);
     const SparseMatrix<double> &test_coupling = foundation.test_coupling();
-    const Vector<double>       &load          = plate.get_load_vector();
-    Vector<double>              plate_response;
-    inverse->solve(load, plate_response);
-    tested_plate_load.reinit(n);
-    test_coupling.vmult(tested_plate_load,
-                        plate.restrict_to_foundation(plate_response));
-    const auto &motions = inverse->rigid_motions();
+    const auto                 &motions       = inverse->rigid_motions();
     tested_motions.clear();
-    motion_loads.reinit(motions.size());
     for (unsigned int j = 0; j < motions.size(); ++j)
       {
         Vector<double> column(n);
         test_coupling.vmult(column, plate.restrict_to_foundation(motions[j]));
         tested_motions.push_back(column);
-        motion_loads[j] = motions[j] * load;
       }
+    this->plate      = &plate;
+    this->foundation = &foundation;
+    load_changed();
+  }
+
+  void
+  IterativeContactSolver::load_changed()
+  {
+    // B N K^+ P and R^T P: the parts of the contact-set problem that
+    // depend on the load.
+    const Vector<double> &load = plate->get_load_vector();
+    Vector<double>        plate_response;
+    inverse->solve(load, plate_response);
+    tested_plate_load.reinit(foundation->n_nodes());
+    foundation->test_coupling().vmult(
+      tested_plate_load, plate->restrict_to_foundation(plate_response));
+    const auto &motions = inverse->rigid_motions();
+    motion_loads.reinit(motions.size());
+    for (unsigned int j = 0; j < motions.size(); ++j)
+      motion_loads[j] = motions[j] * load;
   }
 
   Vector<double>

@@ -325,7 +325,31 @@ namespace PlateOnHalfspace
                                  {"q", p.q},
                                  {"Mx", p.mx},
                                  {"My", p.my}});
+        if (c.has_goal)
+          {
+            nlohmann::ordered_json goal;
+            goal["quantity"] = c.goal.quantity;
+            goal["value"]    = c.goal.value;
+            if (c.goal.has_location)
+              goal["at"] = {c.goal.location[0], c.goal.location[1]};
+            goal["estimated_error"]       = c.goal.estimated_error;
+            goal["relative_error"]        = c.goal.relative_error;
+            goal["indicator_sum"]         = c.goal.indicator_sum;
+            goal["time_s"]                = c.goal.time_s;
+            j["goal"]                     = goal;
+          }
         summary["cycles"].push_back(j);
+      }
+    // Whether the last cycle met Adaptivity/Target error.
+    if (!cycles.empty() && cycles.back().has_goal &&
+        cycles.back().goal.target_error > 0)
+      {
+        const CycleSummary::Goal &goal = cycles.back().goal;
+        summary["goal_target"]         = {
+          {"quantity", goal.quantity},
+          {"target_error", goal.target_error},
+          {"relative_error", goal.relative_error},
+          {"met", goal.relative_error <= goal.target_error}};
       }
     write_file("summary.json", summary.dump(2) + "\n");
   }

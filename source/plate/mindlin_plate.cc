@@ -182,7 +182,7 @@ namespace PlateOnHalfspace
     using SI = Parameters::Discretization::ShearIntegration;
     const SI                         shear = discretization.shear_integration;
     const QGauss<2>                  bending_rule(shear == SI::reduced ? 2 : 3);
-    const QGauss<2>                  shear_rule(shear == SI::full ? 3 : 2);
+    const QGauss<2>                  shear_rule(shear_quadrature_points());
     FEValues<2>                      bending_values(mapping,
                                fe,
                                bending_rule,
@@ -198,8 +198,7 @@ namespace PlateOnHalfspace
     // (P1): D_b = D [[1,nu,0],[nu,1,0],[0,0,(1-nu)/2]], D_s = k G t.
     const double D  = plate.flexural_rigidity();
     const double nu = plate.poissons_ratio;
-    const double Ds =
-      5. / 6. * plate.youngs_modulus / (2. * (1. + nu)) * plate.thickness;
+    const double Ds = shear_rigidity();
 
     const unsigned int                   n = fe.n_dofs_per_cell();
     FullMatrix<double>                   local(n, n);
@@ -348,6 +347,22 @@ namespace PlateOnHalfspace
       total_load += load[dof];
   }
 
+  double
+  MindlinPlate::shear_rigidity() const
+  {
+    return 5. / 6. * plate.youngs_modulus / (2. * (1. + plate.poissons_ratio)) *
+           plate.thickness;
+  }
+
+  unsigned int
+  MindlinPlate::shear_quadrature_points() const
+  {
+    return discretization.shear_integration ==
+               Parameters::Discretization::ShearIntegration::full ?
+             3 :
+             2;
+  }
+
   unsigned int
   MindlinPlate::n_unconstrained_dofs() const
   {
@@ -432,7 +447,14 @@ namespace PlateOnHalfspace
           }
       }
 
+    condensed_load = this->condensed_load();
+  }
+
+  Vector<double>
+  MindlinPlate::condensed_load() const
+  {
     // P̄ = P_f - K_fr K_rr^{-1} P_r
+    const unsigned int  nf = foundation_dofs.size(), nr = rest_dofs.size();
     std::vector<double> rest_load(nr);
     for (unsigned int c = 0; c < nr; ++c)
       rest_load[c] = load[rest_dofs[c]];
@@ -442,10 +464,20 @@ namespace PlateOnHalfspace
     for (unsigned int c = 0; c < nr; ++c)
       rest_solution[rest_dofs[c]] = rest_load[c];
     stiffness.vmult(product, rest_solution);
-    condensed_load.reinit(nf);
+    Vector<double> condensed(nf);
     for (unsigned int i = 0; i < nf; ++i)
-      condensed_load[i] =
-        load[foundation_dofs[i]] - product[foundation_dofs[i]];
+      condensed[i] = load[foundation_dofs[i]] - product[foundation_dofs[i]];
+    return condensed;
+  }
+
+  void
+  MindlinPlate::set_load_vector(const Vector<double> &new_load)
+  {
+    AssertThrow(new_load.size() == dof_handler.n_dofs(), ExcInternalError());
+    load       = new_load;
+    total_load = 0;
+    for (const auto dof : foundation_dofs)
+      total_load += load[dof];
   }
 
   void

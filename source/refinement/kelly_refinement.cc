@@ -8,6 +8,7 @@
 #include <deal.II/numerics/error_estimator.h>
 
 #include <plate_on_halfspace/refinement/interface.h>
+#include <plate_on_halfspace/refinement/marking.h>
 
 #include <algorithm>
 #include <cmath>
@@ -76,6 +77,7 @@ namespace PlateOnHalfspace
   bool
   GlobalRefinement::mark(const MindlinPlate &,
                          const ContactState &,
+                         const GoalErrorEstimate &,
                          Triangulation<2> &triangulation) const
   {
     if (4 * triangulation.n_active_cells() > adaptivity.max_cells)
@@ -94,23 +96,14 @@ namespace PlateOnHalfspace
   bool
   KellyRefinement::mark(const MindlinPlate &plate,
                         const ContactState &contact,
-                        Triangulation<2>   &triangulation) const
+                        const GoalErrorEstimate &,
+                        Triangulation<2> &triangulation) const
   {
     const Vector<double> &solution = contact.plate_solution;
     const unsigned int    n_cells  = triangulation.n_active_cells();
-
-    // The numbers to mark are those of the whole plate: its n-th cell in
-    // the order of the indicators is the computed part's ceil(n / copies)-th
-    // (a symmetric scene's cells come in groups of copies).
-    const unsigned int copies =
+    const unsigned int    copies =
       plate.get_foundation_space().symmetry.n_copies();
-    const auto part_count = [&](const double fraction_of_plate) {
-      const auto whole = static_cast<unsigned int>(fraction_of_plate);
-      return (whole + copies - 1) / copies;
-    };
-    const unsigned int n_refined =
-      std::max(1u, part_count(adaptivity.refine_fraction * n_cells * copies));
-    if (n_cells + 3 * n_refined > adaptivity.max_cells)
+    if (!can_refine_fraction(adaptivity, copies, n_cells))
       return false;
 
     Vector<float> indicators(n_cells);
@@ -205,37 +198,24 @@ namespace PlateOnHalfspace
         (kelly_max > 0 ? indicators[c] / kelly_max : 0.) +
         (pressure_max > 0 ? pressure_indicators[c] / pressure_max : 0.) +
         (load_max > 0 ? load_indicators[c] / load_max : 0.);
-    // Fixed-number marking, but cells whose indicators tie with the last
-    // marked one (to 1e-5 relative: rounding) are marked with it, so that a
-    // symmetric solution gets a symmetric mesh, and a symmetric scene's
-    // computed part is refined as the whole plate would be.
-    std::vector<float> sorted(indicators.begin(), indicators.end());
-    std::sort(sorted.begin(), sorted.end(), std::greater<float>());
-    const double       tie    = 1e-5 * sorted.front();
-    const double       refine = sorted[n_refined - 1] - tie;
-    const unsigned int n_coarsened =
-      part_count(adaptivity.coarsen_fraction * n_cells * copies);
-    const double coarsen =
-      n_coarsened > 0 ? sorted[n_cells - n_coarsened] + tie : -1.;
-    unsigned int index_c = 0;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      {
-        if (indicators[index_c] >= refine)
-          cell->set_refine_flag();
-        else if (indicators[index_c] <= coarsen)
-          cell->set_coarsen_flag();
-        ++index_c;
-      }
+    mark_largest_fraction(indicators, adaptivity, copies, triangulation);
     return true;
   }
 
   std::unique_ptr<RefinementStrategy>
   create_refinement_strategy(const SceneParameters &parameters)
   {
-    if (parameters.adaptivity.refinement ==
-        Parameters::Adaptivity::Refinement::adaptive)
-      return std::make_unique<KellyRefinement>(parameters.adaptivity,
-                                               parameters.loads);
+    switch (parameters.adaptivity.refinement)
+      {
+        case Parameters::Adaptivity::Refinement::adaptive:
+          return std::make_unique<KellyRefinement>(parameters.adaptivity,
+                                                   parameters.loads);
+        case Parameters::Adaptivity::Refinement::goal:
+          return std::make_unique<GoalOrientedRefinement>(
+            parameters.adaptivity);
+        case Parameters::Adaptivity::Refinement::global:
+          break;
+      }
     return std::make_unique<GlobalRefinement>(parameters.adaptivity);
   }
 } // namespace PlateOnHalfspace

@@ -478,9 +478,24 @@ namespace PlateOnHalfspace
                         "initial mesh.");
       prm.declare_entry("Refinement",
                         "adaptive",
-                        Patterns::Selection("global|adaptive"),
+                        Patterns::Selection("global|adaptive|goal"),
                         "global: refine every cell; adaptive: Kelly "
-                        "indicator plus plate edge and contact boundary.");
+                        "indicator plus plate edge and contact boundary; "
+                        "goal: the cell-wise dual-weighted residual "
+                        "estimate of the error in Goal.");
+      prm.declare_entry("Goal",
+                        "",
+                        Patterns::Anything(),
+                        "Quantity of interest whose error every cycle "
+                        "estimates: w|Mx|My|Mxy|q at x,y ; peak Mx|My|M1 ; "
+                        "contact area ; mean w ; w at x1,y1 minus x2,y2. "
+                        "Empty: no estimate.");
+      prm.declare_entry("Target error",
+                        "0",
+                        Patterns::Double(0),
+                        "Relative error of Goal to reach: cycling stops "
+                        "once the estimate over |value| is below it; 0: "
+                        "run all Cycles.");
       prm.declare_entry("Refine fraction",
                         "0.3",
                         Patterns::Double(0, 1),
@@ -503,8 +518,12 @@ namespace PlateOnHalfspace
     {
       prm.enter_subsection("Adaptivity");
       cycles     = prm.get_integer("Cycles");
-      refinement = (prm.get("Refinement") == "adaptive" ? Refinement::adaptive :
-                                                          Refinement::global);
+      const std::string r = prm.get("Refinement");
+      refinement          = (r == "adaptive" ? Refinement::adaptive :
+                             r == "goal"     ? Refinement::goal :
+                                               Refinement::global);
+      goal                = Goal::parse(prm.get("Goal"));
+      target_error        = prm.get_double("Target error");
       refine_fraction  = prm.get_double("Refine fraction");
       coarsen_fraction = prm.get_double("Coarsen fraction");
       max_cells        = prm.get_integer("Max cells");
@@ -512,6 +531,89 @@ namespace PlateOnHalfspace
       require(refine_fraction + coarsen_fraction <= 1,
               "Adaptivity/Refine fraction + Adaptivity/Coarsen fraction must "
               "not exceed 1.");
+      require(goal.kind != Goal::Kind::none ||
+                refinement != Refinement::goal,
+              "Adaptivity/Refinement = goal needs Adaptivity/Goal (the "
+              "quantity whose error refinement reduces).");
+      require(goal.kind != Goal::Kind::none || target_error == 0,
+              "Adaptivity/Target error needs Adaptivity/Goal (the quantity "
+              "the target refers to).");
+      require(target_error < 1,
+              "Adaptivity/Target error is relative and must lie in [0, 1)" +
+                got(target_error) + ".");
+    }
+
+    Goal
+    Goal::parse(const std::string &entry)
+    {
+      // "w at 0,0", "Mx at 1.5,-2", "peak Mx", "contact area", "mean w",
+      // "w at x1,y1 minus x2,y2"; words are separated by blanks.
+      const std::string allowed =
+        "Adaptivity/Goal must be one of: w|Mx|My|Mxy|q at x,y ; peak "
+        "Mx|My|M1 ; contact area ; mean w ; w at x1,y1 minus x2,y2 (got <" +
+        entry + ">).";
+      Goal goal;
+      goal.text = Utilities::trim(entry);
+      // "0, 0" and "0 ,0" are one word
+      std::string compact = goal.text;
+      for (std::size_t at; (at = compact.find(", ")) != std::string::npos;)
+        compact.erase(at + 1, 1);
+      for (std::size_t at; (at = compact.find(" ,")) != std::string::npos;)
+        compact.erase(at, 1);
+      std::istringstream       stream(compact);
+      std::vector<std::string> words;
+      for (std::string word; stream >> word;)
+        words.push_back(word);
+      if (words.empty())
+        return goal;
+      const auto point = [&](const std::string &text) {
+        const std::vector<std::vector<double>> numbers =
+          parse_number_list(text, 2, "Adaptivity/Goal", "x,y");
+        require(numbers.size() == 1, allowed);
+        return Point<2>(numbers[0][0], numbers[0][1]);
+      };
+      const auto field = [&](const std::string &name, const bool peak) {
+        if (name == "w" && !peak)
+          return Quantity::w;
+        if (name == "q" && !peak)
+          return Quantity::q;
+        if (name == "Mx")
+          return Quantity::mx;
+        if (name == "My")
+          return Quantity::my;
+        if (name == "Mxy" && !peak)
+          return Quantity::mxy;
+        if (name == "M1" && peak)
+          return Quantity::principal_moment;
+        require(false, allowed);
+        return Quantity::w;
+      };
+      if (words.size() == 3 && words[1] == "at")
+        {
+          goal.kind        = Kind::point_value;
+          goal.quantity    = field(words[0], false);
+          goal.first_point = point(words[2]);
+        }
+      else if (words.size() == 5 && words[0] == "w" && words[1] == "at" &&
+               words[3] == "minus")
+        {
+          goal.kind         = Kind::w_difference;
+          goal.first_point  = point(words[2]);
+          goal.second_point = point(words[4]);
+        }
+      else if (words.size() == 2 && words[0] == "peak")
+        {
+          goal.kind     = Kind::peak;
+          goal.quantity = field(words[1], true);
+        }
+      else if (words.size() == 2 && words[0] == "contact" &&
+               words[1] == "area")
+        goal.kind = Kind::contact_area;
+      else if (words.size() == 2 && words[0] == "mean" && words[1] == "w")
+        goal.kind = Kind::mean_w;
+      else
+        require(false, allowed);
+      return goal;
     }
 
     void

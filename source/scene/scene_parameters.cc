@@ -94,6 +94,21 @@ namespace PlateOnHalfspace
         const std::string obstacle = hierarchical_storage_obstacle(*this);
         require(obstacle.empty(), obstacle);
       }
+    if (adaptivity.goal.kind != Parameters::Goal::Kind::none)
+      {
+        // doc/formulation.md, "Goal-oriented refinement": the dual problem
+        // is the primal one only for a symmetric operator, and the dual
+        // weights are reconstructed on patches of 2 x 2 cells.
+        require(discretization.flexibility ==
+                  Parameters::Discretization::Flexibility::galerkin,
+                "Adaptivity/Goal needs the symmetric half-space operator, "
+                "Discretization/Flexibility = galerkin (the error estimate "
+                "solves the adjoint problem with the same operator).");
+        require(discretization.initial_refinements >= 1,
+                "Adaptivity/Goal needs Discretization/Initial refinements "
+                ">= 1: the error estimate reconstructs the dual solution "
+                "on patches of 2 x 2 cells of a refined mesh.");
+      }
     if (contact.solver == Parameters::Contact::Solver::iterative)
       {
         require(discretization.flexibility ==

@@ -34,6 +34,9 @@ namespace PlateOnHalfspace
           FoundationOperator      &foundation,
           const std::vector<bool> &seed) final;
 
+    ContactState
+    solve_linearised(const Vector<double> &plate_load) final;
+
   protected:
     /**
      * Once per solve(), before any contact set: set up what every set
@@ -44,6 +47,13 @@ namespace PlateOnHalfspace
     prepare(MindlinPlate       &plate,
             FoundationOperator &foundation,
             ContactState       &state) = 0;
+
+    /**
+     * The plate's load vector has changed (solve_linearised()): update
+     * what prepare() derived from it.
+     */
+    virtual void
+    load_changed() = 0;
 
     /**
      * The coupled problem with the gap closed on @p contact_set (a subset
@@ -81,6 +91,9 @@ namespace PlateOnHalfspace
     FoundationOperator *foundation = nullptr;
 
   private:
+    /** The contact set of the last solve_on_set() of solve(). */
+    std::vector<bool> final_contact_set;
+
     void
     solve_bonded(ContactState &state);
 

@@ -38,6 +38,9 @@ namespace PlateOnHalfspace
             FoundationOperator &foundation,
             ContactState       &state) override;
 
+    void
+    load_changed() override;
+
     Vector<double>
     solve_on_set(const std::vector<bool> &contact_set,
                  const double             tolerance,
@@ -70,7 +73,11 @@ namespace PlateOnHalfspace
     std::vector<Vector<double>> rigid_motions;
     std::vector<unsigned int>   contact_index;  ///< the nodes of C
     LAPACKFullMatrix<double>    contact_factor; ///< factor of F_CC
-    bool                        factorised_once = false;
+    LAPACKFullMatrix<double>    coupled;        ///< factor of K̄ + S
+    /** The contact set of contact_factor and coupled, and their 1/κ₁. */
+    std::vector<bool> factorised_set;
+    double            coupled_rcond = 1, block_rcond = 1;
+    bool              factorised_once = false;
   };
 } // namespace PlateOnHalfspace
 

@@ -110,6 +110,18 @@ namespace PlateOnHalfspace
     solve(MindlinPlate            &plate,
           FoundationOperator      &foundation,
           const std::vector<bool> &seed) = 0;
+
+    /**
+     * After solve(): the coupled problem linearised on solve()'s final
+     * contact set (the gap closed there, no pressure elsewhere) under the
+     * plate load @p plate_load instead of the scene's, a DoF vector
+     * assembled like MindlinPlate's load vector. The operator is symmetric
+     * for the Galerkin half-space, so this is the adjoint problem of a goal
+     * whose derivative @p plate_load is (doc/formulation.md, "Goal-oriented
+     * refinement"). The plate's own load is left as it was.
+     */
+    virtual ContactState
+    solve_linearised(const Vector<double> &plate_load) = 0;
   };
 
   /**

@@ -121,6 +121,9 @@ namespace PlateOnHalfspace
      * ConjugateGradientControl::max_iterations (never a silently
      * inaccurate answer).
      */
+    void
+    load_changed() override;
+
     Vector<double>
     solve_on_set(const std::vector<bool> &contact_set,
                  const double             tolerance,

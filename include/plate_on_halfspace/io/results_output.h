@@ -57,6 +57,27 @@ namespace PlateOnHalfspace
     /** 1/κ₁ estimates of the coupled matrix and of the half-space block. */
     double coupled_matrix_rcond = 1, foundation_block_rcond = 1;
     std::vector<PointValues> probes;
+
+    /** The cycle's value and error estimate of Adaptivity/Goal. */
+    struct Goal
+    {
+      std::string quantity; ///< as the scene names it
+      double      value = 0;
+      /** Where a point value or a peak was taken. */
+      bool     has_location = false;
+      Point<2> location;
+      /** Estimate of the true value minus value (signed), and its size
+       *  relative to |value|. */
+      double estimated_error = 0, relative_error = 0;
+      /** Sum of the local estimates' magnitudes (no cancellation). */
+      double indicator_sum = 0;
+      /** Adaptivity/Target error (0: none). */
+      double target_error = 0;
+      /** Wall time (s) of the value, the adjoint solve and the estimate. */
+      double time_s = 0;
+    };
+    bool has_goal = false;
+    Goal goal;
   };
 
   /**

@@ -104,6 +104,21 @@ namespace PlateOnHalfspace
     condense(LAPACKFullMatrix<double> &stiffness, Vector<double> &load);
 
     /**
+     * P̄ of the current load vector, after condense() (the factor of K_rr
+     * it made is reused).
+     */
+    Vector<double>
+    condensed_load() const;
+
+    /**
+     * Replace the load vector by @p load (a DoF vector assembled with the
+     * constraints, as assemble_loads() makes it): the adjoint problem of
+     * goal-oriented estimation is the plate under the goal's load.
+     */
+    void
+    set_load_vector(const Vector<double> &load);
+
+    /**
      * Full solution vector from the foundation deflections (recovers the
      * rotations, r = K_rr^{-1}(P_r - K_rf w_f), and the constrained values).
      */
@@ -183,6 +198,12 @@ namespace PlateOnHalfspace
     {
       return plate.poissons_ratio;
     }
+    /** D_s = k G t, k = 5/6 (doc/formulation.md, "Plate"). */
+    double
+    shear_rigidity() const;
+    /** Gauss points per direction of the element's shear term. */
+    unsigned int
+    shear_quadrature_points() const;
 
   private:
     void

@@ -12,6 +12,7 @@
 
 #include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/refinement/dual_weighted_residual.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
 #include <memory>
@@ -29,13 +30,16 @@ namespace PlateOnHalfspace
     /**
      * Set refinement (and coarsening) flags on @p triangulation, the mesh
      * of @p plate, from the cycle's @p contact (its plate_solution, q and
-     * contact flags). Returns false, and sets no flag, when refining would
-     * exceed Adaptivity/Max cells.
+     * contact flags) and the estimate of the goal's error @p goal (empty
+     * cell indicators when the scene has no Adaptivity/Goal). Returns
+     * false, and sets no flag, when refining would exceed Adaptivity/Max
+     * cells.
      */
     virtual bool
-    mark(const MindlinPlate &plate,
-         const ContactState &contact,
-         Triangulation<2>   &triangulation) const = 0;
+    mark(const MindlinPlate      &plate,
+         const ContactState      &contact,
+         const GoalErrorEstimate &goal,
+         Triangulation<2>        &triangulation) const = 0;
   };
 
   /** Every cell refined once. */
@@ -45,9 +49,10 @@ namespace PlateOnHalfspace
     explicit GlobalRefinement(const Parameters::Adaptivity &adaptivity);
 
     bool
-    mark(const MindlinPlate &plate,
-         const ContactState &contact,
-         Triangulation<2>   &triangulation) const override;
+    mark(const MindlinPlate      &plate,
+         const ContactState      &contact,
+         const GoalErrorEstimate &goal,
+         Triangulation<2>        &triangulation) const override;
 
   private:
     const Parameters::Adaptivity adaptivity;
@@ -68,13 +73,34 @@ namespace PlateOnHalfspace
                     const Parameters::Loads      &loads);
 
     bool
-    mark(const MindlinPlate &plate,
-         const ContactState &contact,
-         Triangulation<2>   &triangulation) const override;
+    mark(const MindlinPlate      &plate,
+         const ContactState      &contact,
+         const GoalErrorEstimate &goal,
+         Triangulation<2>        &triangulation) const override;
 
   private:
     const Parameters::Adaptivity adaptivity;
     const Parameters::Loads      loads;
+  };
+
+  /**
+   * The cells with the largest share of the goal's dual-weighted residual
+   * (doc/formulation.md, "Goal-oriented refinement"), a fixed fraction of
+   * the whole plate's cells, are refined (and coarsened).
+   */
+  class GoalOrientedRefinement : public RefinementStrategy
+  {
+  public:
+    explicit GoalOrientedRefinement(const Parameters::Adaptivity &adaptivity);
+
+    bool
+    mark(const MindlinPlate      &plate,
+         const ContactState      &contact,
+         const GoalErrorEstimate &goal,
+         Triangulation<2>        &triangulation) const override;
+
+  private:
+    const Parameters::Adaptivity adaptivity;
   };
 
   /** The strategy of Adaptivity/Refinement. */

@@ -180,17 +180,57 @@ namespace PlateOnHalfspace
       parse_parameters(ParameterHandler &prm);
     };
 
+    /**
+     * The quantity of interest of Adaptivity/Goal (doc/formulation.md,
+     * "Goal-oriented refinement"), e.g. "Mx at 0,0", "peak Mx",
+     * "contact area", "mean w", "w at 0,0 minus 3,0".
+     */
+    struct Goal
+    {
+      enum class Kind
+      {
+        none,          ///< no goal: no estimate
+        point_value,   ///< quantity at first_point
+        peak,          ///< largest value of quantity over the plate
+        contact_area,  ///< area where the soil carries the plate
+        mean_w,        ///< mean deflection over the plate
+        w_difference   ///< w(first_point) - w(second_point)
+      };
+      /** The field a point value or a peak refers to. */
+      enum class Quantity
+      {
+        w,
+        q,
+        mx,
+        my,
+        mxy,
+        principal_moment ///< the larger principal moment M1
+      };
+      Kind        kind     = Kind::none;
+      Quantity    quantity = Quantity::w;
+      Point<2>    first_point, second_point;
+      std::string text; ///< the entry as written, for the outputs
+
+      /** Parse @p text; throws ExcMessage naming Adaptivity/Goal. */
+      static Goal
+      parse(const std::string &text);
+    };
+
     /** subsection Adaptivity. */
     struct Adaptivity
     {
       /** How the mesh of the next cycle is made (refinement/interface.h). */
       enum class Refinement
       {
-        global,  ///< every cell
-        adaptive ///< Kelly with the contact and load indicators
+        global,   ///< every cell
+        adaptive, ///< Kelly with the contact and load indicators
+        goal      ///< the cell-wise dual-weighted residual of the Goal
       };
       unsigned int cycles;
       Refinement   refinement;
+      Goal         goal;
+      /** Relative target of the goal's error estimate; 0: none. */
+      double target_error;
       double       refine_fraction;
       double       coarsen_fraction;
       unsigned int max_cells;

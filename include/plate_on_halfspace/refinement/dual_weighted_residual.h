@@ -1,0 +1,93 @@
+/**
+ * The dual-weighted residual estimate of a goal's error (doc/formulation.md,
+ * "Goal-oriented refinement"): the plate's residual of the solved cycle,
+ * weighted by the adjoint solution's reconstruction error, localised by
+ * the partition of unity of the bilinear hat functions.
+ */
+#ifndef plate_on_halfspace_refinement_dual_weighted_residual_h
+#define plate_on_halfspace_refinement_dual_weighted_residual_h
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/scene/parameters.h>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /** The estimate of one cycle. */
+  struct GoalErrorEstimate
+  {
+    /** eta, the estimate of J(u) - J(u_h) (signed). */
+    double estimated_error = 0;
+    /** Sum of |eta_i| over the hat functions: eta without cancellation. */
+    double indicator_sum = 0;
+    /** |eta| of each active cell (the plate's cell order), for marking. */
+    Vector<float> cell_indicators;
+  };
+
+  /**
+   * The half-space's part of the cycle: the nodal pressure and the contact
+   * set of the solved cycle, the adjoint problem's pressure (as a field in
+   * the plate's w-space), the flexibility constant alpha and the singular
+   * quadrature order.
+   */
+  struct FoundationResidualData
+  {
+    const Vector<double>    &nodal_pressure;
+    const std::vector<bool> &contact_set;
+    const Vector<double>    &adjoint_pressure_field;
+    double                   alpha;
+    unsigned int             singular_order;
+    /**
+     * The goal's deflection terms c_k w(x_k) (w at a point, a difference),
+     * points on the computed part; empty for other goals.
+     */
+    std::vector<std::pair<Point<2>, double>> goal_point_terms;
+  };
+
+  /**
+   * eta = rho(I z_h - z_h) + rho_F(I zeta_h - zeta_h), the sum of
+   *  - the residual of the plate equation, rho(v) = (p - q_h, v_w) -
+   *    a_h(u_h, v), of the cycle (@p solution, the pressure @p
+   *    pressure_field in the w-space, the scene's @p loads on the computed
+   *    part plus the uniform @p self_weight_pressure), a_h integrating the
+   *    shear term like the element does, and
+   *  - the residual of the half-space equation, rho_F(mu) = (mu, u(q_h) -
+   *    w_h) with u(q_h) the settlement of q_h, on the cells whose nodes
+   *    are all in the contact set,
+   * z_h, zeta_h the adjoint solution @p adjoint_solution and its pressure,
+   * and I the biquartic interpolation on patches of 2 x 2 cells (the mesh
+   * must have been refined once everywhere, Triangulation::patch_level_1).
+   * The adjoint pressure of a goal with deflection terms is the goal's
+   * density (Dirac at its points) minus the plate's reaction; the density's
+   * part of rho_F is sum_k c_k (u(q_h) - w_h)(x_k) exactly, for points in
+   * contact, and @p foundation's adjoint pressure must then be the
+   * reaction's part alone (doc/formulation.md, "Goal-oriented
+   * refinement").
+   */
+  /**
+   * The goal density's discrete pressure M_CC^{-1} j_C: the part of the
+   * adjoint pressure that the goal's deflection terms put on the contact
+   * set C (@p contact_set) directly, @p nodal_goal_load the goal's
+   * derivative at the foundation nodes, @p mass the nodal mass matrix.
+   * Zero off C.
+   */
+  Vector<double>
+  goal_density_pressure(const SparseMatrix<double> &mass,
+                        const std::vector<bool>    &contact_set,
+                        const Vector<double>       &nodal_goal_load);
+
+  GoalErrorEstimate
+  estimate_goal_error(const MindlinPlate           &plate,
+                      const Vector<double>         &solution,
+                      const Vector<double>         &pressure_field,
+                      const Vector<double>         &adjoint_solution,
+                      const FoundationResidualData &foundation,
+                      const Parameters::Loads      &loads,
+                      const double                  self_weight_pressure);
+} // namespace PlateOnHalfspace
+
+#endif

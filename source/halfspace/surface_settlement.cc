@@ -1,0 +1,159 @@
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/work_stream.h>
+
+#include <deal.II/base/parallel.h>
+
+#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
+#include <plate_on_halfspace/halfspace/surface_settlement.h>
+
+#include <algorithm>
+#include <array>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /** A cell's pressure at the points of one Gauss rule, with JxW. */
+    struct GaussTable
+    {
+      std::vector<Point<2>> points;
+      std::vector<double>   weighted_pressure; ///< JxW q_h
+    };
+
+    /** What the point loop needs of one cell. */
+    struct PressureCell
+    {
+      BilinearQuadrilateral geometry;
+      std::vector<Point<2>> polygon;
+      std::array<double, 9> q2_values; ///< q_h at the cell's Q2 nodes
+      Point<2>              centre;
+      double                diameter = 0;
+      std::array<GaussTable, 3> gauss; ///< 2, 3 and 5 points per direction
+      bool                      loaded = false;
+    };
+
+    double
+    pressure_at(const PressureCell &cell, const Point<2> &reference)
+    {
+      const auto phi = q2_shape_values(reference);
+      double     q   = 0;
+      for (unsigned int i = 0; i < 9; ++i)
+        q += phi[i] * cell.q2_values[i];
+      return q;
+    }
+
+    PressureCell
+    make_cell(const FoundationSpace::Cell &space_cell,
+              const Vector<double>        &nodal_pressure)
+    {
+      PressureCell cell{space_cell.geometry, {}, {}, {}, 0, {}, false};
+      const auto  &v = cell.geometry.get_vertices();
+      cell.polygon   = {v[0], v[1], v[3], v[2]};
+      for (unsigned int i = 0; i < 9; ++i)
+        {
+          cell.q2_values[i] = 0;
+          for (const auto &term : space_cell.expansion[i])
+            cell.q2_values[i] += term.second * nodal_pressure[term.first];
+          cell.loaded = cell.loaded || cell.q2_values[i] != 0;
+        }
+      cell.centre = cell.geometry.map(Point<2>(0.5, 0.5));
+      for (const Point<2> &p : v)
+        cell.diameter = std::max(cell.diameter, 2. * p.distance(cell.centre));
+      const std::array<unsigned int, 3> orders = {{2, 3, 5}};
+      for (unsigned int r = 0; r < 3; ++r)
+        {
+          const QGauss<2> rule(orders[r]);
+          for (unsigned int q = 0; q < rule.size(); ++q)
+            {
+              const Point<2> &p = rule.point(q);
+              cell.gauss[r].points.push_back(cell.geometry.map(p));
+              cell.gauss[r].weighted_pressure.push_back(
+                rule.weight(q) * cell.geometry.jacobian_determinant(p) *
+                pressure_at(cell, p));
+            }
+        }
+      return cell;
+    }
+
+    /** ∫_cell q_h(y) / |x - y| dy. */
+    double
+    inverse_distance_integral(const PressureCell &cell,
+                              const Point<2>     &x,
+                              const QDuffy       &duffy)
+    {
+      const double distance = x.distance(cell.centre) / cell.diameter;
+      if (distance >= 1.5)
+        {
+          const GaussTable &table =
+            cell.gauss[distance < 2.5 ? 2 : distance < 20 ? 1 : 0];
+          double sum = 0;
+          for (unsigned int q = 0; q < table.points.size(); ++q)
+            sum += table.weighted_pressure[q] / x.distance(table.points[q]);
+          return sum;
+        }
+      // q_h(y) = (q_h(y) - q_h(split)) + q_h(split): the first part over
+      // r is bounded (Duffy rule split at x's reference point, clamped
+      // onto the cell), the second is exact (polygon integral).
+      Point<2> split = cell.geometry.inverse_map(x);
+      for (unsigned int d = 0; d < 2; ++d)
+        split[d] = std::min(1., std::max(0., split[d]));
+      const double    q_split = pressure_at(cell, split);
+      const QSplit<2> rule(duffy, split);
+      double          sum =
+        q_split * integral_of_inverse_distance_over_polygon(x, cell.polygon);
+      for (unsigned int q = 0; q < rule.size(); ++q)
+        {
+          const Point<2> &y = rule.point(q);
+          const double    r = x.distance(cell.geometry.map(y));
+          if (r == 0.)
+            continue; // a point of measure zero
+          sum += rule.weight(q) * cell.geometry.jacobian_determinant(y) *
+                 (pressure_at(cell, y) - q_split) / r;
+        }
+      return sum;
+    }
+  } // namespace
+
+  std::vector<double>
+  settlement_at_points(const FoundationSpace       &space,
+                       const Vector<double>        &nodal_pressure,
+                       const std::vector<Point<2>> &points,
+                       const double                 alpha,
+                       const unsigned int           singular_order)
+  {
+    std::vector<PressureCell> cells;
+    for (const auto &space_cell : space.cells)
+      {
+        PressureCell cell = make_cell(space_cell, nodal_pressure);
+        if (cell.loaded)
+          cells.push_back(std::move(cell));
+      }
+    // the images' pressure acts at the mirrored point: |R x - y| for the
+    // reflection R of the computed part's y
+    std::vector<std::array<double, 2>> images = {{{1., 1.}}};
+    for (const auto &r : space.symmetry.reflections())
+      images.push_back(r);
+
+    const QDuffy        duffy(singular_order, 1.0);
+    std::vector<double> settlement(points.size(), 0.);
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(points.size()),
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int p = begin; p < end; ++p)
+          {
+            double sum = 0;
+            for (const auto &image : images)
+              {
+                const Point<2> x(image[0] * points[p][0],
+                                 image[1] * points[p][1]);
+                for (const PressureCell &cell : cells)
+                  sum += inverse_distance_integral(cell, x, duffy);
+              }
+            settlement[p] = alpha * sum;
+          }
+      },
+      16);
+    return settlement;
+  }
+} // namespace PlateOnHalfspace

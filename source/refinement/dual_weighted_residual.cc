@@ -1,0 +1,453 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_tools.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/sparse_direct.h>
+
+#include <plate_on_halfspace/base/quadrilateral_geometry.h>
+#include <plate_on_halfspace/halfspace/surface_settlement.h>
+#include <plate_on_halfspace/refinement/dual_weighted_residual.h>
+#include <plate_on_halfspace/scene/mirror_symmetry.h>
+
+#include <array>
+#include <cstdlib>
+#include <cmath>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    using CellIterator = typename DoFHandler<2>::active_cell_iterator;
+
+    /** The cell of @p dof_handler that is @p cell of the triangulation. */
+    CellIterator
+    same_cell(const CellIterator &cell, const DoFHandler<2> &dof_handler)
+    {
+      return CellIterator(&dof_handler.get_triangulation(),
+                          cell->level(),
+                          cell->index(),
+                          &dof_handler);
+    }
+
+    /** A field's value and gradient at a point, three components. */
+    struct Field
+    {
+      std::array<double, 3>       value{};
+      std::array<Tensor<1, 2>, 3> gradient{};
+    };
+
+    /**
+     * The plate's generalised strains of @p u, scaled to its stress
+     * resultants: bending moments m = D_b kappa (as a vector over kappa's
+     * components) and shear forces Q = D_s gamma.
+     */
+    struct Resultants
+    {
+      std::array<double, 3> moment{};
+      Tensor<1, 2>          shear;
+    };
+
+    Resultants
+    resultants(const Field &u, const double D, const double nu, const double Ds)
+    {
+      const double k0 = u.gradient[1][0], k1 = u.gradient[2][1],
+                   k2 = u.gradient[1][1] + u.gradient[2][0];
+      Resultants r;
+      r.moment = {{D * (k0 + nu * k1), D * (nu * k0 + k1), D * 0.5 * (1. - nu) * k2}};
+      for (unsigned int d = 0; d < 2; ++d)
+        r.shear[d] = Ds * (u.gradient[0][d] - u.value[1 + d]);
+      return r;
+    }
+
+    /**
+     * The test function psi * chi (psi the weight, chi a hat function with
+     * value @p chi and gradient @p grad_chi): its curvatures and shear
+     * strains.
+     */
+    void
+    product_strains(const Field        &psi,
+                    const double        chi,
+                    const Tensor<1, 2> &grad_chi,
+                    std::array<double, 3> &kappa,
+                    Tensor<1, 2>          &gamma)
+    {
+      std::array<Tensor<1, 2>, 3> grad;
+      for (unsigned int c = 0; c < 3; ++c)
+        grad[c] = chi * psi.gradient[c] + psi.value[c] * grad_chi;
+      kappa = {{grad[1][0], grad[2][1], grad[1][1] + grad[2][0]}};
+      for (unsigned int d = 0; d < 2; ++d)
+        gamma[d] = grad[0][d] - chi * psi.value[1 + d];
+    }
+
+    void
+    get_fields(const FEValues<2>     &values,
+               const Vector<double>  &vector,
+               std::vector<Field>    &fields)
+    {
+      const unsigned int          n = values.n_quadrature_points;
+      std::vector<Vector<double>> v(n, Vector<double>(3));
+      std::vector<std::vector<Tensor<1, 2>>> g(n,
+                                               std::vector<Tensor<1, 2>>(3));
+      values.get_function_values(vector, v);
+      if (values.get_update_flags() & update_gradients)
+        values.get_function_gradients(vector, g);
+      fields.resize(n);
+      for (unsigned int q = 0; q < n; ++q)
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            fields[q].value[c]    = v[q][c];
+            fields[q].gradient[c] = g[q][c];
+          }
+    }
+  } // namespace
+
+  Vector<double>
+  goal_density_pressure(const SparseMatrix<double> &mass,
+                        const std::vector<bool>    &contact_set,
+                        const Vector<double>       &nodal_goal_load)
+  {
+    // M_CC x_C = j_C as the whole system with the rows and columns off C
+    // replaced by the identity.
+    SparseMatrix<double> matrix(mass.get_sparsity_pattern());
+    matrix.copy_from(mass);
+    Vector<double> x(nodal_goal_load);
+    for (unsigned int i = 0; i < matrix.m(); ++i)
+      for (auto entry = matrix.begin(i); entry != matrix.end(i); ++entry)
+        if (!contact_set[i] || !contact_set[entry->column()])
+          entry->value() = (i == entry->column() ? 1. : 0.);
+    for (unsigned int i = 0; i < x.size(); ++i)
+      if (!contact_set[i])
+        x[i] = 0;
+    SparseDirectUMFPACK solver;
+    solver.initialize(matrix);
+    solver.solve(x);
+    return x;
+  }
+
+  GoalErrorEstimate
+  estimate_goal_error(const MindlinPlate           &plate,
+                      const Vector<double>         &solution,
+                      const Vector<double>         &pressure_field,
+                      const Vector<double>         &adjoint_solution,
+                      const FoundationResidualData &foundation,
+                      const Parameters::Loads      &loads,
+                      const double                  self_weight_pressure)
+  {
+    const DoFHandler<2>    &dof_handler   = plate.get_dof_handler();
+    const Triangulation<2> &triangulation = dof_handler.get_triangulation();
+    const MirrorSymmetry   &symmetry = plate.get_foundation_space().symmetry;
+
+    // The weight I z_h - z_h in the biquartic space: I interpolates z_h on
+    // each patch of 2 x 2 cells by the biquartic function of the patch
+    // (FETools::extrapolate), the plain interpolation of z_h is z_h itself.
+    // Rotations across a mirror plane vanish as the plate's do.
+    const FESystem<2>         weight_fe(FE_Q<2>(4), 3);
+    DoFHandler<2>             weight_dofs(triangulation);
+    AffineConstraints<double> weight_constraints;
+    weight_dofs.distribute_dofs(weight_fe);
+    DoFTools::make_hanging_node_constraints(weight_dofs, weight_constraints);
+    for (const unsigned int axis : {0u, 1u})
+      if (axis == 0 ? symmetry.x : symmetry.y)
+        {
+          const IndexSet plane = DoFTools::extract_boundary_dofs(
+            weight_dofs,
+            weight_fe.component_mask(FEValuesExtractors::Scalar(1 + axis)),
+            {axis == 0 ? mirror_plane_x_boundary_id :
+                         mirror_plane_y_boundary_id});
+          for (const auto dof : plane)
+            if (!weight_constraints.is_constrained(dof))
+              weight_constraints.add_line(dof);
+        }
+    weight_constraints.close();
+    Vector<double> weight(weight_dofs.n_dofs()),
+      interpolant(weight_dofs.n_dofs());
+    FETools::extrapolate(
+      dof_handler, adjoint_solution, weight_dofs, weight_constraints, weight);
+    FETools::interpolate(dof_handler,
+                         adjoint_solution,
+                         weight_dofs,
+                         weight_constraints,
+                         interpolant);
+    weight -= interpolant;
+    // The partition of unity: bilinear hat functions of the vertices (the
+    // hanging ones expressed by their neighbours).
+    const FE_Q<2>             hat_fe(1);
+    DoFHandler<2>             hat_dofs(triangulation);
+    AffineConstraints<double> hat_constraints;
+    hat_dofs.distribute_dofs(hat_fe);
+    DoFTools::make_hanging_node_constraints(hat_dofs, hat_constraints);
+    hat_constraints.close();
+
+    // the same for the adjoint pressure (component 0)
+    Vector<double> pressure_weight(weight_dofs.n_dofs());
+    FETools::extrapolate(dof_handler,
+                         foundation.adjoint_pressure_field,
+                         weight_dofs,
+                         weight_constraints,
+                         pressure_weight);
+    FETools::interpolate(dof_handler,
+                         foundation.adjoint_pressure_field,
+                         weight_dofs,
+                         weight_constraints,
+                         interpolant);
+    pressure_weight -= interpolant;
+
+    // The settlement of q_h at the points of the half-space term: 4 x 4
+    // Gauss points of each cell whose nodes are all in contact.
+    const QGauss<2>        soil_rule(4);
+    const FoundationSpace &space = plate.get_foundation_space();
+    std::vector<bool>      soil_cell(space.cells.size(), true);
+    std::vector<Point<2>>  soil_points;
+    {
+      FEValues<2>  points(plate.get_fe(), soil_rule, update_quadrature_points);
+      unsigned int c = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          for (const unsigned int i : space.cells[c].nodes())
+            soil_cell[c] = soil_cell[c] && foundation.contact_set[i];
+          if (soil_cell[c])
+            {
+              points.reinit(cell);
+              for (const Point<2> &x : points.get_quadrature_points())
+                soil_points.push_back(x);
+            }
+          ++c;
+        }
+    }
+    const std::vector<double> settlement =
+      settlement_at_points(space,
+                           foundation.nodal_pressure,
+                           soil_points,
+                           foundation.alpha,
+                           foundation.singular_order);
+    FEValues<2>         plate_soil(plate.get_fe(),
+                           soil_rule,
+                           update_values | update_JxW_values);
+    FEValues<2>         weight_soil(weight_fe, soil_rule, update_values);
+    FEValues<2>         hat_soil(hat_fe, soil_rule, update_values);
+    std::vector<double> w_soil(soil_rule.size()), mu(soil_rule.size());
+    unsigned int        next_soil_point = 0;
+
+    const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio(),
+                 Ds = plate.shear_rigidity();
+    const double uniform = loads.uniform_pressure + self_weight_pressure;
+
+    // Bending, pressure and load terms: 5 x 5 Gauss points (exact for the
+    // products on parallelograms up to degree 9); the shear term with the
+    // element's rule, so that the residual is that of the discrete form.
+    const QGauss<2>    rule(5);
+    const QGauss<2>    shear_rule(plate.shear_quadrature_points());
+    const UpdateFlags  flags = update_values | update_gradients;
+    FEValues<2>        plate_values(plate.get_fe(),
+                             rule,
+                             flags | update_JxW_values);
+    FEValues<2>        weight_values(weight_fe, rule, flags);
+    FEValues<2>        hat_values(hat_fe, rule, flags);
+    FEValues<2>        plate_shear(plate.get_fe(),
+                            shear_rule,
+                            flags | update_JxW_values);
+    FEValues<2>        weight_shear(weight_fe, shear_rule, flags);
+    FEValues<2>        hat_shear(hat_fe, shear_rule, flags);
+    std::vector<Field> u, psi, u_shear, psi_shear;
+    std::vector<double> q(rule.size());
+    std::vector<types::global_dof_index> hat_indices(4);
+    Vector<double>                       local(4);
+    Vector<double>                       node_estimates(hat_dofs.n_dofs());
+
+    // psi_w * chi_v at the points of a load quadrature (reference points,
+    // physical weights) times the pressure.
+    const auto add_load = [&](const CellIterator &cell,
+                              const Quadrature<2> &load_rule,
+                              const double         pressure) {
+      if (load_rule.size() == 0)
+        return;
+      FEValues<2> w_values(weight_fe, load_rule, update_values);
+      FEValues<2> v_values(hat_fe, load_rule, update_values);
+      w_values.reinit(same_cell(cell, weight_dofs));
+      v_values.reinit(same_cell(cell, hat_dofs));
+      std::vector<Vector<double>> values(load_rule.size(), Vector<double>(3));
+      w_values.get_function_values(weight, values);
+      for (unsigned int p = 0; p < load_rule.size(); ++p)
+        for (unsigned int v = 0; v < 4; ++v)
+          local[v] += pressure * values[p][0] * v_values.shape_value(v, p) *
+                      load_rule.weight(p);
+    };
+
+    unsigned int cell_index = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        local = 0;
+        const CellIterator weight_cell = same_cell(cell, weight_dofs);
+        const CellIterator hat_cell    = same_cell(cell, hat_dofs);
+        // (u(q_h) - w_h) mu chi on the cells in contact
+        if (soil_cell[cell_index++])
+          {
+            plate_soil.reinit(cell);
+            weight_soil.reinit(weight_cell);
+            hat_soil.reinit(hat_cell);
+            plate_soil[FEValuesExtractors::Scalar(0)].get_function_values(
+              solution, w_soil);
+            weight_soil[FEValuesExtractors::Scalar(0)].get_function_values(
+              pressure_weight, mu);
+            for (unsigned int p = 0; p < soil_rule.size(); ++p)
+              {
+                const double residual =
+                  (settlement[next_soil_point++] - w_soil[p]) * mu[p] *
+                  plate_soil.JxW(p);
+                for (unsigned int v = 0; v < 4; ++v)
+                  local[v] += residual * hat_soil.shape_value(v, p);
+              }
+          }
+        plate_values.reinit(cell);
+        weight_values.reinit(weight_cell);
+        hat_values.reinit(hat_cell);
+        get_fields(plate_values, solution, u);
+        get_fields(weight_values, weight, psi);
+        plate_values[FEValuesExtractors::Scalar(0)].get_function_values(
+          pressure_field, q);
+
+        // (uniform - q_h) psi chi - m(u_h) : kappa(psi chi)
+        for (unsigned int p = 0; p < rule.size(); ++p)
+          {
+            const Resultants r   = resultants(u[p], D, nu, Ds);
+            const double     JxW = plate_values.JxW(p);
+            for (unsigned int v = 0; v < 4; ++v)
+              {
+                std::array<double, 3> kappa;
+                Tensor<1, 2>          gamma;
+                const double          chi = hat_values.shape_value(v, p);
+                product_strains(
+                  psi[p], chi, hat_values.shape_grad(v, p), kappa, gamma);
+                local[v] += ((uniform - q[p]) * psi[p].value[0] * chi -
+                             (r.moment[0] * kappa[0] + r.moment[1] * kappa[1] +
+                              r.moment[2] * kappa[2])) *
+                            JxW;
+              }
+          }
+        // - Q(u_h) . gamma(psi chi)
+        plate_shear.reinit(cell);
+        weight_shear.reinit(weight_cell);
+        hat_shear.reinit(hat_cell);
+        get_fields(plate_shear, solution, u_shear);
+        get_fields(weight_shear, weight, psi_shear);
+        for (unsigned int p = 0; p < shear_rule.size(); ++p)
+          {
+            const Resultants r = resultants(u_shear[p], D, nu, Ds);
+            for (unsigned int v = 0; v < 4; ++v)
+              {
+                std::array<double, 3> kappa;
+                Tensor<1, 2>          gamma;
+                product_strains(psi_shear[p],
+                                hat_shear.shape_value(v, p),
+                                hat_shear.shape_grad(v, p),
+                                kappa,
+                                gamma);
+                local[v] -= (r.shear * gamma) * plate_shear.JxW(p);
+              }
+          }
+
+        // the patches, integrated over the part of the cell they cover
+        const BilinearQuadrilateral geometry(std::array<Point<2>, 4>{
+          {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}});
+        for (const auto &patch : loads.rectangular_patches)
+          add_load(cell,
+                   quadrature_on_rectangle_part(geometry,
+                                                patch.lower,
+                                                patch.upper,
+                                                5),
+                   patch.pressure);
+        for (const auto &patch : loads.circular_patches)
+          add_load(cell,
+                   quadrature_on_disk_part(geometry,
+                                           patch.centre,
+                                           patch.radius,
+                                           8),
+                   patch.pressure);
+
+        hat_cell->get_dof_indices(hat_indices);
+        hat_constraints.distribute_local_to_global(local,
+                                                   hat_indices,
+                                                   node_estimates);
+      }
+
+    // point loads: F psi_w(x) chi(x)
+    for (const auto &point_load : loads.point_loads)
+      {
+        const auto located = plate.locate(point_load.location);
+        local              = 0;
+        add_load(located.first,
+                 Quadrature<2>(std::vector<Point<2>>{located.second},
+                               std::vector<double>{1.}),
+                 point_load.force);
+        same_cell(located.first, hat_dofs)->get_dof_indices(hat_indices);
+        hat_constraints.distribute_local_to_global(local,
+                                                   hat_indices,
+                                                   node_estimates);
+      }
+
+    // The goal density's part of rho_F: (u(q_h) - w_h) at the goal's
+    // points in contact, given to the cell that holds the point.
+    std::vector<double> point_terms(triangulation.n_active_cells(), 0.);
+    {
+      std::vector<Point<2>> points;
+      for (const auto &term : foundation.goal_point_terms)
+        points.push_back(term.first);
+      const std::vector<double> point_settlement =
+        settlement_at_points(space,
+                             foundation.nodal_pressure,
+                             points,
+                             foundation.alpha,
+                             foundation.singular_order);
+      for (unsigned int k = 0; k < points.size(); ++k)
+        {
+          const auto located = plate.locate(points[k]);
+          const auto index   = located.first->active_cell_index();
+          if (!soil_cell[index])
+            continue; // lifted off: no pressure acts at the point
+          const double term =
+            foundation.goal_point_terms[k].second *
+            (point_settlement[k] - plate.point_value(solution, points[k], 0));
+          point_terms[index] += term;
+        }
+    }
+
+    GoalErrorEstimate estimate;
+    for (const double term : point_terms)
+      {
+        estimate.estimated_error += term;
+        estimate.indicator_sum += std::abs(term);
+      }
+    for (unsigned int i = 0; i < node_estimates.size(); ++i)
+      if (!hat_constraints.is_constrained(i))
+        {
+          estimate.estimated_error += node_estimates[i];
+          estimate.indicator_sum += std::abs(node_estimates[i]);
+        }
+
+    // Each cell gets its share of the |eta_i| of its vertices.
+    std::vector<unsigned int> valence(hat_dofs.n_dofs(), 0);
+    for (const auto &cell : hat_dofs.active_cell_iterators())
+      {
+        cell->get_dof_indices(hat_indices);
+        for (const auto i : hat_indices)
+          ++valence[i];
+      }
+    estimate.cell_indicators.reinit(triangulation.n_active_cells());
+    unsigned int c = 0;
+    for (const auto &cell : hat_dofs.active_cell_iterators())
+      {
+        cell->get_dof_indices(hat_indices);
+        double indicator = 0;
+        for (const auto i : hat_indices)
+          if (!hat_constraints.is_constrained(i))
+            indicator += std::abs(node_estimates[i]) / valence[i];
+        estimate.cell_indicators[c] = indicator + std::abs(point_terms[c]);
+        ++c;
+      }
+    return estimate;
+  }
+} // namespace PlateOnHalfspace

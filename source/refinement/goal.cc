@@ -1,0 +1,350 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <plate_on_halfspace/plate/field_extrema.h>
+#include <plate_on_halfspace/refinement/goal.h>
+
+#include <cmath>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    using Kind     = Parameters::Goal::Kind;
+    using Quantity = Parameters::Goal::Quantity;
+
+    PlateQuantity
+    plate_quantity_of(const Quantity quantity)
+    {
+      switch (quantity)
+        {
+          case Quantity::mx:
+            return PlateQuantity::mx;
+          case Quantity::my:
+            return PlateQuantity::my;
+          case Quantity::mxy:
+            return PlateQuantity::mxy;
+          case Quantity::principal_moment:
+            return PlateQuantity::principal_moment;
+          case Quantity::w:
+          case Quantity::q:
+            break;
+        }
+      return PlateQuantity::w;
+    }
+
+    /**
+     * The derivatives of Mx, My, Mxy (doc/formulation.md, "Conventions")
+     * and of w with respect to the cell's shape functions at the reference
+     * point @p p.
+     */
+    struct LocalDerivatives
+    {
+      Vector<double> w, mx, my, mxy;
+    };
+
+    LocalDerivatives
+    local_derivatives(const MindlinPlate                                 &plate,
+                      const typename DoFHandler<2>::active_cell_iterator &cell,
+                      const Point<2>                                     &p)
+    {
+      const FESystem<2> &fe = plate.get_fe();
+      FEValues<2>        values(fe,
+                         Quadrature<2>(std::vector<Point<2>>{p}),
+                         update_values | update_gradients);
+      values.reinit(cell);
+      const unsigned int n = fe.n_dofs_per_cell();
+      LocalDerivatives   d{Vector<double>(n),
+                         Vector<double>(n),
+                         Vector<double>(n),
+                         Vector<double>(n)};
+      const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const unsigned int component = fe.system_to_component_index(i).first;
+          if (component == 0)
+            {
+              d.w[i] = values.shape_value_component(i, 0, 0);
+              continue;
+            }
+          // beta_x = component 1, beta_y = component 2
+          const Tensor<1, 2> g = values.shape_grad_component(i, 0, component);
+          if (component == 1)
+            {
+              d.mx[i]  = -D * g[0];
+              d.my[i]  = -D * nu * g[0];
+              d.mxy[i] = -D * 0.5 * (1. - nu) * g[1];
+            }
+          else
+            {
+              d.mx[i]  = -D * nu * g[1];
+              d.my[i]  = -D * g[1];
+              d.mxy[i] = -D * 0.5 * (1. - nu) * g[0];
+            }
+        }
+      return d;
+    }
+
+    /** Area of the computed part and the part of it in contact (each cell
+     *  with the fraction of its nodes in contact, as summary.json). */
+    std::pair<double, double>
+    contact_area(const FoundationSpace &space, const ContactState &contact)
+    {
+      double          area = 0, in_contact = 0;
+      const QGauss<2> rule(2);
+      for (const auto &cell : space.cells)
+        {
+          double cell_area = 0;
+          for (unsigned int q = 0; q < rule.size(); ++q)
+            cell_area +=
+              rule.weight(q) * cell.geometry.jacobian_determinant(rule.point(q));
+          const std::vector<unsigned int> nodes = cell.nodes();
+          unsigned int                    n_in  = 0;
+          for (const unsigned int i : nodes)
+            n_in += contact.in_contact[i];
+          area += cell_area;
+          in_contact +=
+            cell_area * n_in / std::max<std::size_t>(nodes.size(), 1);
+        }
+      return {area, in_contact};
+    }
+  } // namespace
+
+  GoalFunctional::GoalFunctional(const Parameters::Goal &goal,
+                                 const MirrorSymmetry   &symmetry)
+    : goal(goal)
+    , symmetry(symmetry)
+  {}
+
+  bool
+  GoalFunctional::depends_on_plate_only() const
+  {
+    return goal.kind != Kind::contact_area &&
+           !(goal.kind == Kind::point_value && goal.quantity == Quantity::q);
+  }
+
+  std::vector<std::pair<Point<2>, double>>
+  GoalFunctional::deflection_terms() const
+  {
+    if (goal.kind == Kind::point_value && goal.quantity == Quantity::w)
+      return {{symmetry.to_computed_part(goal.first_point), 1.}};
+    if (goal.kind == Kind::w_difference)
+      return {{symmetry.to_computed_part(goal.first_point), 1.},
+              {symmetry.to_computed_part(goal.second_point), -1.}};
+    return {};
+  }
+
+  GoalFunctional::Evaluation
+  GoalFunctional::evaluate(const MindlinPlate   &plate,
+                           const Vector<double> &solution,
+                           const Vector<double> &pressure_field,
+                           const ContactState   &contact) const
+  {
+    Evaluation result;
+    const auto at_point = [&](const Point<2> &x) {
+      Evaluation e;
+      e.location     = symmetry.to_computed_part(x);
+      e.has_location = true;
+      try
+        {
+          std::tie(e.cell, e.reference_point) = plate.locate(e.location);
+        }
+      catch (...)
+        {
+          AssertThrow(false,
+                      ExcMessage("Adaptivity/Goal: the point (" +
+                                 std::to_string(x[0]) + ", " +
+                                 std::to_string(x[1]) +
+                                 ") is not on the plate."));
+        }
+      return e;
+    };
+    switch (goal.kind)
+      {
+        case Kind::none:
+          break;
+        case Kind::point_value:
+          result       = at_point(goal.first_point);
+          result.value = plate_quantity(
+            plate,
+            goal.quantity == Quantity::q ? pressure_field : solution,
+            plate_quantity_of(goal.quantity),
+            result.cell,
+            result.reference_point);
+          break;
+        case Kind::w_difference:
+          {
+            const Evaluation second = at_point(goal.second_point);
+            result                  = at_point(goal.first_point);
+            result.value =
+              plate_quantity(plate,
+                             solution,
+                             PlateQuantity::w,
+                             result.cell,
+                             result.reference_point) -
+              plate_quantity(plate,
+                             solution,
+                             PlateQuantity::w,
+                             second.cell,
+                             second.reference_point);
+            break;
+          }
+        case Kind::peak:
+          {
+            const FieldExtremum peak =
+              field_maximum(plate, solution, plate_quantity_of(goal.quantity));
+            result.value           = peak.value;
+            result.location        = peak.location;
+            result.has_location    = true;
+            result.cell            = peak.cell;
+            result.reference_point = peak.reference_point;
+            break;
+          }
+        case Kind::mean_w:
+          {
+            const QGauss<2>     rule(3);
+            FEValues<2>         values(plate.get_fe(),
+                               rule,
+                               update_values | update_JxW_values);
+            std::vector<double> w(rule.size());
+            double              area = 0, integral = 0;
+            for (const auto &cell :
+                 plate.get_dof_handler().active_cell_iterators())
+              {
+                values.reinit(cell);
+                values[FEValuesExtractors::Scalar(0)].get_function_values(
+                  solution, w);
+                for (unsigned int q = 0; q < rule.size(); ++q)
+                  {
+                    area += values.JxW(q);
+                    integral += w[q] * values.JxW(q);
+                  }
+              }
+            result.value = integral / area;
+            break;
+          }
+        case Kind::contact_area:
+          result.value = symmetry.n_copies() *
+                         contact_area(plate.get_foundation_space(), contact)
+                           .second;
+          break;
+      }
+    AssertThrow(std::isfinite(result.value),
+                ExcMessage("Adaptivity/Goal: the value of <" + goal.text +
+                           "> is not finite."));
+    return result;
+  }
+
+  Vector<double>
+  GoalFunctional::derivative(const MindlinPlate   &plate,
+                             const Vector<double> &solution,
+                             const Evaluation     &evaluation) const
+  {
+    AssertThrow(depends_on_plate_only(), ExcInternalError());
+    const DoFHandler<2>             &dof_handler = plate.get_dof_handler();
+    const AffineConstraints<double> &constraints = plate.get_constraints();
+    const unsigned int               n = plate.get_fe().n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(n);
+    Vector<double>                       load(dof_handler.n_dofs());
+
+    const auto add_at = [&](const typename DoFHandler<2>::active_cell_iterator
+                              &cell,
+                            const Vector<double> &local) {
+      cell->get_dof_indices(dofs);
+      constraints.distribute_local_to_global(local, dofs, load);
+    };
+
+    switch (goal.kind)
+      {
+        case Kind::none:
+        case Kind::contact_area:
+          break;
+        case Kind::point_value:
+        case Kind::peak:
+          {
+            const LocalDerivatives d = local_derivatives(
+              plate, evaluation.cell, evaluation.reference_point);
+            Vector<double> local(n);
+            switch (goal.quantity)
+              {
+                case Quantity::w:
+                case Quantity::q:
+                  local = d.w;
+                  break;
+                case Quantity::mx:
+                  local = d.mx;
+                  break;
+                case Quantity::my:
+                  local = d.my;
+                  break;
+                case Quantity::mxy:
+                  local = d.mxy;
+                  break;
+                case Quantity::principal_moment:
+                  {
+                    // M1 = (Mx + My)/2 + R, R = sqrt(((Mx - My)/2)^2 +
+                    // Mxy^2): dM1 = (dMx + dMy)/2 + ((Mx - My)/2 (dMx -
+                    // dMy)/2 + Mxy dMxy) / R.
+                    const Moments m = plate.moments(evaluation.cell,
+                                                    evaluation.reference_point,
+                                                    solution);
+                    const double  half_difference = 0.5 * (m.mx - m.my);
+                    const double  radius =
+                      std::hypot(half_difference, m.mxy);
+                    for (unsigned int i = 0; i < n; ++i)
+                      {
+                        local[i] = 0.5 * (d.mx[i] + d.my[i]);
+                        if (radius > 0)
+                          local[i] += (half_difference * 0.5 *
+                                         (d.mx[i] - d.my[i]) +
+                                       m.mxy * d.mxy[i]) /
+                                      radius;
+                      }
+                    break;
+                  }
+              }
+            add_at(evaluation.cell, local);
+            break;
+          }
+        case Kind::w_difference:
+          {
+            for (const auto &[x, sign] :
+                 {std::make_pair(goal.first_point, 1.),
+                  std::make_pair(goal.second_point, -1.)})
+              {
+                const auto located = plate.locate(symmetry.to_computed_part(x));
+                Vector<double> local =
+                  local_derivatives(plate, located.first, located.second).w;
+                local *= sign;
+                add_at(located.first, local);
+              }
+            break;
+          }
+        case Kind::mean_w:
+          {
+            const QGauss<2> rule(3);
+            FEValues<2>     values(plate.get_fe(),
+                               rule,
+                               update_values | update_JxW_values);
+            double          area = 0;
+            for (const auto &cell : dof_handler.active_cell_iterators())
+              {
+                values.reinit(cell);
+                Vector<double> local(n);
+                for (unsigned int q = 0; q < rule.size(); ++q)
+                  {
+                    area += values.JxW(q);
+                    for (unsigned int i = 0; i < n; ++i)
+                      local[i] += values.shape_value_component(i, q, 0) *
+                                  values.JxW(q);
+                  }
+                add_at(cell, local);
+              }
+            load /= area;
+            break;
+          }
+      }
+    return load;
+  }
+} // namespace PlateOnHalfspace
