@@ -227,7 +227,11 @@ namespace PlateOnHalfspace
     Timer              phase;
     const GoalFunctional::Evaluation value = goal->evaluate(
       *mindlin_plate, contact.plate_solution, pressure_field, contact);
-    if (goal->depends_on_plate_only())
+    if (parameters.adaptivity.goal.kind == Parameters::Goal::Kind::contact_area)
+      goal_estimate = estimate_contact_area_error(*mindlin_plate,
+                                                  contact.in_contact,
+                                                  symmetry.n_copies());
+    else if (goal->depends_on_plate_only())
       {
         const Vector<double> goal_load =
           goal->derivative(*mindlin_plate, contact.plate_solution, value);
@@ -309,8 +313,18 @@ namespace PlateOnHalfspace
     summary.goal.location         = value.location;
     summary.goal.estimated_error  = goal_estimate.estimated_error;
     summary.goal.indicator_sum    = goal_estimate.indicator_sum;
-    summary.goal.relative_error   = std::abs(goal_estimate.estimated_error) /
-                                  std::max(std::abs(value.value), 1e-300);
+    // The dual-weighted residual underestimates where the adjoint
+    // solution is singular at the mesh's scale (doc/verification.md,
+    // "Goal error estimates"): the bound also takes the last change.
+    double bound = std::abs(goal_estimate.estimated_error);
+    if (!cycle_summaries.empty() && cycle_summaries.back().has_goal)
+      {
+        summary.goal.has_change = true;
+        summary.goal.change = value.value - cycle_summaries.back().goal.value;
+        bound = std::max(bound, std::abs(summary.goal.change));
+      }
+    summary.goal.relative_error =
+      bound / std::max(std::abs(value.value), 1e-300);
     summary.goal.target_error     = parameters.adaptivity.target_error;
     summary.goal.time_s           = phase.wall_time();
   }
@@ -318,7 +332,10 @@ namespace PlateOnHalfspace
   bool
   PlateOnHalfspaceProblem::goal_target_met() const
   {
+    // Not on the first cycle: its bound has no change to check the
+    // estimate against.
     return goal && parameters.adaptivity.target_error > 0 &&
+           summary.goal.has_change &&
            summary.goal.relative_error <= parameters.adaptivity.target_error;
   }
 
@@ -465,14 +482,21 @@ namespace PlateOnHalfspace
                  previous ? previous->contact_area_fraction : 0.);
     if (summary.has_goal)
       {
-        // the goal, its estimated error relative to |value|, and the
-        // relative change of the value
+        // the goal, the relative change of its value, its dual-weighted
+        // residual estimate and the error bound, both relative to |value|
         add_quantity("goal",
                      summary.goal.value,
                      previous ? previous->goal.value : 0.);
-        convergence.add_value("goal est. error", summary.goal.relative_error);
-        convergence.set_scientific("goal est. error", true);
-        convergence.set_precision("goal est. error", 2);
+        const double scale = std::max(std::abs(summary.goal.value), 1e-300);
+        for (const auto &[name, value] :
+             std::vector<std::pair<std::string, double>>{
+               {"goal DWR", std::abs(summary.goal.estimated_error) / scale},
+               {"goal error", summary.goal.relative_error}})
+          {
+            convergence.add_value(name, value);
+            convergence.set_scientific(name, true);
+            convergence.set_precision(name, 2);
+          }
       }
     convergence.add_value("contact force", summary.contact_force);
     convergence.set_scientific("contact force", true);

@@ -450,4 +450,29 @@ namespace PlateOnHalfspace
       }
     return estimate;
   }
+
+  GoalErrorEstimate
+  estimate_contact_area_error(const MindlinPlate      &plate,
+                              const std::vector<bool> &in_contact,
+                              const unsigned int       copies)
+  {
+    const FoundationSpace &space = plate.get_foundation_space();
+    GoalErrorEstimate      estimate;
+    estimate.cell_indicators.reinit(space.cells.size());
+    unsigned int c = 0;
+    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+      {
+        bool in = false, out = false;
+        for (const unsigned int i : space.cells[c].nodes())
+          (in_contact[i] ? in : out) = true;
+        if (in && out)
+          {
+            estimate.cell_indicators[c] = cell->measure();
+            estimate.estimated_error += 0.5 * copies * cell->measure();
+          }
+        ++c;
+      }
+    estimate.indicator_sum = estimate.estimated_error;
+    return estimate;
+  }
 } // namespace PlateOnHalfspace

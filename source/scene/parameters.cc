@@ -535,6 +535,13 @@ namespace PlateOnHalfspace
                 refinement != Refinement::goal,
               "Adaptivity/Refinement = goal needs Adaptivity/Goal (the "
               "quantity whose error refinement reduces).");
+      require(refinement != Refinement::goal ||
+                !(goal.kind == Goal::Kind::point_value &&
+                  goal.quantity == Goal::Quantity::q),
+              "Adaptivity/Refinement = goal cannot refine for Goal = q at "
+              "x,y: the pressure's adjoint problem is not solved (its error "
+              "is bounded by the change between cycles); use Refinement = "
+              "adaptive or global.");
       require(goal.kind != Goal::Kind::none || target_error == 0,
               "Adaptivity/Target error needs Adaptivity/Goal (the quantity "
               "the target refers to).");

@@ -66,9 +66,19 @@ namespace PlateOnHalfspace
       /** Where a point value or a peak was taken. */
       bool     has_location = false;
       Point<2> location;
-      /** Estimate of the true value minus value (signed), and its size
-       *  relative to |value|. */
-      double estimated_error = 0, relative_error = 0;
+      /** The dual-weighted residual estimate of the true value minus
+       *  value (signed). */
+      double estimated_error = 0;
+      /** value minus the previous cycle's (from the second cycle on). */
+      bool   has_change = false;
+      double change     = 0;
+      /**
+       * The error bound the run reports and Target error tests:
+       * max(|estimated_error|, |change|) / |value|, |estimated_error| /
+       * |value| on the first cycle (doc/formulation.md, "Goal-oriented
+       * refinement").
+       */
+      double relative_error = 0;
       /** Sum of the local estimates' magnitudes (no cancellation). */
       double indicator_sum = 0;
       /** Adaptivity/Target error (0: none). */

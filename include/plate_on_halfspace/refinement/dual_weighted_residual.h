@@ -88,6 +88,18 @@ namespace PlateOnHalfspace
                       const FoundationResidualData &foundation,
                       const Parameters::Loads      &loads,
                       const double                  self_weight_pressure);
+  /**
+   * The contact area's error, which no adjoint problem describes (the area
+   * is not differentiable in the solution): the contact boundary lies
+   * somewhere in the cells that have nodes in and out of contact, and the
+   * reported area counts each with the fraction of its nodes in contact.
+   * The estimate is half the area of those cells (whole plate: @p copies
+   * times the computed part), each cell's indicator its area.
+   */
+  GoalErrorEstimate
+  estimate_contact_area_error(const MindlinPlate      &plate,
+                              const std::vector<bool> &in_contact,
+                              const unsigned int       copies);
 } // namespace PlateOnHalfspace
 
 #endif
