@@ -35,7 +35,10 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# the program's defaults, written out (a shipped scene may set others)
+# the study's "default" settings, written out (a shipped scene may set
+# others): the program's defaults when doc/study.md was measured; the
+# program's default element is now heterosis (Shear integration = auto,
+# i.e. selective), the "heterosis selective" variant
 DEFAULTS = {
     "Element": "serendipity",
     "Shear integration": "reduced",

@@ -68,16 +68,13 @@ namespace TestTools
   }
 
   /**
-   * A plate of thickness @p t with D = 1 and nu = 0.3 and the given element
-   * and shear integration, set directly: the parameter file refuses the
-   * unstable combinations (reduced with heterosis or lagrange) that the
-   * plate tests examine. @p loads: entries of subsection Loads.
+   * A plate of thickness @p t with D = 1 and nu = 0.3, every other entry
+   * (the element and the shear integration among them) at the program's
+   * default, read through the parameter code. @p loads: entries of
+   * subsection Loads.
    */
   inline SceneParameters
-  unit_rigidity_plate(const std::string &element,
-                      const std::string &integration,
-                      const double       t,
-                      const std::string &loads = "")
+  unit_rigidity_plate(const double t, const std::string &loads = "")
   {
     std::ostringstream text;
     text << std::setprecision(17) << "subsection Plate\n"
@@ -89,8 +86,23 @@ namespace TestTools
          << loads << "end\n";
     SceneParameters parameters;
     parameters.read_from_string(text.str());
-    using D   = Parameters::Discretization;
-    D &d      = parameters.discretization;
+    return parameters;
+  }
+
+  /**
+   * The same plate with the given element and shear integration, set
+   * directly: the parameter file refuses the unstable combinations
+   * (reduced with heterosis or lagrange) that the plate tests examine.
+   */
+  inline SceneParameters
+  unit_rigidity_plate(const std::string &element,
+                      const std::string &integration,
+                      const double       t,
+                      const std::string &loads = "")
+  {
+    SceneParameters parameters = unit_rigidity_plate(t, loads);
+    using D                    = Parameters::Discretization;
+    D &d                       = parameters.discretization;
     d.element = (element == "serendipity" ? D::Element::serendipity :
                  element == "heterosis"   ? D::Element::heterosis :
                                             D::Element::lagrange);

@@ -331,7 +331,8 @@ namespace PlateOnHalfspace
              "this exceeds "
           << slenderness_limit
           << "). Use Element = heterosis with Shear integration = selective "
-             "(free of locking and of spurious modes), or refine the mesh.";
+             "or auto (the default; free of locking and of spurious modes), "
+             "or refine the mesh.";
         warnings.push_back(w.str());
       }
     if (d.element == D::Element::lagrange &&

@@ -72,7 +72,7 @@ choices = {
     "Shape": ["rectangle", "disk", "mesh file", "square", ""],
     "Contact": ["bonded", "tensionless", "glued"],
     "Element": ["serendipity", "heterosis", "lagrange", "quad"],
-    "Shear integration": ["reduced", "selective", "full", "none"],
+    "Shear integration": ["auto", "reduced", "selective", "full", "none"],
     "Flexibility": ["galerkin", "collocation", "winkler"],
     "Method": ["active set", "element exclusion", "newton"],
     "Subdivisions x": ["1", "2", "4", "0", "-3", "2.5", "1001", "x"],

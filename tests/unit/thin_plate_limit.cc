@@ -5,7 +5,8 @@
 // w = w_K (1 + 5.18 (t/a)^2) with w_K = 0.00406235 q a^4 / D its thin
 // limit (doc/verification.md; tests/unit/plate_navier computes the series).
 // Every element/integration choice the program accepts:
-// - heterosis/selective, lagrange/selective, lagrange/full keep the limit
+// - heterosis/selective (the default, tests/unit/default_element),
+//   lagrange/selective, lagrange/full keep the limit
 //   (within the 8 x 8 mesh's discretisation error, 1%) for every a/t;
 // - serendipity (reduced, selective, full) and heterosis/full lock: the
 //   deflection falls away once the cells are much larger than t. For

@@ -123,24 +123,40 @@ namespace PlateOnHalfspace
     /** subsection Discretization. */
     struct Discretization
     {
+      /** The plate element (doc/formulation.md, "Plate"). */
       enum class Element
       {
-        serendipity,
-        heterosis,
-        lagrange
+        serendipity, ///< w and rotations serendipity (the paper's element)
+        heterosis,   ///< w serendipity, rotations biquadratic (default)
+        lagrange     ///< w and rotations biquadratic
       };
+      /**
+       * Gauss rules of the bending and the shear term. The entry's value
+       * auto is not among them: parse_parameters() resolves it with
+       * shear_integration_for().
+       */
       enum class ShearIntegration
       {
-        reduced,
-        selective,
-        full
+        reduced,   ///< bending and shear 2x2
+        selective, ///< bending 3x3, shear 2x2
+        full       ///< bending and shear 3x3
       };
+
+      /**
+       * What Shear integration = auto means for @p element: reduced for
+       * serendipity (the paper's practice), selective for heterosis and
+       * lagrange (reduced is refused with those).
+       */
+      static ShearIntegration
+      shear_integration_for(Element element);
+
       enum class Flexibility
       {
         galerkin,
         collocation
       };
-      Element          element;
+      Element element;
+      /** Never auto: the entry's auto is resolved when it is parsed. */
       ShearIntegration shear_integration;
       unsigned int     subdivisions_x, subdivisions_y;
       unsigned int     initial_refinements;
