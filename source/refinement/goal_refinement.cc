@@ -22,10 +22,10 @@ namespace PlateOnHalfspace
       plate.get_foundation_space().symmetry.n_copies();
     if (!can_refine_fraction(adaptivity, copies, n_cells))
       return false;
-    mark_largest_fraction(goal.cell_indicators,
-                          adaptivity,
-                          copies,
-                          triangulation);
+    // A goal that only a few cells affect (a point under a flexible
+    // plate) refines those few.
+    mark_largest_fraction(
+      goal.cell_indicators, adaptivity, copies, triangulation, false);
     return true;
   }
 } // namespace PlateOnHalfspace

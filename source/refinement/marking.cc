@@ -45,14 +45,17 @@ namespace PlateOnHalfspace
   mark_largest_fraction(const Vector<float>          &indicators,
                         const Parameters::Adaptivity &adaptivity,
                         const unsigned int            copies,
-                        Triangulation<2>             &triangulation)
+                        Triangulation<2>             &triangulation,
+                        const bool                    refine_negligible)
   {
     const unsigned int n_cells   = triangulation.n_active_cells();
     const unsigned int n_refined = n_to_refine(adaptivity, copies, n_cells);
     std::vector<float> sorted(indicators.begin(), indicators.end());
     std::sort(sorted.begin(), sorted.end(), std::greater<float>());
     const double       tie    = 1e-5 * sorted.front();
-    const double       refine = sorted[n_refined - 1] - tie;
+    const double       refine =
+      refine_negligible ? sorted[n_refined - 1] - tie :
+                          std::max(sorted[n_refined - 1] - tie, 2. * tie);
     const unsigned int n_coarsened =
       part_count(adaptivity.coarsen_fraction * n_cells * copies, copies);
     const double coarsen =

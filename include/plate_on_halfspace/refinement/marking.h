@@ -32,13 +32,15 @@ namespace PlateOnHalfspace
    * whose indicators tie with the last marked one (to 1e-5 relative:
    * rounding) are marked with it, so that a symmetric solution gets a
    * symmetric mesh and a symmetric scene's computed part is refined as the
-   * whole plate would be.
+   * whole plate would be. Unless @p refine_negligible, cells whose
+   * indicator is within that tie of zero are not refined.
    */
   void
   mark_largest_fraction(const Vector<float>          &indicators,
                         const Parameters::Adaptivity &adaptivity,
                         const unsigned int            copies,
-                        Triangulation<2>             &triangulation);
+                        Triangulation<2>             &triangulation,
+                        const bool                    refine_negligible = true);
 } // namespace PlateOnHalfspace
 
 #endif
