@@ -108,8 +108,8 @@ namespace PlateOnHalfspace
                                                    parameters.discretization);
     mindlin_plate->set_mirror_symmetry(symmetry);
     if (parameters.adaptivity.goal.kind != Parameters::Goal::Kind::none)
-      goal = std::make_unique<GoalFunctional>(parameters.adaptivity.goal,
-                                              symmetry);
+      goal =
+        std::make_unique<GoalFunctional>(parameters.adaptivity.goal, symmetry);
   }
 
   void
@@ -200,11 +200,11 @@ namespace PlateOnHalfspace
   {
     TimerOutput::Scope scope(timer_output, "contact solve");
     Timer              phase;
-    contact_solver = create_contact_solver(
-      parameters,
-      parameters.contact_solver(summary.n_foundation_dofs),
-      parameters.output.verbosity,
-      log);
+    contact_solver = create_contact_solver(parameters,
+                                           parameters.contact_solver(
+                                             summary.n_foundation_dofs),
+                                           parameters.output.verbosity,
+                                           log);
     contact = contact_solver->solve(*mindlin_plate, *foundation_operator, seed);
     pressure_field = mindlin_plate->foundation_field_to_solution(contact.q);
     // The solver's factorisation of the flexibility belongs to the
@@ -223,8 +223,8 @@ namespace PlateOnHalfspace
     goal_estimate = GoalErrorEstimate();
     if (!goal)
       return;
-    TimerOutput::Scope scope(timer_output, "goal error estimate");
-    Timer              phase;
+    TimerOutput::Scope               scope(timer_output, "goal error estimate");
+    Timer                            phase;
     const GoalFunctional::Evaluation value = goal->evaluate(
       *mindlin_plate, contact.plate_solution, pressure_field, contact);
     if (parameters.adaptivity.goal.kind == Parameters::Goal::Kind::contact_area)
@@ -243,7 +243,7 @@ namespace PlateOnHalfspace
         // density M^{-1} c delta that the adjoint pressure holds there, 1
         // for a plate too flexible to spread the point's load over the
         // cells around it, 0 for one stiff enough to spread it far.
-        Vector<double> reaction = adjoint.q;
+        Vector<double>                           reaction = adjoint.q;
         std::vector<std::pair<Point<2>, double>> terms =
           goal->deflection_terms();
         const Vector<double> adjoint_field =
@@ -253,8 +253,8 @@ namespace PlateOnHalfspace
             Vector<double> point_load(goal_load.size());
             const auto     located = mindlin_plate->locate(term.first);
             FEValues<2>    values(mindlin_plate->get_fe(),
-                               Quadrature<2>(std::vector<Point<2>>{
-                                 located.second}),
+                               Quadrature<2>(
+                                 std::vector<Point<2>>{located.second}),
                                update_values);
             values.reinit(located.first);
             std::vector<types::global_dof_index> dofs(
@@ -265,23 +265,22 @@ namespace PlateOnHalfspace
               local[i] = term.second * values.shape_value_component(i, 0, 0);
             mindlin_plate->get_constraints().distribute_local_to_global(
               local, dofs, point_load);
-            const Vector<double> density = goal_density_pressure(
-              foundation_operator->mass_matrix(),
-              contact.active_set,
-              mindlin_plate->restrict_to_foundation(point_load));
+            const Vector<double> density =
+              goal_density_pressure(foundation_operator->mass_matrix(),
+                                    contact.active_set,
+                                    mindlin_plate->restrict_to_foundation(
+                                      point_load));
             const double density_at_point = mindlin_plate->point_value(
               mindlin_plate->foundation_field_to_solution(density),
               term.first,
               0);
-            const double theta =
-              density_at_point != 0 ?
-                std::clamp(mindlin_plate->point_value(adjoint_field,
-                                                      term.first,
-                                                      0) /
-                             density_at_point,
-                           0.,
-                           1.) :
-                0.;
+            const double theta = density_at_point != 0 ?
+                                   std::clamp(mindlin_plate->point_value(
+                                                adjoint_field, term.first, 0) /
+                                                density_at_point,
+                                              0.,
+                                              1.) :
+                                   0.;
             reaction.add(-theta, density);
             term.second *= theta;
           }
@@ -291,28 +290,27 @@ namespace PlateOnHalfspace
           contact.q,
           contact.active_set,
           adjoint_pressure,
-          boussinesq_flexibility_constant(
-            parameters.foundation.youngs_modulus,
-            parameters.foundation.poissons_ratio),
+          boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
+                                          parameters.foundation.poissons_ratio),
           parameters.discretization.singular_quadrature_order,
           terms};
         goal_estimate =
           PlateOnHalfspace::estimate_goal_error(*mindlin_plate,
-                              contact.plate_solution,
-                              pressure_field,
-                              adjoint.plate_solution,
-                              soil,
-                              computed_loads,
-                              parameters.plate.unit_weight *
-                                parameters.plate.thickness);
+                                                contact.plate_solution,
+                                                pressure_field,
+                                                adjoint.plate_solution,
+                                                soil,
+                                                computed_loads,
+                                                parameters.plate.unit_weight *
+                                                  parameters.plate.thickness);
       }
-    summary.has_goal              = true;
-    summary.goal.quantity         = goal->name();
-    summary.goal.value            = value.value;
-    summary.goal.has_location     = value.has_location;
-    summary.goal.location         = value.location;
-    summary.goal.estimated_error  = goal_estimate.estimated_error;
-    summary.goal.indicator_sum    = goal_estimate.indicator_sum;
+    summary.has_goal             = true;
+    summary.goal.quantity        = goal->name();
+    summary.goal.value           = value.value;
+    summary.goal.has_location    = value.has_location;
+    summary.goal.location        = value.location;
+    summary.goal.estimated_error = goal_estimate.estimated_error;
+    summary.goal.indicator_sum   = goal_estimate.indicator_sum;
     // The dual-weighted residual underestimates where the adjoint
     // solution is singular at the mesh's scale (doc/verification.md,
     // "Goal error estimates"): the bound also takes the last change.
@@ -321,12 +319,12 @@ namespace PlateOnHalfspace
       {
         summary.goal.has_change = true;
         summary.goal.change = value.value - cycle_summaries.back().goal.value;
-        bound = std::max(bound, std::abs(summary.goal.change));
+        bound               = std::max(bound, std::abs(summary.goal.change));
       }
     summary.goal.relative_error =
       bound / std::max(std::abs(value.value), 1e-300);
-    summary.goal.target_error     = parameters.adaptivity.target_error;
-    summary.goal.time_s           = phase.wall_time();
+    summary.goal.target_error = parameters.adaptivity.target_error;
+    summary.goal.time_s       = phase.wall_time();
   }
 
   bool

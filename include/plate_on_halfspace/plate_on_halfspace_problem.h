@@ -161,12 +161,12 @@ namespace PlateOnHalfspace
     Parameters::Loads     computed_loads;
     Triangulation<2>      triangulation;
 
-    std::unique_ptr<MindlinPlate>       mindlin_plate;
+    std::unique_ptr<MindlinPlate> mindlin_plate;
     /** The cycle's contact solver (the adjoint problem reuses it). */
     std::unique_ptr<ContactSolver> contact_solver;
     /** Adaptivity/Goal (none: no estimate) and the cycle's estimate. */
-    std::unique_ptr<GoalFunctional> goal;
-    GoalErrorEstimate               goal_estimate;
+    std::unique_ptr<GoalFunctional>     goal;
+    GoalErrorEstimate                   goal_estimate;
     std::unique_ptr<FoundationOperator> foundation_operator;
     /** The storage foundation_operator was made with. */
     Parameters::FoundationOperator::Storage operator_storage;

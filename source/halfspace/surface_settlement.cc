@@ -1,7 +1,6 @@
+#include <deal.II/base/parallel.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/work_stream.h>
-
-#include <deal.II/base/parallel.h>
 
 #include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/surface_settlement.h>
@@ -23,11 +22,11 @@ namespace PlateOnHalfspace
     /** What the point loop needs of one cell. */
     struct PressureCell
     {
-      BilinearQuadrilateral geometry;
-      std::vector<Point<2>> polygon;
-      std::array<double, 9> q2_values; ///< q_h at the cell's Q2 nodes
-      Point<2>              centre;
-      double                diameter = 0;
+      BilinearQuadrilateral     geometry;
+      std::vector<Point<2>>     polygon;
+      std::array<double, 9>     q2_values; ///< q_h at the cell's Q2 nodes
+      Point<2>                  centre;
+      double                    diameter = 0;
       std::array<GaussTable, 3> gauss; ///< 2, 3 and 5 points per direction
       bool                      loaded = false;
     };
@@ -84,9 +83,10 @@ namespace PlateOnHalfspace
       const double distance = x.distance(cell.centre) / cell.diameter;
       if (distance >= 1.5)
         {
-          const GaussTable &table =
-            cell.gauss[distance < 2.5 ? 2 : distance < 20 ? 1 : 0];
-          double sum = 0;
+          const GaussTable &table = cell.gauss[distance < 2.5 ? 2 :
+                                               distance < 20  ? 1 :
+                                                                0];
+          double            sum   = 0;
           for (unsigned int q = 0; q < table.points.size(); ++q)
             sum += table.weighted_pressure[q] / x.distance(table.points[q]);
           return sum;

@@ -332,15 +332,15 @@ namespace PlateOnHalfspace
             goal["value"]    = c.goal.value;
             if (c.goal.has_location)
               goal["at"] = {c.goal.location[0], c.goal.location[1]};
-            goal["estimated_error"]       = c.goal.estimated_error;
+            goal["estimated_error"] = c.goal.estimated_error;
             if (c.goal.has_change)
               goal["change"] = c.goal.change;
             else
               goal["change"] = nullptr;
-            goal["relative_error"]        = c.goal.relative_error;
-            goal["indicator_sum"]         = c.goal.indicator_sum;
-            goal["time_s"]                = c.goal.time_s;
-            j["goal"]                     = goal;
+            goal["relative_error"] = c.goal.relative_error;
+            goal["indicator_sum"]  = c.goal.indicator_sum;
+            goal["time_s"]         = c.goal.time_s;
+            j["goal"]              = goal;
           }
         summary["cycles"].push_back(j);
       }
@@ -350,11 +350,10 @@ namespace PlateOnHalfspace
       {
         const CycleSummary::Goal &goal = cycles.back().goal;
         summary["goal_target"]         = {
-          {"quantity", goal.quantity},
-          {"target_error", goal.target_error},
-          {"relative_error", goal.relative_error},
-          {"met",
-           goal.has_change && goal.relative_error <= goal.target_error}};
+                  {"quantity", goal.quantity},
+                  {"target_error", goal.target_error},
+                  {"relative_error", goal.relative_error},
+                  {"met", goal.has_change && goal.relative_error <= goal.target_error}};
       }
     write_file("summary.json", summary.dump(2) + "\n");
   }

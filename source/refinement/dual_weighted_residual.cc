@@ -14,8 +14,8 @@
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
 
 #include <array>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 
 namespace PlateOnHalfspace
 {
@@ -57,7 +57,8 @@ namespace PlateOnHalfspace
       const double k0 = u.gradient[1][0], k1 = u.gradient[2][1],
                    k2 = u.gradient[1][1] + u.gradient[2][0];
       Resultants r;
-      r.moment = {{D * (k0 + nu * k1), D * (nu * k0 + k1), D * 0.5 * (1. - nu) * k2}};
+      r.moment = {
+        {D * (k0 + nu * k1), D * (nu * k0 + k1), D * 0.5 * (1. - nu) * k2}};
       for (unsigned int d = 0; d < 2; ++d)
         r.shear[d] = Ds * (u.gradient[0][d] - u.value[1 + d]);
       return r;
@@ -69,9 +70,9 @@ namespace PlateOnHalfspace
      * strains.
      */
     void
-    product_strains(const Field        &psi,
-                    const double        chi,
-                    const Tensor<1, 2> &grad_chi,
+    product_strains(const Field           &psi,
+                    const double           chi,
+                    const Tensor<1, 2>    &grad_chi,
                     std::array<double, 3> &kappa,
                     Tensor<1, 2>          &gamma)
     {
@@ -84,14 +85,13 @@ namespace PlateOnHalfspace
     }
 
     void
-    get_fields(const FEValues<2>     &values,
-               const Vector<double>  &vector,
-               std::vector<Field>    &fields)
+    get_fields(const FEValues<2>    &values,
+               const Vector<double> &vector,
+               std::vector<Field>   &fields)
     {
-      const unsigned int          n = values.n_quadrature_points;
-      std::vector<Vector<double>> v(n, Vector<double>(3));
-      std::vector<std::vector<Tensor<1, 2>>> g(n,
-                                               std::vector<Tensor<1, 2>>(3));
+      const unsigned int                     n = values.n_quadrature_points;
+      std::vector<Vector<double>>            v(n, Vector<double>(3));
+      std::vector<std::vector<Tensor<1, 2>>> g(n, std::vector<Tensor<1, 2>>(3));
       values.get_function_values(vector, v);
       if (values.get_update_flags() & update_gradients)
         values.get_function_gradients(vector, g);
@@ -233,34 +233,32 @@ namespace PlateOnHalfspace
     unsigned int        next_soil_point = 0;
 
     const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio(),
-                 Ds = plate.shear_rigidity();
+                 Ds      = plate.shear_rigidity();
     const double uniform = loads.uniform_pressure + self_weight_pressure;
 
     // Bending, pressure and load terms: 5 x 5 Gauss points (exact for the
     // products on parallelograms up to degree 9); the shear term with the
     // element's rule, so that the residual is that of the discrete form.
-    const QGauss<2>    rule(5);
-    const QGauss<2>    shear_rule(plate.shear_quadrature_points());
-    const UpdateFlags  flags = update_values | update_gradients;
-    FEValues<2>        plate_values(plate.get_fe(),
-                             rule,
-                             flags | update_JxW_values);
-    FEValues<2>        weight_values(weight_fe, rule, flags);
-    FEValues<2>        hat_values(hat_fe, rule, flags);
-    FEValues<2>        plate_shear(plate.get_fe(),
+    const QGauss<2>   rule(5);
+    const QGauss<2>   shear_rule(plate.shear_quadrature_points());
+    const UpdateFlags flags = update_values | update_gradients;
+    FEValues<2> plate_values(plate.get_fe(), rule, flags | update_JxW_values);
+    FEValues<2> weight_values(weight_fe, rule, flags);
+    FEValues<2> hat_values(hat_fe, rule, flags);
+    FEValues<2> plate_shear(plate.get_fe(),
                             shear_rule,
                             flags | update_JxW_values);
-    FEValues<2>        weight_shear(weight_fe, shear_rule, flags);
-    FEValues<2>        hat_shear(hat_fe, shear_rule, flags);
-    std::vector<Field> u, psi, u_shear, psi_shear;
-    std::vector<double> q(rule.size());
+    FEValues<2> weight_shear(weight_fe, shear_rule, flags);
+    FEValues<2> hat_shear(hat_fe, shear_rule, flags);
+    std::vector<Field>                   u, psi, u_shear, psi_shear;
+    std::vector<double>                  q(rule.size());
     std::vector<types::global_dof_index> hat_indices(4);
     Vector<double>                       local(4);
     Vector<double>                       node_estimates(hat_dofs.n_dofs());
 
     // psi_w * chi_v at the points of a load quadrature (reference points,
     // physical weights) times the pressure.
-    const auto add_load = [&](const CellIterator &cell,
+    const auto add_load = [&](const CellIterator  &cell,
                               const Quadrature<2> &load_rule,
                               const double         pressure) {
       if (load_rule.size() == 0)
@@ -280,7 +278,7 @@ namespace PlateOnHalfspace
     unsigned int cell_index = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
-        local = 0;
+        local                          = 0;
         const CellIterator weight_cell = same_cell(cell, weight_dofs);
         const CellIterator hat_cell    = same_cell(cell, hat_dofs);
         // (u(q_h) - w_h) mu chi on the cells in contact
@@ -351,22 +349,21 @@ namespace PlateOnHalfspace
           }
 
         // the patches, integrated over the part of the cell they cover
-        const BilinearQuadrilateral geometry(std::array<Point<2>, 4>{
-          {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}});
+        const BilinearQuadrilateral geometry(
+          std::array<Point<2>, 4>{{cell->vertex(0),
+                                   cell->vertex(1),
+                                   cell->vertex(2),
+                                   cell->vertex(3)}});
         for (const auto &patch : loads.rectangular_patches)
-          add_load(cell,
-                   quadrature_on_rectangle_part(geometry,
-                                                patch.lower,
-                                                patch.upper,
-                                                5),
-                   patch.pressure);
+          add_load(
+            cell,
+            quadrature_on_rectangle_part(geometry, patch.lower, patch.upper, 5),
+            patch.pressure);
         for (const auto &patch : loads.circular_patches)
-          add_load(cell,
-                   quadrature_on_disk_part(geometry,
-                                           patch.centre,
-                                           patch.radius,
-                                           8),
-                   patch.pressure);
+          add_load(
+            cell,
+            quadrature_on_disk_part(geometry, patch.centre, patch.radius, 8),
+            patch.pressure);
 
         hat_cell->get_dof_indices(hat_indices);
         hat_constraints.distribute_local_to_global(local,

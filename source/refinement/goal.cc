@@ -97,8 +97,8 @@ namespace PlateOnHalfspace
         {
           double cell_area = 0;
           for (unsigned int q = 0; q < rule.size(); ++q)
-            cell_area +=
-              rule.weight(q) * cell.geometry.jacobian_determinant(rule.point(q));
+            cell_area += rule.weight(q) *
+                         cell.geometry.jacobian_determinant(rule.point(q));
           const std::vector<unsigned int> nodes = cell.nodes();
           unsigned int                    n_in  = 0;
           for (const unsigned int i : nodes)
@@ -152,11 +152,10 @@ namespace PlateOnHalfspace
         }
       catch (...)
         {
-          AssertThrow(false,
-                      ExcMessage("Adaptivity/Goal: the point (" +
-                                 std::to_string(x[0]) + ", " +
-                                 std::to_string(x[1]) +
-                                 ") is not on the plate."));
+          AssertThrow(
+            false,
+            ExcMessage("Adaptivity/Goal: the point (" + std::to_string(x[0]) +
+                       ", " + std::to_string(x[1]) + ") is not on the plate."));
         }
       return e;
     };
@@ -165,29 +164,29 @@ namespace PlateOnHalfspace
         case Kind::none:
           break;
         case Kind::point_value:
-          result       = at_point(goal.first_point);
-          result.value = plate_quantity(
-            plate,
-            goal.quantity == Quantity::q ? pressure_field : solution,
-            plate_quantity_of(goal.quantity),
-            result.cell,
-            result.reference_point);
+          result = at_point(goal.first_point);
+          result.value =
+            plate_quantity(plate,
+                           goal.quantity == Quantity::q ? pressure_field :
+                                                          solution,
+                           plate_quantity_of(goal.quantity),
+                           result.cell,
+                           result.reference_point);
           break;
         case Kind::w_difference:
           {
             const Evaluation second = at_point(goal.second_point);
             result                  = at_point(goal.first_point);
-            result.value =
-              plate_quantity(plate,
-                             solution,
-                             PlateQuantity::w,
-                             result.cell,
-                             result.reference_point) -
-              plate_quantity(plate,
-                             solution,
-                             PlateQuantity::w,
-                             second.cell,
-                             second.reference_point);
+            result.value            = plate_quantity(plate,
+                                          solution,
+                                          PlateQuantity::w,
+                                          result.cell,
+                                          result.reference_point) -
+                           plate_quantity(plate,
+                                          solution,
+                                          PlateQuantity::w,
+                                          second.cell,
+                                          second.reference_point);
             break;
           }
         case Kind::peak:
@@ -225,9 +224,9 @@ namespace PlateOnHalfspace
             break;
           }
         case Kind::contact_area:
-          result.value = symmetry.n_copies() *
-                         contact_area(plate.get_foundation_space(), contact)
-                           .second;
+          result.value =
+            symmetry.n_copies() *
+            contact_area(plate.get_foundation_space(), contact).second;
           break;
       }
     AssertThrow(std::isfinite(result.value),
@@ -242,18 +241,18 @@ namespace PlateOnHalfspace
                              const Evaluation     &evaluation) const
   {
     AssertThrow(depends_on_plate_only(), ExcInternalError());
-    const DoFHandler<2>             &dof_handler = plate.get_dof_handler();
-    const AffineConstraints<double> &constraints = plate.get_constraints();
-    const unsigned int               n = plate.get_fe().n_dofs_per_cell();
+    const DoFHandler<2>                 &dof_handler = plate.get_dof_handler();
+    const AffineConstraints<double>     &constraints = plate.get_constraints();
+    const unsigned int                   n = plate.get_fe().n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(n);
     Vector<double>                       load(dof_handler.n_dofs());
 
-    const auto add_at = [&](const typename DoFHandler<2>::active_cell_iterator
-                              &cell,
-                            const Vector<double> &local) {
-      cell->get_dof_indices(dofs);
-      constraints.distribute_local_to_global(local, dofs, load);
-    };
+    const auto add_at =
+      [&](const typename DoFHandler<2>::active_cell_iterator &cell,
+          const Vector<double>                               &local) {
+        cell->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(local, dofs, load);
+      };
 
     switch (goal.kind)
       {
@@ -263,8 +262,10 @@ namespace PlateOnHalfspace
         case Kind::point_value:
         case Kind::peak:
           {
-            const LocalDerivatives d = local_derivatives(
-              plate, evaluation.cell, evaluation.reference_point);
+            const LocalDerivatives d =
+              local_derivatives(plate,
+                                evaluation.cell,
+                                evaluation.reference_point);
             Vector<double> local(n);
             switch (goal.quantity)
               {
@@ -290,16 +291,15 @@ namespace PlateOnHalfspace
                                                     evaluation.reference_point,
                                                     solution);
                     const double  half_difference = 0.5 * (m.mx - m.my);
-                    const double  radius =
-                      std::hypot(half_difference, m.mxy);
+                    const double  radius = std::hypot(half_difference, m.mxy);
                     for (unsigned int i = 0; i < n; ++i)
                       {
                         local[i] = 0.5 * (d.mx[i] + d.my[i]);
                         if (radius > 0)
-                          local[i] += (half_difference * 0.5 *
-                                         (d.mx[i] - d.my[i]) +
-                                       m.mxy * d.mxy[i]) /
-                                      radius;
+                          local[i] +=
+                            (half_difference * 0.5 * (d.mx[i] - d.my[i]) +
+                             m.mxy * d.mxy[i]) /
+                            radius;
                       }
                     break;
                   }
@@ -336,8 +336,8 @@ namespace PlateOnHalfspace
                   {
                     area += values.JxW(q);
                     for (unsigned int i = 0; i < n; ++i)
-                      local[i] += values.shape_value_component(i, q, 0) *
-                                  values.JxW(q);
+                      local[i] +=
+                        values.shape_value_component(i, q, 0) * values.JxW(q);
                   }
                 add_at(cell, local);
               }

@@ -53,9 +53,9 @@ namespace PlateOnHalfspace
     std::vector<float> sorted(indicators.begin(), indicators.end());
     std::sort(sorted.begin(), sorted.end(), std::greater<float>());
     const double       tie    = 1e-5 * sorted.front();
-    const double       refine =
-      refine_negligible ? sorted[n_refined - 1] - tie :
-                          std::max(sorted[n_refined - 1] - tie, 2. * tie);
+    const double       refine = refine_negligible ?
+                                  sorted[n_refined - 1] - tie :
+                                  std::max(sorted[n_refined - 1] - tie, 2. * tie);
     const unsigned int n_coarsened =
       part_count(adaptivity.coarsen_fraction * n_cells * copies, copies);
     const double coarsen =

@@ -532,22 +532,21 @@ namespace PlateOnHalfspace
     Adaptivity::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Adaptivity");
-      cycles     = prm.get_integer("Cycles");
+      cycles              = prm.get_integer("Cycles");
       const std::string r = prm.get("Refinement");
       refinement          = (r == "adaptive" ? Refinement::adaptive :
                              r == "goal"     ? Refinement::goal :
                                                Refinement::global);
       goal                = Goal::parse(prm.get("Goal"));
       target_error        = prm.get_double("Target error");
-      refine_fraction  = prm.get_double("Refine fraction");
-      coarsen_fraction = prm.get_double("Coarsen fraction");
-      max_cells        = prm.get_integer("Max cells");
+      refine_fraction     = prm.get_double("Refine fraction");
+      coarsen_fraction    = prm.get_double("Coarsen fraction");
+      max_cells           = prm.get_integer("Max cells");
       prm.leave_subsection();
       require(refine_fraction + coarsen_fraction <= 1,
               "Adaptivity/Refine fraction + Adaptivity/Coarsen fraction must "
               "not exceed 1.");
-      require(goal.kind != Goal::Kind::none ||
-                refinement != Refinement::goal,
+      require(goal.kind != Goal::Kind::none || refinement != Refinement::goal,
               "Adaptivity/Refinement = goal needs Adaptivity/Goal (the "
               "quantity whose error refinement reduces).");
       require(refinement != Refinement::goal ||
@@ -628,8 +627,7 @@ namespace PlateOnHalfspace
           goal.kind     = Kind::peak;
           goal.quantity = field(words[1], true);
         }
-      else if (words.size() == 2 && words[0] == "contact" &&
-               words[1] == "area")
+      else if (words.size() == 2 && words[0] == "contact" && words[1] == "area")
         goal.kind = Kind::contact_area;
       else if (words.size() == 2 && words[0] == "mean" && words[1] == "w")
         goal.kind = Kind::mean_w;

@@ -79,6 +79,29 @@ main()
         " set Shear integration = reduced\nend\n");
   check("upward load on a tensionless foundation",
         "subsection Loads\n set Uniform pressure = -10\nend\n");
+  check("unknown goal", "subsection Adaptivity\n set Goal = Qx at 0,0\nend\n");
+  check("goal point with one coordinate",
+        "subsection Adaptivity\n set Goal = w at 1\nend\n");
+  check("goal point off the plate",
+        "subsection Loads\n set Uniform pressure = 1\nend\n"
+        "subsection Discretization\n set Initial refinements = 1\nend\n"
+        "subsection Adaptivity\n set Goal = Mx at 40,0\nend\n");
+  check("goal refinement without a goal",
+        "subsection Adaptivity\n set Refinement = goal\nend\n");
+  check("target error without a goal",
+        "subsection Adaptivity\n set Target error = 0.01\nend\n");
+  check("target error of 1 or more",
+        "subsection Adaptivity\n set Goal = mean w\n"
+        " set Target error = 1\nend\n");
+  check("goal on the unrefined mesh",
+        "subsection Adaptivity\n set Goal = mean w\nend\n");
+  check("goal with the collocation operator",
+        "subsection Discretization\n set Flexibility = collocation\n"
+        " set Initial refinements = 1\nend\n"
+        "subsection Adaptivity\n set Goal = mean w\nend\n");
+  check("goal refinement for a pressure",
+        "subsection Adaptivity\n set Goal = q at 0,0\n"
+        " set Refinement = goal\nend\n");
   check("unknown summary key in a check",
         "subsection Verification\n set Checks = max_deflection,1,1\nend\n");
 }

@@ -205,12 +205,12 @@ namespace PlateOnHalfspace
     {
       enum class Kind
       {
-        none,          ///< no goal: no estimate
-        point_value,   ///< quantity at first_point
-        peak,          ///< largest value of quantity over the plate
-        contact_area,  ///< area where the soil carries the plate
-        mean_w,        ///< mean deflection over the plate
-        w_difference   ///< w(first_point) - w(second_point)
+        none,         ///< no goal: no estimate
+        point_value,  ///< quantity at first_point
+        peak,         ///< largest value of quantity over the plate
+        contact_area, ///< area where the soil carries the plate
+        mean_w,       ///< mean deflection over the plate
+        w_difference  ///< w(first_point) - w(second_point)
       };
       /** The field a point value or a peak refers to. */
       enum class Quantity
@@ -246,7 +246,7 @@ namespace PlateOnHalfspace
       Refinement   refinement;
       Goal         goal;
       /** Relative target of the goal's error estimate; 0: none. */
-      double target_error;
+      double       target_error;
       double       refine_fraction;
       double       coarsen_fraction;
       unsigned int max_cells;
