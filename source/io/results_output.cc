@@ -7,6 +7,7 @@
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <plate_on_halfspace/io/results_output.h>
+#include <plate_on_halfspace/plate/field_extrema.h>
 
 #include <nlohmann/json.hpp>
 
@@ -181,34 +182,32 @@ namespace PlateOnHalfspace
                           const ContactState   &contact,
                           CycleSummary         &summary) const
   {
-    summary.max_w = *std::max_element(contact.w.begin(), contact.w.end());
-    summary.min_w = *std::min_element(contact.w.begin(), contact.w.end());
-    summary.max_q = *std::max_element(contact.q.begin(), contact.q.end());
-    summary.min_q = *std::min_element(contact.q.begin(), contact.q.end());
-
-    // Moments at the 2x2 Gauss points, where the quadratic element's
-    // derivatives are most accurate (the paper plots Mx there too).
-    const QGauss<2>           rule(2);
-    FEValues<2>               values(plate.get_fe(), rule, update_gradients);
-    std::vector<Tensor<2, 2>> grad(rule.size());
-    const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
-    summary.max_mx = summary.max_my = -std::numeric_limits<double>::max();
-    summary.min_mx = summary.min_my = std::numeric_limits<double>::max();
-    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
-      {
-        values.reinit(cell);
-        values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
-                                                                     grad);
-        for (const auto &g : grad)
-          {
-            const double mx = -D * (g[0][0] + nu * g[1][1]);
-            const double my = -D * (g[1][1] + nu * g[0][0]);
-            summary.max_mx  = std::max(summary.max_mx, mx);
-            summary.min_mx  = std::min(summary.min_mx, mx);
-            summary.max_my  = std::max(summary.max_my, my);
-            summary.min_my  = std::min(summary.min_my, my);
-          }
-      }
+    // Peaks of the finite element fields over the plate, each with its
+    // location: the extremes of the fields, not of samples, so a probe's
+    // value does not lie beyond them. q is the nodal pressure field in the
+    // w-space, so its peaks bound the nodal values.
+    const Vector<double> pressure =
+      plate.foundation_field_to_solution(contact.q);
+    const auto set =
+      [](const FieldExtremum &peak, double &value, Point<2> &location) {
+        value    = peak.value;
+        location = peak.location;
+      };
+    const FieldExtrema w = field_extrema(plate, solution, PlateQuantity::w);
+    set(w.maximum, summary.max_w, summary.max_w_at);
+    set(w.minimum, summary.min_w, summary.min_w_at);
+    const FieldExtrema q = field_extrema(plate, pressure, PlateQuantity::w);
+    set(q.maximum, summary.max_q, summary.max_q_at);
+    set(q.minimum, summary.min_q, summary.min_q_at);
+    const FieldExtrema mx = field_extrema(plate, solution, PlateQuantity::mx);
+    set(mx.maximum, summary.max_mx, summary.max_mx_at);
+    set(mx.minimum, summary.min_mx, summary.min_mx_at);
+    const FieldExtrema my = field_extrema(plate, solution, PlateQuantity::my);
+    set(my.maximum, summary.max_my, summary.max_my_at);
+    set(my.minimum, summary.min_my, summary.min_my_at);
+    set(field_maximum(plate, solution, PlateQuantity::principal_moment),
+        summary.max_principal_moment,
+        summary.max_principal_moment_at);
 
     // Area in contact: each cell counts with the fraction of its nodes in
     // contact.
@@ -283,26 +282,36 @@ namespace PlateOnHalfspace
     for (const CycleSummary &c : cycles)
       {
         nlohmann::ordered_json j;
-        j["cycle"]                         = c.cycle;
-        j["n_cells"]                       = c.n_cells;
-        j["n_dofs"]                        = c.n_dofs;
-        j["n_foundation_dofs"]             = c.n_foundation_dofs;
-        j["contact_iterations"]            = c.contact_iterations;
-        j["contact_nodes"]                 = c.contact_nodes;
-        j["contact_area_fraction"]         = c.contact_area_fraction;
-        j["applied_load"]                  = c.applied_load;
-        j["contact_force"]                 = c.contact_force;
-        j["complementarity_violation"]     = c.complementarity_violation;
-        j["tensile_nodes"]                 = c.tensile_nodes;
-        j["max_penetration"]               = c.max_penetration;
-        j["max_w"]                         = c.max_w;
-        j["min_w"]                         = c.min_w;
-        j["max_q"]                         = c.max_q;
-        j["min_q"]                         = c.min_q;
-        j["max_Mx"]                        = c.max_mx;
-        j["min_Mx"]                        = c.min_mx;
-        j["max_My"]                        = c.max_my;
-        j["min_My"]                        = c.min_my;
+        j["cycle"]                     = c.cycle;
+        j["n_cells"]                   = c.n_cells;
+        j["n_dofs"]                    = c.n_dofs;
+        j["n_foundation_dofs"]         = c.n_foundation_dofs;
+        j["contact_iterations"]        = c.contact_iterations;
+        j["contact_nodes"]             = c.contact_nodes;
+        j["contact_area_fraction"]     = c.contact_area_fraction;
+        j["applied_load"]              = c.applied_load;
+        j["contact_force"]             = c.contact_force;
+        j["complementarity_violation"] = c.complementarity_violation;
+        j["tensile_nodes"]             = c.tensile_nodes;
+        j["max_penetration"]           = c.max_penetration;
+        // each peak and where it is
+        const auto peak = [&j](const std::string &name,
+                               const double       value,
+                               const Point<2>    &location) {
+          j[name]         = value;
+          j[name + "_at"] = {location[0], location[1]};
+        };
+        peak("max_w", c.max_w, c.max_w_at);
+        peak("min_w", c.min_w, c.min_w_at);
+        peak("max_q", c.max_q, c.max_q_at);
+        peak("min_q", c.min_q, c.min_q_at);
+        peak("max_Mx", c.max_mx, c.max_mx_at);
+        peak("min_Mx", c.min_mx, c.min_mx_at);
+        peak("max_My", c.max_my, c.max_my_at);
+        peak("min_My", c.min_my, c.min_my_at);
+        peak("max_principal_moment",
+             c.max_principal_moment,
+             c.max_principal_moment_at);
         j["wall_time_s"]                   = c.wall_time_s;
         j["assembly_time_s"]               = c.assembly_time_s;
         j["foundation_time_s"]             = c.foundation_time_s;

@@ -5,7 +5,8 @@
 # OPENBLAS_NUM_THREADS); every number of summary.json except the wall times (*time_s)
 # must agree to 1e-12 relative to the largest value of its kind (all
 # moments for a moment, all deflections for a deflection; the measures that
-# are relative already, like complementarity_violation, as they are).
+# are relative already, like complementarity_violation, as they are), the
+# peaks' locations (max_Mx_at, ...) to 1e-9 of the largest coordinate.
 # usage: determinism.sh PROGRAM SCENE_DIRECTORY
 set -u
 program=$1
@@ -33,25 +34,35 @@ def numbers(node, path=""):
     elif isinstance(node, (int, float)) and not isinstance(node, bool):
         yield path, float(node)
 runs = {r: dict(numbers(json.load(open(r + "/summary.json")))) for r in ("one_a", "one_b", "two")}
-worst, worst_key = 0.0, ""
+worst, worst_tolerance, worst_key = 0.0, 1e-12, ""
 for key, a in runs["one_a"].items():
     # scale: the largest magnitude among the values of the same kind (a
     # field's minimum is judged against the field's size: min_My against
     # all moments, min_w against all deflections)
+    # (a peak's location, max_Mx_at/0 and /1, against all peak coordinates)
     def kind(k):
-        name = k.split("/")[-1]
+        parts = k.split("/")
+        if len(parts) > 1 and parts[-2].endswith("_at"):
+            return "at"
+        name = parts[-1]
         name = name[4:] if name[:4] in ("max_", "min_") else name
-        return "M" if name in ("Mx", "My") else name
+        return "M" if name in ("Mx", "My", "principal_moment") else name
     scale = max(abs(v) for k, v in runs["one_a"].items() if kind(k) == kind(key)) or 1.0
     # measures that are relative already (rounding-level residuals and
     # condition estimates) are compared as they are
     if key.split("/")[-1] in ("complementarity_violation", "max_penetration",
                      "coupled_matrix_rcond", "foundation_block_rcond"):
         scale = 1.0
+    # a peak's location is where the field's gradient vanishes: rounding in
+    # the gradient moves it by rounding over the curvature (1e-11 of the
+    # plate where a field is flat), so locations agree to 1e-9
+    tolerance = 1e-9 if kind(key) == "at" else 1e-12
     for other in ("one_b", "two"):
         d = abs(runs[other][key] - a) / scale
-        if d > worst: worst, worst_key = d, key + " (" + other + ")"
-print("largest relative difference over %d numbers: %.1e" % (len(runs["one_a"]), worst))
+        if d / tolerance > worst / worst_tolerance:
+            worst, worst_tolerance, worst_key = d, tolerance, key + " (" + other + ")"
+print("largest relative difference over %d numbers: %.1e (tolerance %.0e)"
+      % (len(runs["one_a"]), worst, worst_tolerance))
 if worst > 0: print("  at " + worst_key)
-sys.exit(0 if worst <= 1e-12 else 1)
+sys.exit(0 if worst <= worst_tolerance else 1)
 PYTHON

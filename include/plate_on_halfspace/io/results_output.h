@@ -39,8 +39,15 @@ namespace PlateOnHalfspace
     double       complementarity_violation = 0;
     unsigned int tensile_nodes             = 0;
     double       max_penetration           = 0;
-    double       max_w = 0, min_w = 0, max_q = 0, min_q = 0;
-    double       max_mx = 0, min_mx = 0, max_my = 0, min_my = 0;
+    /** Peaks of the fields over the plate (plate/field_extrema.h): w, the
+     *  pressure field q, the moments and the larger principal moment. */
+    double max_w = 0, min_w = 0, max_q = 0, min_q = 0;
+    double max_mx = 0, min_mx = 0, max_my = 0, min_my = 0;
+    double max_principal_moment = 0;
+    /** Where each peak is (on the computed part of a symmetric scene). */
+    Point<2> max_w_at, min_w_at, max_q_at, min_q_at;
+    Point<2> max_mx_at, min_mx_at, max_my_at, min_my_at;
+    Point<2> max_principal_moment_at;
     /** Wall time of the cycle and its parts: plate assembly (setup,
      *  loads, condensation), half-space operator, contact solve, output. */
     double wall_time_s = 0, assembly_time_s = 0, foundation_time_s = 0;
@@ -123,9 +130,11 @@ namespace PlateOnHalfspace
     is_result_file(const std::string &name);
 
     /**
-     * Pressure, gap and contact indicator on the plate's scalar w-space
-     * and the extremes of w, q and the moments (at the nodes and the
-     * 2x2 Gauss points of every cell).
+     * The peaks of w, q (the nodal pressures interpolated in the w-space),
+     * Mx, My and the larger principal moment: the extremes of the finite
+     * element fields over the plate with their locations
+     * (plate/field_extrema.h); the contact area, the counts of nodes in
+     * contact and tensile, and the contact measures.
      */
     void
     evaluate(const MindlinPlate   &plate,
