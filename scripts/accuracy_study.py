@@ -5,6 +5,11 @@ the error of the quantities of interest against DOFs and wall time.
     python3 scripts/accuracy_study.py build/plate-on-halfspace example2
     python3 scripts/accuracy_study.py build/plate-on-halfspace flexible-square
     python3 scripts/accuracy_study.py build/plate-on-halfspace large-plate
+    python3 scripts/accuracy_study.py --strategies build/plate-on-halfspace example2
+
+--strategies runs only the refinement strategies side by side (default
+global, default adaptive and one goal-oriented run per quantity) and the
+reference run, not the element, operator and contact variants.
 
 Each variant is the shipped scene (parameters/) with a few entries changed;
 every refinement cycle of a run is one point. Quantities of interest: the
@@ -21,8 +26,16 @@ output/study/<scene>/:
   study.md               the table, the reference, what 1 % and 0.1 % cost
   study.png              error against wall time and against DOFs
 Wall time: a globally refined cycle could be computed directly, so it
-counts alone; an adaptive cycle needs the cycles before it, so it counts
-with them (cumulative).
+counts alone; an adaptive or goal-oriented cycle needs the cycles before
+it, so it counts with them (cumulative).
+
+Goal-oriented refinement: for each studied quantity with a goal (w(0,0):
+`w at 0,0`, peak Mx: `peak Mx`, contact area fraction: `contact area`,
+only on tensionless scenes; q has none, `Refinement = goal` refuses it) a
+variant "goal <quantity>" runs the default settings with `Refinement =
+goal`, that `Goal` and `Initial refinements = 1` (the goal's patch-wise
+reconstruction needs it). It is scored in its own quantity only; study.md
+compares global, adaptive and goal per quantity ("Strategies").
 """
 
 import csv
@@ -73,7 +86,7 @@ SCENES = {
     "example2": {
         "file": "parameters/example2.prm",
         "probe_q": (3.0, 0.0),
-        "cycles": {"global": 4, "adaptive": 5},
+        "cycles": {"global": 4, "adaptive": 5, "goal": 4},
         # a finer run than any variant, for the quantities whose global
         # sequence is not monotone (no Richardson extrapolation)
         "reference run": ("adaptive", 7),
@@ -84,7 +97,7 @@ SCENES = {
     "flexible-square": {
         "file": "parameters/flexible-square.prm",
         "probe_q": (1.0, 1.0),
-        "cycles": {"global": 4, "adaptive": 6},
+        "cycles": {"global": 4, "adaptive": 6, "goal": 6},
         "exact": {"w": 8.16961385005846e-3, "q": 100.0, "fraction": 1.0},
         "skip": {"Mx"},  # a flexible plate carries no moment to speak of
         "tensionless": False,
@@ -93,7 +106,7 @@ SCENES = {
     "large-plate": {
         "file": "parameters/infinite-plate-patch.prm",
         "probe_q": (0.888, 0.0),
-        "cycles": {"global": 4, "adaptive": 7},
+        "cycles": {"global": 4, "adaptive": 7, "goal": 4},
         "exact": {"w": 1.9231820e-4, "fraction": 1.0},
         "tensionless": False,
     },
@@ -102,11 +115,37 @@ SCENES = {
 QUANTITIES = [("w", "w(0,0)"), ("Mx", "peak Mx"), ("fraction", "contact area"),
               ("q", "q at interior point")]
 
+# quantity -> Adaptivity/Goal; q has no goal (Refinement = goal refuses it)
+GOALS = {"w": "w at 0,0", "Mx": "peak Mx", "fraction": "contact area"}
+
+
+def goal_variants(scene):
+    """One goal-oriented variant per studied quantity with a goal:
+    name -> (Discretization entries, Contact method, "goal", cycles, Goal,
+    quantity)."""
+    variants = {}
+    for key, label in QUANTITIES:
+        if key not in GOALS or key in scene.get("skip", set()):
+            continue
+        if key == "fraction" and not scene["tensionless"]:
+            continue  # bonded: the whole plate is in contact, nothing to aim at
+        variants[f"goal {label}"] = ({"Initial refinements": "1"},
+                                     "active set", "goal",
+                                     scene["cycles"]["goal"], GOALS[key], key)
+    return variants
+
+
+def variant_goal(settings):
+    """The Goal entry and the quantity of a goal variant, else (None, None)."""
+    return (settings[4], settings[5]) if len(settings) > 5 else (None, None)
+
 
 def scene_text(scene, name, settings, directory):
     base = open(os.path.join(ROOT, scene["file"])).read()
     entries, method, refinement = settings[:3]
     cycles = settings[3] if len(settings) > 3 else scene["cycles"][refinement]
+    goal, _ = variant_goal(settings)
+    goal_entry = f"  set Goal = {goal}\n" if goal else ""
     discretization = "".join(f"  set {k} = {v}\n"
                              for k, v in {**DEFAULTS, **entries}.items())
     px, py = scene["probe_q"]
@@ -125,7 +164,7 @@ subsection Adaptivity
   set Refinement = {refinement}
   set Refine fraction = 0.3
   set Max cells = 100000
-end
+{goal_entry}end
 subsection Output
   set Probe points = 0,0 ; {px},{py}
   set VTU = false
@@ -158,7 +197,7 @@ def run_variant(executable, scene, scene_name, name, settings, out):
     rows, elapsed = [], 0.0
     for c in summary["cycles"]:
         elapsed += c["wall_time_s"]
-        adaptive = settings[2] == "adaptive"
+        adaptive = settings[2] != "global"
         probes = c["probes"]
         rows.append({
             "variant": name, "cycle": c["cycle"], "cells": c["n_cells"],
@@ -167,6 +206,9 @@ def run_variant(executable, scene, scene_name, name, settings, out):
             "w": probes[0]["w"], "Mx": c["max_Mx"],
             "fraction": c["contact_area_fraction"], "q": probes[1]["q"],
             "symmetry": summary["symmetry"],
+            "goal": variant_goal(settings)[1] or "",
+            "goal_estimate": (c["goal"]["relative_error"]
+                              if "goal" in c else ""),
         })
     return rows
 
@@ -184,18 +226,26 @@ def richardson(values):
 
 
 def main():
-    if len(sys.argv) < 3 or sys.argv[2] not in SCENES:
+    args = sys.argv[1:]
+    strategies_only = "--strategies" in args
+    args = [a for a in args if a != "--strategies"]
+    if len(args) < 2 or args[1] not in SCENES:
         print(__doc__)
         sys.exit(2)
-    executable = os.path.abspath(sys.argv[1])
-    scene_name = sys.argv[2]
+    executable = os.path.abspath(args[0])
+    scene_name = args[1]
     scene = SCENES[scene_name]
+    variants = dict(VARIANTS)
+    if strategies_only:
+        variants = {k: v for k, v in variants.items()
+                    if k in ("default, global", "default, adaptive")}
+    variants.update(goal_variants(scene))
     out = os.path.join(ROOT, "output", "study", scene_name)
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
 
     rows = []
-    for name, settings in VARIANTS.items():
+    for name, settings in variants.items():
         print(f"running {name} ...", flush=True)
         rows += run_variant(executable, scene, scene_name, name, settings, out)
 
@@ -256,6 +306,9 @@ def main():
 
     # what 1 % costs: the first cycle from which the error stays below 1 %
     def cost(variant, key, bound=0.01):
+        goal = variant_goal(variants[variant])[1]
+        if goal is not None and goal != key:
+            return None  # a goal variant is scored in its own quantity
         vrows = [r for r in rows if r["variant"] == variant]
         for i, r in enumerate(vrows):
             if all(s.get("err_" + key, 1) < bound for s in vrows[i:]):
@@ -264,13 +317,17 @@ def main():
 
     lines = [f"# Accuracy study: {scene_name}", "",
              f"Command: `python3 scripts/accuracy_study.py "
+             f"{'--strategies ' if strategies_only else ''}"
              f"build/plate-on-halfspace {scene_name}`", "",
              f"Symmetry used: {rows[0]['symmetry']} (the dense block of the "
              "computed part only).", "",
              "Variants: the defaults are serendipity, reduced shear "
              "integration, Galerkin, active set; \"paper's choices\" are "
              "serendipity, collocation and element exclusion (the paper's "
-             "method), refined globally.", "", "References:", ""]
+             "method), refined globally. \"goal <quantity>\": the defaults "
+             "with Initial refinements = 1, Refinement = goal and that "
+             "quantity as Goal, scored in that quantity only.", "",
+             "References:", ""]
     for key, label in QUANTITIES:
         if key in reference:
             lines.append(f"- {label}: {reference[key]:.8g} ({how[key]})")
@@ -283,8 +340,10 @@ def main():
         lines.append(
             f"| {r['variant']} | {r['cycle']} | {r['dofs']} | "
             f"{r['foundation_dofs']} | {r['time']:.2f} | " +
-            " | ".join(f"{r['err_' + key]:.2e}" for key, _ in QUANTITIES
-                       if key in reference) + " |")
+            " | ".join(f"{r['err_' + key]:.2e}"
+                       if r["goal"] in ("", key) else "(" +
+                       f"{r['err_' + key]:.2e})"
+                       for key, _ in QUANTITIES if key in reference) + " |")
     for bound, label in ((0.01, "1 %"), (0.001, "0.1 %")):
         lines += ["", f"## What {label} costs", "",
                   f"First cycle from which the error stays below {label} "
@@ -293,16 +352,50 @@ def main():
                       name for key, name in QUANTITIES if key in reference) +
                   " |",
                   "|---|" + "---|" * len(reference)]
-        for variant in VARIANTS:
+        for variant in variants:
             if not any(r["variant"] == variant for r in rows):
                 continue
             cells = []
             for key, _ in QUANTITIES:
                 if key not in reference:
                     continue
+                goal = variant_goal(variants[variant])[1]
+                if goal is not None and goal != key:
+                    cells.append("")
+                    continue
                 r = cost(variant, key, bound)
                 cells.append(f"{r['dofs']} / {r['time']:.2f} s" if r else "-")
             lines.append(f"| {variant} | " + " | ".join(cells) + " |")
+
+    # the strategies side by side, per quantity
+    def reached(variant):
+        vrows = [r for r in rows if r["variant"] == variant]
+        return (f"{vrows[-1]['dofs']} dofs, {vrows[-1]['time']:.1f} s"
+                if vrows else "did not run")
+    lines += ["", "## Strategies", "",
+              "Per quantity: global and Kelly-adaptive refinement of the "
+              "defaults, and goal-oriented refinement with that quantity as "
+              "Goal; DOFs / wall time of the first cycle from which the "
+              "error stays below the bound ('-': not reached; the last "
+              "cycle of the run in the last column).", "",
+              "| quantity | strategy | 1 % | 0.1 % | finest error | "
+              "last cycle |", "|---|---|---|---|---|---|"]
+    for key, label in QUANTITIES:
+        if key not in reference:
+            continue
+        for strategy, variant in (("global", "default, global"),
+                                  ("adaptive", "default, adaptive"),
+                                  ("goal", f"goal {label}")):
+            if variant not in variants:
+                continue
+            vrows = [r for r in rows if r["variant"] == variant]
+            cells = []
+            for bound in (0.01, 0.001):
+                r = cost(variant, key, bound)
+                cells.append(f"{r['dofs']} / {r['time']:.2f} s" if r else "-")
+            finest = f"{vrows[-1]['err_' + key]:.2e}" if vrows else "-"
+            lines.append(f"| {label} | {strategy} | " + " | ".join(cells) +
+                         f" | {finest} | {reached(variant)} |")
     with open(os.path.join(out, "study.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
@@ -310,14 +403,17 @@ def main():
     # the plot: error against time (top) and DOFs (bottom) per quantity
     plotted = [key for key, _ in QUANTITIES if key in reference]
     data = os.path.join(out, "plot-data.txt")
-    variants = [v for v in VARIANTS if any(r["variant"] == v for r in rows)]
+    plotted_variants = [v for v in variants
+                        if any(r["variant"] == v for r in rows)]
     with open(data, "w") as f:
-        for v in variants:
+        for v in plotted_variants:
             f.write(f'"{v}"\n')
             for r in rows:
                 if r["variant"] == v:
                     f.write(f"{r['dofs']} {r['time']} " + " ".join(
-                        f"{max(r['err_' + key], 1e-16)}" for key in plotted)
+                        f"{max(r['err_' + key], 1e-16)}"
+                        if r["goal"] in ("", key) else "NaN"
+                        for key in plotted)
                         + "\n")
             f.write("\n\n")
     terminals = subprocess.run(["gnuplot", "-e", "set terminal"],
@@ -344,7 +440,7 @@ def main():
                        "plot " + ", ".join(
                            f"'{data}' index {i} using {column}:{3 + k} "
                            f"with linespoints title \"{v}\""
-                           for i, v in enumerate(variants))]
+                           for i, v in enumerate(plotted_variants))]
             script.append("set key off")
     script.append("unset multiplot")
     subprocess.run(["gnuplot"], input="\n".join(script), text=True,
