@@ -209,26 +209,9 @@ namespace PlateOnHalfspace
         summary.max_principal_moment,
         summary.max_principal_moment_at);
 
-    // Area in contact: each cell counts with the fraction of its nodes in
-    // contact.
-    const FoundationSpace &space = plate.get_foundation_space();
-    double                 area = 0, contact_area = 0;
-    const QGauss<2>        area_rule(2);
-    for (const auto &cell : space.cells)
-      {
-        double cell_area = 0;
-        for (unsigned int q = 0; q < area_rule.size(); ++q)
-          cell_area += area_rule.weight(q) *
-                       cell.geometry.jacobian_determinant(area_rule.point(q));
-        const std::vector<unsigned int> nodes = cell.nodes();
-        unsigned int                    n_in  = 0;
-        for (const unsigned int i : nodes)
-          n_in += contact.in_contact[i];
-        area += cell_area;
-        contact_area +=
-          cell_area * n_in / std::max<std::size_t>(nodes.size(), 1);
-      }
-    summary.contact_area_fraction = contact_area / area;
+    const FoundationSpace &space    = plate.get_foundation_space();
+    const auto [area, contact_area] = space.area_in_contact(contact.in_contact);
+    summary.contact_area_fraction   = contact_area / area;
     // Nodes in contact on the whole plate: a node of the computed part
     // stands for its distinct mirror images.
     // The same for the nodes whose pressure coefficient is tensile.

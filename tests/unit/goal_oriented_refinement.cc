@@ -66,34 +66,35 @@ main()
   const double exact  = exact_corner_settlement();
   const double target = 2e-3;
 
-  const std::vector<CycleSummary> goal = run("goal", 10, target);
+  const std::vector<CycleSummary> goal      = run("goal", 10, target);
   bool                            effective = true;
   for (const CycleSummary &c : goal)
     {
       const double true_error  = exact - c.goal.value;
       const double effectivity = c.goal.estimated_error / true_error;
-      effective = effective && std::abs(effectivity - 1) < 0.1;
+      effective                = effective && std::abs(effectivity - 1) < 0.1;
       deallog << "goal cycle " << c.cycle << ": dofs " << c.n_dofs
               << ", relative error " << std::setprecision(2)
-              << std::abs(true_error / exact) << ", effectivity "
-              << std::fixed << effectivity << std::defaultfloat
-              << std::setprecision(6) << std::endl;
+              << std::abs(true_error / exact) << ", effectivity " << std::fixed
+              << effectivity << std::defaultfloat << std::setprecision(6)
+              << std::endl;
     }
   deallog << "effectivity within 10 % on every cycle: "
           << (effective ? "OK" : "FAILED") << std::endl;
 
-  const CycleSummary &last      = goal.back();
-  const double        reached   = std::abs(exact - last.goal.value) / exact;
-  const bool          stopped   = goal.size() < 10;
-  const bool          below     = reached <= target;
-  const bool          reported  = last.goal.relative_error <= target;
+  const CycleSummary &last     = goal.back();
+  const double        reached  = std::abs(exact - last.goal.value) / exact;
+  const bool          stopped  = goal.size() < 10;
+  const bool          below    = reached <= target;
+  const bool          reported = last.goal.relative_error <= target;
   std::ifstream       file("results-goal/summary.json");
   const std::string   text((std::istreambuf_iterator<char>(file)),
                          std::istreambuf_iterator<char>());
-  const bool          said_met  = text.find("\"met\": true") != std::string::npos;
+  const bool said_met = text.find("\"met\": true") != std::string::npos;
   deallog << "Target error " << target << " stops the loop after "
-          << goal.size() << " of 10 cycles: "
-          << (stopped && reported ? "OK" : "FAILED") << std::endl;
+          << goal.size()
+          << " of 10 cycles: " << (stopped && reported ? "OK" : "FAILED")
+          << std::endl;
   deallog << "true error at the stop below the target: "
           << (below ? "OK" : "FAILED") << std::endl;
   deallog << "summary.json says the target was met: "

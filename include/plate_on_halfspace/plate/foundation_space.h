@@ -84,6 +84,14 @@ namespace PlateOnHalfspace
     }
 
     /**
+     * The area of the cells and the part of it in contact, each cell
+     * counted with the fraction of its nodes that @p in_contact marks (the
+     * contact area of summary.json and of the goal `contact area`).
+     */
+    std::pair<double, double>
+    area_in_contact(const std::vector<bool> &in_contact) const;
+
+    /**
      * Assemble the consistent mass matrix M_ij = ∫ φ_i φ_j (the paper's E,
      * (P11)-(P15)) over the cells with @p cell_in_foundation set (all if
      * empty), into @p sparsity and @p matrix (3x3 Gauss, exact for
