@@ -1,7 +1,5 @@
 #include <deal.II/base/timer.h>
 
-#include <deal.II/fe/fe_values.h>
-
 #include <deal.II/numerics/solution_transfer.h>
 
 #include <plate_on_halfspace/base/progress.h>
@@ -11,7 +9,6 @@
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/refinement/interface.h>
 
-#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <numeric>
@@ -86,13 +83,13 @@ namespace PlateOnHalfspace
   void
   PlateOnHalfspaceProblem::make_mesh()
   {
-    // A symmetric scene is solved on the part x >= 0 and/or y >= 0 of the
-    // plate (mirror_symmetry.h), cut from the coarse mesh so that its
-    // refinements are those of the whole plate's mesh.
     // The goal's error estimate reconstructs on patches of 2 x 2 cells
     // (refinement/dual_weighted_residual.h): keep every cell's siblings.
     if (parameters.adaptivity.goal.kind != Parameters::Goal::Kind::none)
       triangulation.set_mesh_smoothing(Triangulation<2>::patch_level_1);
+    // A symmetric scene is solved on the part x >= 0 and/or y >= 0 of the
+    // plate (mirror_symmetry.h), cut from the coarse mesh so that its
+    // refinements are those of the whole plate's mesh.
     make_coarse_plate_mesh(parameters.plate,
                            parameters.discretization,
                            triangulation);
@@ -237,53 +234,14 @@ namespace PlateOnHalfspace
           goal->derivative(*mindlin_plate, contact.plate_solution, value);
         const ContactState adjoint =
           contact_solver->solve_linearised(goal_load);
-        // The adjoint pressure without the part of the goal density the
-        // soil carries at the goal's points, which the estimate takes
-        // exactly (dual_weighted_residual.h): the share theta of a point's
-        // density M^{-1} c delta that the adjoint pressure holds there, 1
-        // for a plate too flexible to spread the point's load over the
-        // cells around it, 0 for one stiff enough to spread it far.
-        Vector<double>                           reaction = adjoint.q;
         std::vector<std::pair<Point<2>, double>> terms =
           goal->deflection_terms();
-        const Vector<double> adjoint_field =
-          mindlin_plate->foundation_field_to_solution(adjoint.q);
-        for (auto &term : terms)
-          {
-            Vector<double> point_load(goal_load.size());
-            const auto     located = mindlin_plate->locate(term.first);
-            FEValues<2>    values(mindlin_plate->get_fe(),
-                               Quadrature<2>(
-                                 std::vector<Point<2>>{located.second}),
-                               update_values);
-            values.reinit(located.first);
-            std::vector<types::global_dof_index> dofs(
-              mindlin_plate->get_fe().n_dofs_per_cell());
-            located.first->get_dof_indices(dofs);
-            Vector<double> local(dofs.size());
-            for (unsigned int i = 0; i < dofs.size(); ++i)
-              local[i] = term.second * values.shape_value_component(i, 0, 0);
-            mindlin_plate->get_constraints().distribute_local_to_global(
-              local, dofs, point_load);
-            const Vector<double> density =
-              goal_density_pressure(foundation_operator->mass_matrix(),
-                                    contact.active_set,
-                                    mindlin_plate->restrict_to_foundation(
-                                      point_load));
-            const double density_at_point = mindlin_plate->point_value(
-              mindlin_plate->foundation_field_to_solution(density),
-              term.first,
-              0);
-            const double theta = density_at_point != 0 ?
-                                   std::clamp(mindlin_plate->point_value(
-                                                adjoint_field, term.first, 0) /
-                                                density_at_point,
-                                              0.,
-                                              1.) :
-                                   0.;
-            reaction.add(-theta, density);
-            term.second *= theta;
-          }
+        const Vector<double> reaction =
+          remove_carried_goal_density(*mindlin_plate,
+                                      foundation_operator->mass_matrix(),
+                                      contact.active_set,
+                                      adjoint.q,
+                                      terms);
         const Vector<double> adjoint_pressure =
           mindlin_plate->foundation_field_to_solution(reaction);
         const FoundationResidualData soil{

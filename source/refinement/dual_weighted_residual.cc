@@ -13,6 +13,7 @@
 #include <plate_on_halfspace/refinement/dual_weighted_residual.h>
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -103,29 +104,79 @@ namespace PlateOnHalfspace
             fields[q].gradient[c] = g[q][c];
           }
     }
+
+    /** M_CC^{-1} j_C, zero off C. */
+    Vector<double>
+    goal_density_pressure(const SparseMatrix<double> &mass,
+                          const std::vector<bool>    &contact_set,
+                          const Vector<double>       &nodal_goal_load)
+    {
+      // M_CC x_C = j_C as the whole system with the rows and columns off C
+      // replaced by the identity.
+      SparseMatrix<double> matrix(mass.get_sparsity_pattern());
+      matrix.copy_from(mass);
+      Vector<double> x(nodal_goal_load);
+      for (unsigned int i = 0; i < matrix.m(); ++i)
+        for (auto entry = matrix.begin(i); entry != matrix.end(i); ++entry)
+          if (!contact_set[i] || !contact_set[entry->column()])
+            entry->value() = (i == entry->column() ? 1. : 0.);
+      for (unsigned int i = 0; i < x.size(); ++i)
+        if (!contact_set[i])
+          x[i] = 0;
+      SparseDirectUMFPACK solver;
+      solver.initialize(matrix);
+      solver.solve(x);
+      return x;
+    }
+
   } // namespace
 
   Vector<double>
-  goal_density_pressure(const SparseMatrix<double> &mass,
-                        const std::vector<bool>    &contact_set,
-                        const Vector<double>       &nodal_goal_load)
+  remove_carried_goal_density(const MindlinPlate         &plate,
+                              const SparseMatrix<double> &mass,
+                              const std::vector<bool>    &contact_set,
+                              const Vector<double>       &adjoint_pressure,
+                              std::vector<std::pair<Point<2>, double>> &terms)
   {
-    // M_CC x_C = j_C as the whole system with the rows and columns off C
-    // replaced by the identity.
-    SparseMatrix<double> matrix(mass.get_sparsity_pattern());
-    matrix.copy_from(mass);
-    Vector<double> x(nodal_goal_load);
-    for (unsigned int i = 0; i < matrix.m(); ++i)
-      for (auto entry = matrix.begin(i); entry != matrix.end(i); ++entry)
-        if (!contact_set[i] || !contact_set[entry->column()])
-          entry->value() = (i == entry->column() ? 1. : 0.);
-    for (unsigned int i = 0; i < x.size(); ++i)
-      if (!contact_set[i])
-        x[i] = 0;
-    SparseDirectUMFPACK solver;
-    solver.initialize(matrix);
-    solver.solve(x);
-    return x;
+    Vector<double>       reaction(adjoint_pressure);
+    const Vector<double> adjoint_field =
+      plate.foundation_field_to_solution(adjoint_pressure);
+    const unsigned int                   n = plate.get_fe().n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(n);
+    for (auto &term : terms)
+      {
+        // c_k phi(x_k): the term's load on the plate's w-functions
+        const auto  located = plate.locate(term.first);
+        FEValues<2> values(plate.get_fe(),
+                           Quadrature<2>(std::vector<Point<2>>{located.second}),
+                           update_values);
+        values.reinit(located.first);
+        located.first->get_dof_indices(dofs);
+        Vector<double> local(n), point_load(plate.get_dof_handler().n_dofs());
+        for (unsigned int i = 0; i < n; ++i)
+          local[i] = term.second * values.shape_value_component(i, 0, 0);
+        plate.get_constraints().distribute_local_to_global(local,
+                                                           dofs,
+                                                           point_load);
+        const Vector<double> density =
+          goal_density_pressure(mass,
+                                contact_set,
+                                plate.restrict_to_foundation(point_load));
+        const double at_point =
+          plate.point_value(plate.foundation_field_to_solution(density),
+                            term.first,
+                            0);
+        const double theta =
+          at_point != 0 ?
+            std::clamp(plate.point_value(adjoint_field, term.first, 0) /
+                         at_point,
+                       0.,
+                       1.) :
+            0.;
+        reaction.add(-theta, density);
+        term.second *= theta;
+      }
+    return reaction;
   }
 
   GoalErrorEstimate

@@ -69,16 +69,23 @@ namespace PlateOnHalfspace
    * refinement").
    */
   /**
-   * The goal density's discrete pressure M_CC^{-1} j_C: the part of the
-   * adjoint pressure that the goal's deflection terms put on the contact
-   * set C (@p contact_set) directly, @p nodal_goal_load the goal's
-   * derivative at the foundation nodes, @p mass the nodal mass matrix.
-   * Zero off C.
+   * The adjoint pressure @p adjoint_pressure (nodal) without the part of
+   * the goal's Dirac densities that the soil carries at the goal's points
+   * (doc/formulation.md, "Goal-oriented refinement"). For each term c_k
+   * w(x_k) of @p terms: the point's discrete density d_k = M_CC^{-1} c_k
+   * phi(x_k) on the contact set C (@p contact_set, @p mass the nodal mass
+   * matrix) and the share theta_k in [0, 1] of d_k(x_k) that the adjoint
+   * pressure holds at x_k (1 for a plate too flexible to spread a point's
+   * load over the cells around it, 0 for one stiff enough to spread it
+   * far). Returns adjoint_pressure - sum theta_k d_k and scales each
+   * term's coefficient by theta_k.
    */
   Vector<double>
-  goal_density_pressure(const SparseMatrix<double> &mass,
-                        const std::vector<bool>    &contact_set,
-                        const Vector<double>       &nodal_goal_load);
+  remove_carried_goal_density(const MindlinPlate         &plate,
+                              const SparseMatrix<double> &mass,
+                              const std::vector<bool>    &contact_set,
+                              const Vector<double>       &adjoint_pressure,
+                              std::vector<std::pair<Point<2>, double>> &terms);
 
   GoalErrorEstimate
   estimate_goal_error(const MindlinPlate           &plate,
