@@ -177,6 +177,19 @@ namespace PlateOnHalfspace
     // Storage = auto and Solver = auto are decided for this cycle's mesh.
     const unsigned int n       = summary.n_foundation_dofs;
     const auto         storage = parameters.foundation_storage(n);
+    // The goal's half-space residual evaluates the settlement at every
+    // Gauss point of the contact cells against every cell
+    // (halfspace/surface_settlement.h): O(n^2) with no compression.
+    constexpr unsigned int max_goal_nodes = 20000;
+    AssertThrow(!goal || n <= max_goal_nodes,
+                ExcMessage("Adaptivity/Goal: the error estimate's half-space "
+                           "residual grows with the square of the foundation "
+                           "nodes; this cycle has " +
+                           std::to_string(n) + ", more than the " +
+                           std::to_string(max_goal_nodes) +
+                           " it allows (about 3 minutes there on 2 cores). "
+                           "Lower Adaptivity/Cycles or Max cells, or leave "
+                           "Adaptivity/Goal empty."));
     if (storage == Parameters::FoundationOperator::Storage::dense)
       check_dense_foundation_memory(n,
                                     parameters.contact_solver(n) ==
