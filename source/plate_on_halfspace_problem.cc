@@ -317,7 +317,8 @@ namespace PlateOnHalfspace
     foundation_operator->nodal_forces(contact.pressure_coefficients, forces);
     summary.contact_force =
       symmetry.n_copies() * std::accumulate(forces.begin(), forces.end(), 0.);
-    output->evaluate(*mindlin_plate, contact.plate_solution, contact, summary);
+    output->evaluate(
+      *mindlin_plate, contact.plate_solution, pressure_field, contact, summary);
     summary.foundation_storage = foundation_operator->storage_name();
     summary.foundation_memory_bytes =
       foundation_operator->memory_consumption() + contact.factor_memory_bytes;

@@ -179,6 +179,7 @@ namespace PlateOnHalfspace
   void
   ResultsOutput::evaluate(const MindlinPlate   &plate,
                           const Vector<double> &solution,
+                          const Vector<double> &pressure_field,
                           const ContactState   &contact,
                           CycleSummary         &summary) const
   {
@@ -186,8 +187,6 @@ namespace PlateOnHalfspace
     // location: the extremes of the fields, not of samples, so a probe's
     // value does not lie beyond them. q is the nodal pressure field in the
     // w-space, so its peaks bound the nodal values.
-    const Vector<double> pressure =
-      plate.foundation_field_to_solution(contact.q);
     const auto set =
       [](const FieldExtremum &peak, double &value, Point<2> &location) {
         value    = peak.value;
@@ -196,7 +195,8 @@ namespace PlateOnHalfspace
     const FieldExtrema w = field_extrema(plate, solution, PlateQuantity::w);
     set(w.maximum, summary.max_w, summary.max_w_at);
     set(w.minimum, summary.min_w, summary.min_w_at);
-    const FieldExtrema q = field_extrema(plate, pressure, PlateQuantity::w);
+    const FieldExtrema q =
+      field_extrema(plate, pressure_field, PlateQuantity::w);
     set(q.maximum, summary.max_q, summary.max_q_at);
     set(q.minimum, summary.min_q, summary.min_q_at);
     const FieldExtrema mx = field_extrema(plate, solution, PlateQuantity::mx);

@@ -47,7 +47,7 @@ namespace PlateOnHalfspace
     constraints.clear();
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     add_centre_constraints();
-    add_mirror_plane_constraints();
+    add_mirror_plane_constraints(dof_handler, symmetry, constraints);
     if (extra_constraints)
       extra_constraints(dof_handler, constraints);
     constraints.close();
@@ -64,13 +64,16 @@ namespace PlateOnHalfspace
   }
 
   void
-  MindlinPlate::add_mirror_plane_constraints()
+  add_mirror_plane_constraints(const DoFHandler<2>       &dof_handler,
+                               const MirrorSymmetry      &symmetry,
+                               AffineConstraints<double> &constraints)
   {
     // The solution of a symmetric scene is even across a mirror plane
     // (mirror_symmetry.h): w is free there, the slope across the plane
     // vanishes: beta_x = 0 on x = 0, beta_y = 0 on y = 0. Hanging nodes on
     // the plane are already constrained to nodes on the plane, which are
     // zero here too.
+    const FiniteElement<2> &fe = dof_handler.get_fe();
     for (const unsigned int axis : {0u, 1u})
       {
         if (!(axis == 0 ? symmetry.x : symmetry.y))

@@ -201,18 +201,7 @@ namespace PlateOnHalfspace
     AffineConstraints<double> weight_constraints;
     weight_dofs.distribute_dofs(weight_fe);
     DoFTools::make_hanging_node_constraints(weight_dofs, weight_constraints);
-    for (const unsigned int axis : {0u, 1u})
-      if (axis == 0 ? symmetry.x : symmetry.y)
-        {
-          const IndexSet plane = DoFTools::extract_boundary_dofs(
-            weight_dofs,
-            weight_fe.component_mask(FEValuesExtractors::Scalar(1 + axis)),
-            {axis == 0 ? mirror_plane_x_boundary_id :
-                         mirror_plane_y_boundary_id});
-          for (const auto dof : plane)
-            if (!weight_constraints.is_constrained(dof))
-              weight_constraints.add_line(dof);
-        }
+    add_mirror_plane_constraints(weight_dofs, symmetry, weight_constraints);
     weight_constraints.close();
     Vector<double> weight(weight_dofs.n_dofs()),
       interpolant(weight_dofs.n_dofs());
@@ -248,7 +237,8 @@ namespace PlateOnHalfspace
     pressure_weight -= interpolant;
 
     // The settlement of q_h at the points of the half-space term: 4 x 4
-    // Gauss points of each cell whose nodes are all in contact.
+    // Gauss points of each cell whose nodes are all in contact, followed
+    // by the goal's points (one evaluation for both).
     const QGauss<2>        soil_rule(4);
     const FoundationSpace &space = plate.get_foundation_space();
     std::vector<bool>      soil_cell(space.cells.size(), true);
@@ -269,6 +259,9 @@ namespace PlateOnHalfspace
           ++c;
         }
     }
+    const std::size_t n_cell_points = soil_points.size();
+    for (const auto &term : foundation.goal_point_terms)
+      soil_points.push_back(term.first);
     const std::vector<double> settlement =
       settlement_at_points(space,
                            foundation.nodal_pressure,
@@ -440,28 +433,16 @@ namespace PlateOnHalfspace
     // The goal density's part of rho_F: (u(q_h) - w_h) at the goal's
     // points in contact, given to the cell that holds the point.
     std::vector<double> point_terms(triangulation.n_active_cells(), 0.);
-    {
-      std::vector<Point<2>> points;
-      for (const auto &term : foundation.goal_point_terms)
-        points.push_back(term.first);
-      const std::vector<double> point_settlement =
-        settlement_at_points(space,
-                             foundation.nodal_pressure,
-                             points,
-                             foundation.alpha,
-                             foundation.singular_order);
-      for (unsigned int k = 0; k < points.size(); ++k)
-        {
-          const auto located = plate.locate(points[k]);
-          const auto index   = located.first->active_cell_index();
-          if (!soil_cell[index])
-            continue; // lifted off: no pressure acts at the point
-          const double term =
-            foundation.goal_point_terms[k].second *
-            (point_settlement[k] - plate.point_value(solution, points[k], 0));
-          point_terms[index] += term;
-        }
-    }
+    for (unsigned int k = 0; k < foundation.goal_point_terms.size(); ++k)
+      {
+        const auto &[x, coefficient] = foundation.goal_point_terms[k];
+        const auto located           = plate.locate(x);
+        const auto index             = located.first->active_cell_index();
+        if (!soil_cell[index])
+          continue; // lifted off: no pressure acts at the point
+        point_terms[index] += coefficient * (settlement[n_cell_points + k] -
+                                             plate.point_value(solution, x, 0));
+      }
 
     GoalErrorEstimate estimate;
     for (const double term : point_terms)

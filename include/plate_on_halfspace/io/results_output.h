@@ -130,15 +130,16 @@ namespace PlateOnHalfspace
     is_result_file(const std::string &name);
 
     /**
-     * The peaks of w, q (the nodal pressures interpolated in the w-space),
-     * Mx, My and the larger principal moment: the extremes of the finite
-     * element fields over the plate with their locations
-     * (plate/field_extrema.h); the contact area, the counts of nodes in
-     * contact and tensile, and the contact measures.
+     * The peaks of w, q (@p pressure_field: the nodal pressures
+     * interpolated in the w-space), Mx, My and the larger principal
+     * moment: the extremes of the finite element fields over the plate
+     * with their locations (plate/field_extrema.h); the contact area, the
+     * counts of nodes in contact and tensile, and the contact measures.
      */
     void
     evaluate(const MindlinPlate   &plate,
              const Vector<double> &solution,
+             const Vector<double> &pressure_field,
              const ContactState   &contact,
              CycleSummary         &summary) const;
 

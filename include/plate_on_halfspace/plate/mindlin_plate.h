@@ -41,6 +41,18 @@ namespace PlateOnHalfspace
   };
 
   /**
+   * Add to @p constraints the conditions of a symmetric scene's mirror
+   * planes on a field with the plate's components (w, beta_x, beta_y) on
+   * @p dof_handler: the rotation across each plane of @p symmetry vanishes
+   * there (faces with mirror_plane_x/y_boundary_id). Serves the plate and
+   * fields in its component layout of another degree.
+   */
+  void
+  add_mirror_plane_constraints(const DoFHandler<2>       &dof_handler,
+                               const MirrorSymmetry      &symmetry,
+                               AffineConstraints<double> &constraints);
+
+  /**
    * The plate on a given triangulation. Component 0 is w (downward), 1 and 2
    * are beta_x, beta_y (slopes of the normal, = dw/dx, dw/dy when thin).
    */
@@ -208,8 +220,6 @@ namespace PlateOnHalfspace
   private:
     void
     add_centre_constraints();
-    void
-    add_mirror_plane_constraints();
     void
     build_foundation_space();
     void
