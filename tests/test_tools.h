@@ -26,6 +26,18 @@ namespace TestTools
   using namespace dealii;
   using namespace PlateOnHalfspace;
 
+  /** Run the scene @p text (a whole parameter file), its log discarded. */
+  inline std::unique_ptr<PlateOnHalfspaceProblem>
+  run_scene_text(const std::string &text)
+  {
+    SceneParameters parameters;
+    parameters.read_from_string(text);
+    static std::ostringstream log; // the problem keeps a reference
+    auto problem = std::make_unique<PlateOnHalfspaceProblem>(parameters, log);
+    problem->run();
+    return problem;
+  }
+
   /**
    * Run parameters/@p scene (tests are in tests/unit, so SOURCE_DIR/../..
    * is the project) with the entries @p extra appended, quietly, results
@@ -44,12 +56,7 @@ namespace TestTools
         << "subsection Verification\n set Checks =\nend\n"
         << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n"
         << extra;
-    SceneParameters parameters;
-    parameters.read_from_string(prm.str());
-    static std::ostringstream log; // the problem keeps a reference
-    auto problem = std::make_unique<PlateOnHalfspaceProblem>(parameters, log);
-    problem->run();
-    return problem;
+    return run_scene_text(prm.str());
   }
 
   /**

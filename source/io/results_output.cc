@@ -325,12 +325,15 @@ namespace PlateOnHalfspace
             if (c.goal.has_location)
               goal["at"] = {c.goal.location[0], c.goal.location[1]};
             goal["estimated_error"] = c.goal.estimated_error;
+            if (c.goal.has_dwr)
+              goal["dwr"] = c.goal.dwr;
+            else
+              goal["dwr"] = nullptr;
             if (c.goal.has_change)
               goal["change"] = c.goal.change;
             else
               goal["change"] = nullptr;
             goal["relative_error"] = c.goal.relative_error;
-            goal["indicator_sum"]  = c.goal.indicator_sum;
             goal["time_s"]         = c.goal.time_s;
             j["goal"]              = goal;
           }

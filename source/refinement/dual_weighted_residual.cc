@@ -445,16 +445,17 @@ namespace PlateOnHalfspace
       }
 
     GoalErrorEstimate estimate;
+    estimate.has_dwr = true;
     for (const double term : point_terms)
       {
-        estimate.estimated_error += term;
-        estimate.indicator_sum += std::abs(term);
+        estimate.dwr += term;
+        estimate.estimated_error += std::abs(term);
       }
     for (unsigned int i = 0; i < node_estimates.size(); ++i)
       if (!hat_constraints.is_constrained(i))
         {
-          estimate.estimated_error += node_estimates[i];
-          estimate.indicator_sum += std::abs(node_estimates[i]);
+          estimate.dwr += node_estimates[i];
+          estimate.estimated_error += std::abs(node_estimates[i]);
         }
 
     // Each cell gets its share of the |eta_i| of its vertices.
@@ -501,7 +502,6 @@ namespace PlateOnHalfspace
           }
         ++c;
       }
-    estimate.indicator_sum = estimate.estimated_error;
     return estimate;
   }
 } // namespace PlateOnHalfspace

@@ -1,16 +1,20 @@
-// The reference value of parameters/infinite-plate-patch.prm, computed here
-// independently of the finite element code: the centre deflection of an
-// infinite Mindlin plate on a half-space under a uniform circular patch
-// (doc/formulation.md, "Reference values"):
-//   w(0) = (P/(pi a)) Int_0^inf J1(k a) (1 + c k^2) /
-//          (D k^4 + (1 + c k^2) E* k / 2) dk,
+// The reference values of parameters/infinite-plate-patch.prm, computed
+// here independently of the finite element code: the centre deflection and
+// centre moment of an infinite Mindlin plate on a half-space under a
+// uniform circular patch (doc/verification.md, "Infinite plate under a
+// patch"):
+//   w(0)  = (P/(pi a)) Int_0^inf J1(k a) (1 + c k^2) / d(k) dk,
+//   Mx(0) = D (1 + nu) P / (2 pi a) Int_0^inf J1(k a) k^2 / d(k) dk,
+//   d(k) = D k^4 + (1 + c k^2) E* k / 2,
 //   c = D/(k_s G t), E* = E0/(1 - nu0^2), k_s = 5/6.
-// The integrand oscillates with period 2 pi / a and decays like k^-5/2:
-// Gauss-Legendre on each half period of J1, the partial sums of the
-// alternating tail averaged (Euler's first step). Cross-checked against
-// mpmath (quadosc, 20 digits): 1.9231820006778574e-4. Also the Kirchhoff
-// limit (c = 0, a -> 0) against the exact point-load value P l^2/(3 sqrt 3 D)
-// (doc/verification.md).
+// (At the centre Mx = My = -D (1 + nu) lap(w_b)/2, w_b the bending part
+// of w, whose transform is the net load over D k^4.) The integrands
+// oscillate with period 2 pi / a and decay like k^-5/2: Gauss-Legendre on
+// each half period of J1, the partial sums of the alternating tail
+// averaged (Euler's first step). Cross-checked against mpmath (quadosc,
+// 20 digits): w(0) = 1.9231820006778574e-4 m, Mx(0) = 10.803889266239927
+// kNm/m. Also the Kirchhoff limit (c = 0, a -> 0) against the exact
+// point-load value P l^2/(3 sqrt 3 D) (doc/verification.md).
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -18,19 +22,22 @@
 
 #include "../tests.h"
 
+/**
+ * Int_0^inf (2 J1(ka)/(ka)) k g(k) / d(k) dk, whose first factor tends to
+ * 1 as a -> 0 (the point load).
+ */
+template <typename Numerator>
 double
-hankel_centre_deflection(const double D,
-                         const double c,
-                         const double E_star,
-                         const double a,
-                         const double P)
+hankel_centre_integral(const double     D,
+                       const double     c,
+                       const double     E_star,
+                       const double     a,
+                       const Numerator &g)
 {
-  // The formula written as (P/(2 pi)) Int (2 J1(ka)/(ka)) k f(k) dk, whose
-  // first factor tends to 1 as a -> 0 (the point load).
   const auto integrand = [&](const double k) {
     const double x      = k * a;
     const double factor = (x > 0) ? 2. * std::cyl_bessel_j(1, x) / x : 1.;
-    return factor * k * (1. + c * k * k) /
+    return factor * k * g(k) /
            (D * k * k * k * k + (1. + c * k * k) * E_star * k / 2.);
   };
   const QGauss<1> gauss(12);
@@ -57,14 +64,42 @@ hankel_centre_deflection(const double D,
       }
   else
     {
-      // k f(k) ~ 1/(D k^3) + ...: integrate to K and add the tail exactly.
+      // The point load's deflection (g = 1, c = 0): k g/d ~ 1/(D k^3) + ...,
+      // integrate to K and add the tail exactly.
       const double K = 1e4;
       for (double k = 0; k < K; k += 0.5)
         sum += integrate(k, k + 0.5);
       sum += (c == 0 ? 1. / (2. * D * K * K) : 0.);
       previous = sum;
     }
-  return P / (2. * M_PI) * 0.5 * (sum + previous);
+  return 0.5 * (sum + previous);
+}
+
+double
+hankel_centre_deflection(const double D,
+                         const double c,
+                         const double E_star,
+                         const double a,
+                         const double P)
+{
+  return P / (2. * M_PI) *
+         hankel_centre_integral(D, c, E_star, a, [c](const double k) {
+           return 1. + c * k * k;
+         });
+}
+
+double
+hankel_centre_moment(const double D,
+                     const double nu,
+                     const double c,
+                     const double E_star,
+                     const double a,
+                     const double P)
+{
+  return D * (1. + nu) * P / (4. * M_PI) *
+         hankel_centre_integral(D, c, E_star, a, [](const double k) {
+           return k * k;
+         });
 }
 
 int
@@ -87,6 +122,10 @@ main()
         1.9231820e-4,
         hankel_centre_deflection(D, c, E_star, a, P),
         1e-7);
+  check("Mindlin plate, patch a = 0.15 m: Mx(0) [kNm/m]",
+        hankel_centre_moment(D, nu, c, E_star, a, P),
+        10.803889266239927,
+        1e-8);
   // Kirchhoff plate, point load: w0 = P l^2 / (3 sqrt 3 D), l^3 = 2 D/E*
   const double l = std::cbrt(2. * D * (1. - nu0 * nu0) / E0);
   check("Kirchhoff plate, point load: w(0) / (P l^2 / D)",

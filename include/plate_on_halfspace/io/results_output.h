@@ -73,21 +73,24 @@ namespace PlateOnHalfspace
       /** Where a point value or a peak was taken. */
       bool     has_location = false;
       Point<2> location;
-      /** The dual-weighted residual estimate of the true value minus
-       *  value (signed). */
+      /** The estimate of |true value - value|: sum of the local
+       *  dual-weighted residuals' magnitudes (the contact area: its half
+       *  band). */
       double estimated_error = 0;
+      /** The dual-weighted residual, the signed estimate of true value
+       *  minus value (not for the contact area). */
+      bool   has_dwr = false;
+      double dwr     = 0;
       /** value minus the previous cycle's (from the second cycle on). */
       bool   has_change = false;
       double change     = 0;
       /**
        * The error bound the run reports and Target error tests:
-       * max(|estimated_error|, |change|) / |value|, |estimated_error| /
+       * max(estimated_error, |change|) / |value|, estimated_error /
        * |value| on the first cycle (doc/formulation.md, "Goal-oriented
        * refinement").
        */
       double relative_error = 0;
-      /** Sum of the local estimates' magnitudes (no cancellation). */
-      double indicator_sum = 0;
       /** Adaptivity/Target error (0: none). */
       double target_error = 0;
       /** Wall time (s) of the value, the adjoint solve and the estimate. */

@@ -20,10 +20,15 @@ namespace PlateOnHalfspace
   /** The estimate of one cycle. */
   struct GoalErrorEstimate
   {
-    /** eta, the estimate of J(u) - J(u_h) (signed). */
+    /**
+     * The error the run reports: sum of |eta_i| over the hat functions
+     * (eta without cancellation; doc/formulation.md, "Goal-oriented
+     * refinement"), or the contact area's half band.
+     */
     double estimated_error = 0;
-    /** Sum of |eta_i| over the hat functions: eta without cancellation. */
-    double indicator_sum = 0;
+    /** eta = sum of eta_i, the estimate of J(u) - J(u_h) (signed). */
+    bool   has_dwr = false;
+    double dwr     = 0;
     /** |eta| of each active cell (the plate's cell order), for marking. */
     Vector<float> cell_indicators;
   };
