@@ -207,7 +207,7 @@ namespace PlateOnHalfspace
                            "nodes; this cycle has " +
                            std::to_string(n) + ", more than the " +
                            std::to_string(max_goal_foundation_nodes) +
-                           " it allows (about 3 minutes there on 2 cores). "
+                           " it allows (about 75 s there on 2 cores). "
                            "Coarsen the initial mesh (Discretization/"
                            "Subdivisions x and y, Initial refinements), or "
                            "leave Adaptivity/Goal empty."));
