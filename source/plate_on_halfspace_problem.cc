@@ -51,7 +51,7 @@ namespace PlateOnHalfspace
                           "Contact/Max iterations (" +
                           std::to_string(parameters.contact.max_iterations) +
                           ") reached before the contact set settled."));
-            if (goal_target_met())
+            if (summary.goal.target_met)
               {
                 log << "Adaptivity/Target error met: estimated relative "
                        "error of <"
@@ -258,44 +258,20 @@ namespace PlateOnHalfspace
     Timer                            phase;
     const GoalFunctional::Evaluation value = goal->evaluate(
       *mindlin_plate, contact.plate_solution, pressure_field, contact);
-    if (parameters.adaptivity.goal.kind == Parameters::Goal::Kind::contact_area)
-      goal_estimate = estimate_contact_area_error(*mindlin_plate,
-                                                  contact.in_contact,
-                                                  symmetry.n_copies());
-    else if (goal->depends_on_plate_only())
-      {
-        const Vector<double> goal_load =
-          goal->derivative(*mindlin_plate, contact.plate_solution, value);
-        const ContactState adjoint =
-          contact_solver->solve_linearised(goal_load);
-        std::vector<std::pair<Point<2>, double>> terms =
-          goal->deflection_terms();
-        const Vector<double> reaction =
-          remove_carried_goal_density(*mindlin_plate,
-                                      foundation_operator->mass_matrix(),
-                                      contact.active_set,
-                                      adjoint.q,
-                                      terms);
-        const Vector<double> adjoint_pressure =
-          mindlin_plate->foundation_field_to_solution(reaction);
-        const FoundationResidualData soil{
-          contact.q,
-          contact.active_set,
-          adjoint_pressure,
-          boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
-                                          parameters.foundation.poissons_ratio),
-          parameters.discretization.singular_quadrature_order,
-          terms};
-        goal_estimate =
-          PlateOnHalfspace::estimate_goal_error(*mindlin_plate,
-                                                contact.plate_solution,
-                                                pressure_field,
-                                                adjoint.plate_solution,
-                                                soil,
-                                                computed_loads,
-                                                parameters.plate.unit_weight *
-                                                  parameters.plate.thickness);
-      }
+    goal_estimate = PlateOnHalfspace::estimate_goal_error(
+      *goal,
+      value,
+      *mindlin_plate,
+      contact,
+      pressure_field,
+      *contact_solver,
+      foundation_operator->mass_matrix(),
+      GoalEstimateScene{
+        computed_loads,
+        parameters.plate.unit_weight * parameters.plate.thickness,
+        boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
+                                        parameters.foundation.poissons_ratio),
+        parameters.discretization.singular_quadrature_order});
     summary.has_goal             = true;
     summary.goal.quantity        = goal->name();
     summary.goal.value           = value.value;
@@ -317,17 +293,12 @@ namespace PlateOnHalfspace
     summary.goal.relative_error =
       bound / std::max(std::abs(value.value), 1e-300);
     summary.goal.target_error = parameters.adaptivity.target_error;
-    summary.goal.time_s       = phase.wall_time();
-  }
-
-  bool
-  PlateOnHalfspaceProblem::goal_target_met() const
-  {
     // Not on the first cycle: its bound has no change to check the
     // estimate against.
-    return goal && parameters.adaptivity.target_error > 0 &&
-           summary.goal.has_change &&
-           summary.goal.relative_error <= parameters.adaptivity.target_error;
+    summary.goal.target_met =
+      summary.goal.target_error > 0 && summary.goal.has_change &&
+      summary.goal.relative_error <= summary.goal.target_error;
+    summary.goal.time_s = phase.wall_time();
   }
 
   void

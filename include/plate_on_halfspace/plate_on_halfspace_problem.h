@@ -144,10 +144,6 @@ namespace PlateOnHalfspace
     void
     estimate_goal_error();
 
-    /** Whether the cycle's estimate meets Adaptivity/Target error. */
-    bool
-    goal_target_met() const;
-
     /** Fill the cycle's summary: equilibrium, extremes, probes. */
     void
     postprocess();

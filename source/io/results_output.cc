@@ -344,11 +344,10 @@ namespace PlateOnHalfspace
         cycles.back().goal.target_error > 0)
       {
         const CycleSummary::Goal &goal = cycles.back().goal;
-        summary["goal_target"]         = {
-                  {"quantity", goal.quantity},
-                  {"target_error", goal.target_error},
-                  {"relative_error", goal.relative_error},
-                  {"met", goal.has_change && goal.relative_error <= goal.target_error}};
+        summary["goal_target"]         = {{"quantity", goal.quantity},
+                                          {"target_error", goal.target_error},
+                                          {"relative_error", goal.relative_error},
+                                          {"met", goal.target_met}};
       }
     write_file("summary.json", summary.dump(2) + "\n");
   }

@@ -504,4 +504,43 @@ namespace PlateOnHalfspace
       }
     return estimate;
   }
+
+  GoalErrorEstimate
+  estimate_goal_error(const GoalFunctional             &goal,
+                      const GoalFunctional::Evaluation &value,
+                      const MindlinPlate               &plate,
+                      const ContactState               &contact,
+                      const Vector<double>             &pressure_field,
+                      ContactSolver                    &contact_solver,
+                      const SparseMatrix<double>       &mass,
+                      const GoalEstimateScene          &scene)
+  {
+    if (goal.measures_contact_area())
+      return estimate_contact_area_error(
+        plate,
+        contact.in_contact,
+        plate.get_foundation_space().symmetry.n_copies());
+    if (!goal.depends_on_plate_only())
+      return GoalErrorEstimate();
+    const ContactState adjoint = contact_solver.solve_linearised(
+      goal.derivative(plate, contact.plate_solution, value));
+    std::vector<std::pair<Point<2>, double>> terms = goal.deflection_terms();
+    const Vector<double> reaction = remove_carried_goal_density(
+      plate, mass, contact.active_set, adjoint.q, terms);
+    const Vector<double> adjoint_pressure =
+      plate.foundation_field_to_solution(reaction);
+    const FoundationResidualData soil{contact.q,
+                                      contact.active_set,
+                                      adjoint_pressure,
+                                      scene.alpha,
+                                      scene.singular_order,
+                                      terms};
+    return estimate_goal_error(plate,
+                               contact.plate_solution,
+                               pressure_field,
+                               adjoint.plate_solution,
+                               soil,
+                               scene.loads,
+                               scene.self_weight_pressure);
+  }
 } // namespace PlateOnHalfspace

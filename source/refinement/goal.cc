@@ -95,9 +95,15 @@ namespace PlateOnHalfspace
   {}
 
   bool
+  GoalFunctional::measures_contact_area() const
+  {
+    return goal.kind == Kind::contact_area;
+  }
+
+  bool
   GoalFunctional::depends_on_plate_only() const
   {
-    return goal.kind != Kind::contact_area &&
+    return !measures_contact_area() &&
            !(goal.kind == Kind::point_value && goal.quantity == Quantity::q);
   }
 

@@ -91,8 +91,10 @@ namespace PlateOnHalfspace
        * refinement").
        */
       double relative_error = 0;
-      /** Adaptivity/Target error (0: none). */
+      /** Adaptivity/Target error (0: none), and whether relative_error
+       *  met it (never on the first cycle). */
       double target_error = 0;
+      bool   target_met   = false;
       /** Wall time (s) of the value, the adjoint solve and the estimate. */
       double time_s = 0;
     };

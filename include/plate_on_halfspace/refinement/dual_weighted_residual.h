@@ -10,7 +10,9 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/refinement/goal.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
 namespace PlateOnHalfspace
@@ -112,6 +114,37 @@ namespace PlateOnHalfspace
   estimate_contact_area_error(const MindlinPlate      &plate,
                               const std::vector<bool> &in_contact,
                               const unsigned int       copies);
+
+  /** What a cycle's goal estimate needs of the scene beyond the solution. */
+  struct GoalEstimateScene
+  {
+    /** The loads on the computed part and the self weight's pressure. */
+    const Parameters::Loads &loads;
+    double                   self_weight_pressure;
+    /** The soil's flexibility constant and the singular quadrature order. */
+    double       alpha;
+    unsigned int singular_order;
+  };
+
+  /**
+   * The cycle's estimate of the error of @p goal, whatever the goal: for a
+   * goal of the plate's fields the dual-weighted residual above, its
+   * adjoint problem solved by the cycle's @p contact_solver on the final
+   * contact set of @p contact and the goal's carried density removed with
+   * the foundation's mass matrix @p mass; for the contact area the half
+   * band of estimate_contact_area_error(); for q at a point none (zero).
+   * @p value is the goal on the cycle, @p pressure_field q_h in the
+   * plate's w-space.
+   */
+  GoalErrorEstimate
+  estimate_goal_error(const GoalFunctional             &goal,
+                      const GoalFunctional::Evaluation &value,
+                      const MindlinPlate               &plate,
+                      const ContactState               &contact,
+                      const Vector<double>             &pressure_field,
+                      ContactSolver                    &contact_solver,
+                      const SparseMatrix<double>       &mass,
+                      const GoalEstimateScene          &scene);
 } // namespace PlateOnHalfspace
 
 #endif

@@ -59,6 +59,10 @@ namespace PlateOnHalfspace
     bool
     depends_on_plate_only() const;
 
+    /** Whether the goal is the contact area. */
+    bool
+    measures_contact_area() const;
+
     /**
      * The goal's deflection terms c_k w(x_k) (w at a point: one, a
      * difference: two), points on the computed part; empty for the other
