@@ -22,6 +22,20 @@ namespace PlateOnHalfspace
       return BilinearQuadrilateral(std::array<Point<2>, 4>{
         {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}});
     }
+
+    /**
+     * The resultant of @p load: the w-shape functions are a partition of
+     * unity, also after the constraints, so it is the sum of the w-loads.
+     */
+    double
+    resultant(const Vector<double>                       &load,
+              const std::vector<types::global_dof_index> &w_dofs)
+    {
+      double sum = 0;
+      for (const auto dof : w_dofs)
+        sum += load[dof];
+      return sum;
+    }
   } // namespace
 
   MindlinPlate::MindlinPlate(const Parameters::Plate          &plate,
@@ -252,7 +266,6 @@ namespace PlateOnHalfspace
                                const double             self_weight_pressure)
   {
     load                                   = 0;
-    total_load                             = 0;
     const unsigned int                   n = fe.n_dofs_per_cell();
     Vector<double>                       local(n);
     std::vector<types::global_dof_index> dofs(n);
@@ -343,11 +356,7 @@ namespace PlateOnHalfspace
         located.first->get_dof_indices(dofs);
         constraints.distribute_local_to_global(local, dofs, load);
       }
-
-    // The w-shape functions are a partition of unity, also after the
-    // constraints: the sum of the w-loads is the resultant.
-    for (const auto dof : foundation_dofs)
-      total_load += load[dof];
+    total_load = resultant(load, foundation_dofs);
   }
 
   double
@@ -478,9 +487,7 @@ namespace PlateOnHalfspace
   {
     AssertThrow(new_load.size() == dof_handler.n_dofs(), ExcInternalError());
     load       = new_load;
-    total_load = 0;
-    for (const auto dof : foundation_dofs)
-      total_load += load[dof];
+    total_load = resultant(load, foundation_dofs);
   }
 
   void
