@@ -39,7 +39,7 @@ PRM
   nodes=$(grep -o "[0-9]* foundation nodes" "$work/log" | head -1 | cut -d' ' -f1)
   total=$(grep "Total wallclock" "$work/log" | awk -F'|' '{gsub(/s/,"",$3); print $3+0}')
   printf "%6d %6d %10.3f %10.3f %10.3f %10.3f %10.2e\n" "$cells" "$nodes" \
-    "$(phase 'plate setup')" "$(phase 'build half-space')" \
+    "$(phase 'plate setup')" "$(phase 'build foundation')" \
     "$(phase 'contact solve')" "$total" \
     "$(awk -v t="$total" -v n="$nodes" 'BEGIN{print t/(n*n)}')"
 done

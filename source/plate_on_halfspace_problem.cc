@@ -3,7 +3,6 @@
 #include <deal.II/numerics/solution_transfer.h>
 
 #include <plate_on_halfspace/base/progress.h>
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
@@ -144,14 +143,14 @@ namespace PlateOnHalfspace
           double(summary.n_foundation_dofs) *
           (triangulation.n_active_cells() + 3. * n_refined) /
           triangulation.n_active_cells();
-        if (predicted_nodes > max_goal_foundation_nodes)
+        const unsigned int limit = parameters.max_goal_foundation_nodes();
+        if (predicted_nodes > limit)
           {
             for (const auto &cell : triangulation.active_cell_iterators())
               cell->clear_refine_flag();
             log << "Adaptivity/Goal: the next mesh would have about "
                 << static_cast<unsigned int>(predicted_nodes)
-                << " foundation nodes, more than the "
-                << max_goal_foundation_nodes
+                << " foundation nodes, more than the " << limit
                 << " the goal's estimate allows: no further cycles."
                 << std::endl;
             return false;
@@ -196,21 +195,25 @@ namespace PlateOnHalfspace
   void
   PlateOnHalfspaceProblem::build_foundation_operator()
   {
-    TimerOutput::Scope scope(timer_output, "build half-space operator");
+    TimerOutput::Scope scope(timer_output, "build foundation operator");
     Timer              phase;
     // Storage = auto and Solver = auto are decided for this cycle's mesh.
     const unsigned int n       = summary.n_foundation_dofs;
     const auto         storage = parameters.foundation_storage(n);
-    AssertThrow(!goal || n <= max_goal_foundation_nodes,
-                ExcMessage("Adaptivity/Goal: the error estimate's half-space "
-                           "residual grows with the square of the foundation "
-                           "nodes; this cycle has " +
-                           std::to_string(n) + ", more than the " +
-                           std::to_string(max_goal_foundation_nodes) +
-                           " it allows (about 75 s there on 2 cores). "
-                           "Coarsen the initial mesh (Discretization/"
-                           "Subdivisions x and y, Initial refinements), or "
-                           "leave Adaptivity/Goal empty."));
+    // A goal's half-space residual evaluates the settlement at every Gauss
+    // point of the contact cells against every cell (halfspace/
+    // surface_settlement.h), O(n^2) with no compression.
+    AssertThrow(!goal || n <= parameters.max_goal_foundation_nodes(),
+                ExcMessage(
+                  "Adaptivity/Goal: the error estimate's half-space "
+                  "residual grows with the square of the foundation "
+                  "nodes; this cycle has " +
+                  std::to_string(n) + ", more than the " +
+                  std::to_string(parameters.max_goal_foundation_nodes()) +
+                  " it allows (about 75 s there on 2 cores). "
+                  "Coarsen the initial mesh (Discretization/"
+                  "Subdivisions x and y, Initial refinements), or "
+                  "leave Adaptivity/Goal empty."));
     if (storage == Parameters::FoundationOperator::Storage::dense)
       check_dense_foundation_memory(n,
                                     parameters.contact_solver(n) ==
@@ -266,12 +269,10 @@ namespace PlateOnHalfspace
       pressure_field,
       *contact_solver,
       foundation_operator->mass_matrix(),
-      GoalEstimateScene{
-        computed_loads,
-        parameters.plate.unit_weight * parameters.plate.thickness,
-        boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
-                                        parameters.foundation.poissons_ratio),
-        parameters.discretization.singular_quadrature_order});
+      GoalEstimateScene{computed_loads,
+                        parameters.plate.unit_weight *
+                          parameters.plate.thickness,
+                        *foundation_operator});
     summary.has_goal             = true;
     summary.goal.quantity        = goal->name();
     summary.goal.value           = value.value;

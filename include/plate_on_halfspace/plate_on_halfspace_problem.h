@@ -93,14 +93,6 @@ namespace PlateOnHalfspace
 
   private:
     /**
-     * The most foundation nodes a goal's estimate runs on: its half-space
-     * residual evaluates the settlement at every Gauss point of the
-     * contact cells against every cell (halfspace/surface_settlement.h),
-     * O(n^2) with no compression.
-     */
-    static constexpr unsigned int max_goal_foundation_nodes = 20000;
-
-    /**
      * The coarse mesh, the mirror planes the scene is solved with, its
      * loads on the computed part (mirror_symmetry.h) and the initial
      * global refinements.

@@ -1,13 +1,16 @@
 #include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/collocation_operator.h>
+#include <plate_on_halfspace/halfspace/surface_settlement.h>
 
 #include <cmath>
 
 namespace PlateOnHalfspace
 {
   BoussinesqCollocationOperator::BoussinesqCollocationOperator(
-    const double alpha)
+    const double       alpha,
+    const unsigned int singular_order)
     : alpha(alpha)
+    , singular_order(singular_order)
   {}
 
   void
@@ -104,5 +107,15 @@ namespace PlateOnHalfspace
   BoussinesqCollocationOperator::memory_consumption() const
   {
     return flexibility.memory_consumption() + coupling_memory_consumption();
+  }
+
+  std::vector<double>
+  BoussinesqCollocationOperator::settlement_at_points(
+    const FoundationSpace       &space,
+    const Vector<double>        &nodal_pressure,
+    const std::vector<Point<2>> &points) const
+  {
+    return PlateOnHalfspace::settlement_at_points(
+      space, nodal_pressure, points, alpha, singular_order);
   }
 } // namespace PlateOnHalfspace

@@ -1,6 +1,7 @@
 #include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
+#include <plate_on_halfspace/halfspace/surface_settlement.h>
 
 #include <algorithm>
 #include <cmath>
@@ -111,5 +112,15 @@ namespace PlateOnHalfspace
            full_mass.memory_consumption() +
            full_tested_mass.memory_consumption() +
            coupling_memory_consumption();
+  }
+
+  std::vector<double>
+  BoussinesqGalerkinOperator::settlement_at_points(
+    const FoundationSpace       &space,
+    const Vector<double>        &nodal_pressure,
+    const std::vector<Point<2>> &points) const
+  {
+    return PlateOnHalfspace::settlement_at_points(
+      space, nodal_pressure, points, alpha, singular_order);
   }
 } // namespace PlateOnHalfspace

@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
+#include <plate_on_halfspace/halfspace/surface_settlement.h>
 
 namespace PlateOnHalfspace
 {
@@ -150,5 +151,15 @@ namespace PlateOnHalfspace
   HierarchicalGalerkinOperator::memory_consumption() const
   {
     return flexibility.memory_consumption() + coupling_memory_consumption();
+  }
+
+  std::vector<double>
+  HierarchicalGalerkinOperator::settlement_at_points(
+    const FoundationSpace       &space,
+    const Vector<double>        &nodal_pressure,
+    const std::vector<Point<2>> &points) const
+  {
+    return PlateOnHalfspace::settlement_at_points(
+      space, nodal_pressure, points, alpha, singular_order);
   }
 } // namespace PlateOnHalfspace

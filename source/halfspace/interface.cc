@@ -4,6 +4,7 @@
 
 #include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/collocation_operator.h>
+#include <plate_on_halfspace/halfspace/dense_liquid_operator.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
 #include <plate_on_halfspace/halfspace/interface.h>
@@ -235,6 +236,9 @@ namespace PlateOnHalfspace
     const SceneParameters                        &parameters,
     const Parameters::FoundationOperator::Storage storage)
   {
+    if (storage == Parameters::FoundationOperator::Storage::sparse)
+      return std::make_unique<DenseLiquidOperator>(
+        parameters.foundation.subgrade_modulus);
     const double alpha =
       boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
                                       parameters.foundation.poissons_ratio);
@@ -249,6 +253,7 @@ namespace PlateOnHalfspace
         Parameters::Discretization::Flexibility::galerkin)
       return std::make_unique<BoussinesqGalerkinOperator>(
         alpha, parameters.discretization.singular_quadrature_order);
-    return std::make_unique<BoussinesqCollocationOperator>(alpha);
+    return std::make_unique<BoussinesqCollocationOperator>(
+      alpha, parameters.discretization.singular_quadrature_order);
   }
 } // namespace PlateOnHalfspace

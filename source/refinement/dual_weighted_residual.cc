@@ -9,7 +9,6 @@
 #include <deal.II/lac/sparse_direct.h>
 
 #include <plate_on_halfspace/base/quadrilateral_geometry.h>
-#include <plate_on_halfspace/halfspace/surface_settlement.h>
 #include <plate_on_halfspace/refinement/dual_weighted_residual.h>
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
 
@@ -263,11 +262,9 @@ namespace PlateOnHalfspace
     for (const auto &term : foundation.goal_point_terms)
       soil_points.push_back(term.first);
     const std::vector<double> settlement =
-      settlement_at_points(space,
-                           foundation.nodal_pressure,
-                           soil_points,
-                           foundation.alpha,
-                           foundation.singular_order);
+      foundation.foundation.settlement_at_points(space,
+                                                 foundation.nodal_pressure,
+                                                 soil_points);
     FEValues<2>         plate_soil(plate.get_fe(),
                            soil_rule,
                            update_values | update_JxW_values);
@@ -529,12 +526,8 @@ namespace PlateOnHalfspace
       plate, mass, contact.active_set, adjoint.q, terms);
     const Vector<double> adjoint_pressure =
       plate.foundation_field_to_solution(reaction);
-    const FoundationResidualData soil{contact.q,
-                                      contact.active_set,
-                                      adjoint_pressure,
-                                      scene.alpha,
-                                      scene.singular_order,
-                                      terms};
+    const FoundationResidualData soil{
+      contact.q, contact.active_set, adjoint_pressure, scene.foundation, terms};
     return estimate_goal_error(plate,
                                contact.plate_solution,
                                pressure_field,

@@ -180,6 +180,13 @@ namespace PlateOnHalfspace
     Foundation::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Foundation");
+      prm.declare_entry("Model",
+                        "half-space",
+                        Patterns::Selection("half-space|dense liquid"),
+                        "half-space: the elastic half-space (Boussinesq; "
+                        "Young's modulus and Poisson's ratio); dense liquid: "
+                        "the Winkler foundation, q = k w where the soil "
+                        "carries the plate (Modulus of subgrade reaction).");
       prm.declare_entry("Young's modulus",
                         "1e5",
                         Patterns::Double(0),
@@ -190,6 +197,11 @@ namespace PlateOnHalfspace
                         Patterns::Double(0, 0.5),
                         "Poisson's ratio nu0 of the half-space, "
                         "0 <= nu0 < 0.5.");
+      prm.declare_entry("Modulus of subgrade reaction",
+                        "0",
+                        Patterns::Double(),
+                        "k of the dense liquid [force/length^3], > 0 with "
+                        "Model = dense liquid; leave 0 for the half-space.");
       prm.declare_entry("Contact",
                         "tensionless",
                         Patterns::Selection("tensionless|bonded"),
@@ -202,10 +214,25 @@ namespace PlateOnHalfspace
     Foundation::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Foundation");
-      youngs_modulus = prm.get_double("Young's modulus");
-      poissons_ratio = prm.get_double("Poisson's ratio");
-      tensionless    = (prm.get("Contact") == "tensionless");
+      model = (prm.get("Model") == "dense liquid" ? Model::dense_liquid :
+                                                    Model::half_space);
+      youngs_modulus   = prm.get_double("Young's modulus");
+      poissons_ratio   = prm.get_double("Poisson's ratio");
+      subgrade_modulus = prm.get_double("Modulus of subgrade reaction");
+      tensionless      = (prm.get("Contact") == "tensionless");
       prm.leave_subsection();
+      if (model == Model::dense_liquid)
+        require(subgrade_modulus > 0,
+                "Foundation/Modulus of subgrade reaction must be > 0 with "
+                "Foundation/Model = dense liquid" +
+                  got(subgrade_modulus) + ".");
+      else
+        require(subgrade_modulus == 0,
+                "Foundation/Modulus of subgrade reaction belongs to "
+                "Foundation/Model = dense liquid; the half-space takes "
+                "Young's modulus and Poisson's ratio (set Model = dense "
+                "liquid, or leave the modulus 0)" +
+                  got(subgrade_modulus) + ".");
       require(youngs_modulus > 0,
               "Foundation/Young's modulus must be > 0" + got(youngs_modulus) +
                 ".");

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace PlateOnHalfspace
@@ -88,6 +89,31 @@ namespace PlateOnHalfspace
               "Discretization/Flexibility = collocation needs axis-aligned "
               "rectangular cells (the paper's closed-form integral); use "
               "galerkin for Plate/Shape = disk.");
+    if (foundation.model == Parameters::Foundation::Model::dense_liquid)
+      {
+        // The dense liquid is a sparse operator: nothing may densify it,
+        // and the paper's element exclusion and collocation belong to the
+        // half-space (doc/formulation.md, "Dense-liquid foundation").
+        require(foundation_operator.storage ==
+                  Parameters::FoundationOperator::Storage::automatic,
+                "Foundation operator/Storage applies to the half-space; "
+                "with Foundation/Model = dense liquid leave it auto (the "
+                "dense liquid is stored sparse).");
+        require(contact.solver != Parameters::Contact::Solver::direct,
+                "Contact/Solver = direct condenses the plate onto a dense "
+                "foundation block; with Foundation/Model = dense liquid use "
+                "iterative or auto.");
+        require(!foundation.tensionless ||
+                  contact.method == Parameters::Contact::Method::active_set,
+                "Contact/Method = element exclusion is the paper's method "
+                "for the half-space; with Foundation/Model = dense liquid "
+                "use active set.");
+        require(discretization.flexibility ==
+                  Parameters::Discretization::Flexibility::galerkin,
+                "Discretization/Flexibility = collocation is the paper's "
+                "half-space operator; with Foundation/Model = dense liquid "
+                "use galerkin.");
+      }
     if (foundation_operator.storage ==
         Parameters::FoundationOperator::Storage::hierarchical)
       {
@@ -127,6 +153,8 @@ namespace PlateOnHalfspace
     const unsigned int n_foundation_nodes) const
   {
     using Storage = Parameters::FoundationOperator::Storage;
+    if (foundation.model == Parameters::Foundation::Model::dense_liquid)
+      return Storage::sparse;
     if (foundation_operator.storage != Storage::automatic)
       return foundation_operator.storage;
     const bool allowed = hierarchical_storage_obstacle(*this).empty();
@@ -143,9 +171,17 @@ namespace PlateOnHalfspace
     if (contact.solver != Solver::automatic)
       return contact.solver;
     return foundation_storage(n_foundation_nodes) ==
-               Parameters::FoundationOperator::Storage::hierarchical ?
-             Solver::iterative :
-             Solver::direct;
+               Parameters::FoundationOperator::Storage::dense ?
+             Solver::direct :
+             Solver::iterative;
+  }
+
+  unsigned int
+  SceneParameters::max_goal_foundation_nodes() const
+  {
+    return foundation.model == Parameters::Foundation::Model::dense_liquid ?
+             std::numeric_limits<unsigned int>::max() :
+             20000;
   }
 
   void

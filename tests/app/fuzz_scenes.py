@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Fuzz-style test of the executable: randomly perturbed versions
 of a small valid scene (tests/app/bad_input_base.prm made tensionless with a
-patch and a point load), a fixed seed, each run with a time limit. Every run
+patch and a point load, every second one on a dense liquid instead of the
+half-space), a fixed seed, each run with a time limit. Every run
 must either succeed (status 0, summary.json without NaN and without null
 except a goal's "change" on the first cycle and "dwr" of the contact area,
 "converged": true) or fail cleanly (status 1, exactly one "Error: ..." line on stderr
@@ -35,8 +36,10 @@ subsection Plate
   set Unit weight     = 0
 end
 subsection Foundation
+  set Model           = half-space
   set Young's modulus = 1e4
   set Poisson's ratio = 0.3
+  set Modulus of subgrade reaction = 0
   set Contact         = tensionless
 end
 subsection Loads
@@ -78,6 +81,9 @@ choices = {
     "Element": ["serendipity", "heterosis", "lagrange", "quad"],
     "Shear integration": ["auto", "reduced", "selective", "full", "none"],
     "Flexibility": ["galerkin", "collocation", "winkler"],
+    "Model": ["half-space", "dense liquid", "winkler", ""],
+    "Modulus of subgrade reaction": ["0", "1e4", "-1e4", "1e-300", "1e300", "nan",
+                                     "x", "5e4 kN/m3"],
     "Method": ["active set", "element exclusion", "newton"],
     "Subdivisions x": ["1", "2", "4", "0", "-3", "2.5", "1001", "x"],
     "Subdivisions y": ["1", "2", "4", "0", "-3", "2.5", "1001", "x"],
@@ -113,8 +119,13 @@ def unexpected_nulls(value, key=None, parent=None):
     return []
 
 
-def perturb(rng):
-    lines = base.splitlines()
+dense_liquid = base.replace("Model           = half-space",
+                            "Model           = dense liquid").replace(
+    "Modulus of subgrade reaction = 0", "Modulus of subgrade reaction = 2e4")
+
+
+def perturb(rng, scene):
+    lines = scene.splitlines()
     for _ in range(rng.randint(1, 3)):
         i = rng.randrange(1, len(lines))  # keep the output directory
         line = lines[i]
@@ -144,7 +155,7 @@ def main():
     failures = []
     try:
         for n in range(runs):
-            scene = perturb(rng)
+            scene = perturb(rng, dense_liquid if n % 2 else base)
             with open(os.path.join(work, "scene.prm"), "w") as f:
                 f.write(scene)
             shutil.rmtree(os.path.join(work, "results"), ignore_errors=True)

@@ -20,8 +20,13 @@ namespace PlateOnHalfspace
   class BoussinesqCollocationOperator : public FoundationOperator
   {
   public:
-    /** @param alpha (1 - nu0^2)/(pi E0). */
-    explicit BoussinesqCollocationOperator(const double alpha);
+    /**
+     * @param alpha (1 - nu0^2)/(pi E0).
+     * @param singular_order Duffy points of settlement_at_points().
+     */
+    explicit BoussinesqCollocationOperator(
+      const double       alpha,
+      const unsigned int singular_order = 8);
 
     void
     build(const FoundationSpace   &space,
@@ -32,6 +37,11 @@ namespace PlateOnHalfspace
     void
     copy_block(const std::vector<unsigned int> &nodes,
                LAPACKFullMatrix<double>        &block) const override;
+    /** u(x) = alpha ∫ q_h(y)/|x - y| dy (halfspace/surface_settlement.h). */
+    std::vector<double>
+    settlement_at_points(const FoundationSpace       &space,
+                         const Vector<double>        &nodal_pressure,
+                         const std::vector<Point<2>> &points) const override;
     bool
     is_symmetric() const override
     {
@@ -54,6 +64,7 @@ namespace PlateOnHalfspace
 
   private:
     const double             alpha;
+    const unsigned int       singular_order;
     LAPACKFullMatrix<double> flexibility;
   };
 } // namespace PlateOnHalfspace

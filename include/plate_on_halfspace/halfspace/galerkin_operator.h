@@ -44,6 +44,11 @@ namespace PlateOnHalfspace
     void
     copy_block(const std::vector<unsigned int> &nodes,
                LAPACKFullMatrix<double>        &block) const override;
+    /** u(x) = alpha ∫ q_h(y)/|x - y| dy (halfspace/surface_settlement.h). */
+    std::vector<double>
+    settlement_at_points(const FoundationSpace       &space,
+                         const Vector<double>        &nodal_pressure,
+                         const std::vector<Point<2>> &points) const override;
     bool
     is_symmetric() const override
     {

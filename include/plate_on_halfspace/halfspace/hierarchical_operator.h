@@ -48,6 +48,11 @@ namespace PlateOnHalfspace
     /** The H-Cholesky factor of A (computed here, kept in the operator). */
     std::unique_ptr<ApproximateInverse>
     make_approximate_inverse() override;
+    /** u(x) = alpha ∫ q_h(y)/|x - y| dy (halfspace/surface_settlement.h). */
+    std::vector<double>
+    settlement_at_points(const FoundationSpace       &space,
+                         const Vector<double>        &nodal_pressure,
+                         const std::vector<Point<2>> &points) const override;
     bool
     is_symmetric() const override
     {

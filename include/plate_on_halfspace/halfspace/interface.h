@@ -1,9 +1,11 @@
 /**
- * The half-space family's interface (doc/architecture.md, "The half-space
- * family"; doc/formulation.md, "Half-space"): an operator built on the
- * foundation space of the plate that applies the soil's flexibility to
- * pressures and couples it to the plate. Every storage (dense, hierarchical)
- * and every flexibility (Galerkin, collocation) honours all of it; how a
+ * The foundation family's interface (doc/architecture.md, "The foundation
+ * family"; doc/formulation.md, "Half-space" and "Dense-liquid foundation"):
+ * an operator built on the foundation space of the plate that applies the
+ * soil's flexibility to pressures and couples it to the plate. Every model
+ * (the elastic half-space, the dense liquid), every storage (dense,
+ * hierarchical, sparse) and every flexibility (Galerkin, collocation)
+ * honours all of it; how a
  * contact solver factorises or preconditions the flexibility is the solver's
  * business, built from what this interface offers.
  *
@@ -108,11 +110,23 @@ namespace PlateOnHalfspace
     virtual std::unique_ptr<ApproximateInverse>
     make_approximate_inverse();
 
+    /**
+     * The settlement u(x) of the soil surface under the pressure with the
+     * nodal values @p nodal_pressure (the foundation's own law, not tested
+     * with the basis) at each of @p points of the computed part: what a
+     * goal's error estimate needs between the nodes (doc/formulation.md,
+     * "Goal-oriented refinement").
+     */
+    virtual std::vector<double>
+    settlement_at_points(const FoundationSpace       &space,
+                         const Vector<double>        &nodal_pressure,
+                         const std::vector<Point<2>> &points) const = 0;
+
     /** Whether F is symmetric (then the coupled problem is SPD). */
     virtual bool
     is_symmetric() const = 0;
 
-    /** "dense" or the name of a compressed storage. */
+    /** "dense", "sparse" (the dense liquid) or a compressed storage. */
     virtual std::string
     storage_name() const = 0;
 
@@ -249,9 +263,10 @@ namespace PlateOnHalfspace
   };
 
   /**
-   * Make the operator the scene asks for (Discretization/Flexibility and
-   * Foundation operator/Tolerance) with @p storage, dense or hierarchical
-   * (SceneParameters::foundation_storage(), auto resolved).
+   * Make the operator the scene asks for (Foundation/Model,
+   * Discretization/Flexibility and Foundation operator/Tolerance) with
+   * @p storage, dense, hierarchical or sparse (SceneParameters::
+   * foundation_storage(), auto resolved; sparse is the dense liquid's).
    */
   std::unique_ptr<FoundationOperator>
   create_foundation_operator(

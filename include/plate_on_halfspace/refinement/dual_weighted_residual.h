@@ -11,6 +11,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <plate_on_halfspace/contact/interface.h>
+#include <plate_on_halfspace/halfspace/interface.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 #include <plate_on_halfspace/refinement/goal.h>
 #include <plate_on_halfspace/scene/parameters.h>
@@ -36,18 +37,17 @@ namespace PlateOnHalfspace
   };
 
   /**
-   * The half-space's part of the cycle: the nodal pressure and the contact
+   * The foundation's part of the cycle: the nodal pressure and the contact
    * set of the solved cycle, the adjoint problem's pressure (as a field in
-   * the plate's w-space), the flexibility constant alpha and the singular
-   * quadrature order.
+   * the plate's w-space) and the foundation operator, whose settlement law
+   * the residual evaluates.
    */
   struct FoundationResidualData
   {
-    const Vector<double>    &nodal_pressure;
-    const std::vector<bool> &contact_set;
-    const Vector<double>    &adjoint_pressure_field;
-    double                   alpha;
-    unsigned int             singular_order;
+    const Vector<double>     &nodal_pressure;
+    const std::vector<bool>  &contact_set;
+    const Vector<double>     &adjoint_pressure_field;
+    const FoundationOperator &foundation;
     /**
      * The goal's deflection terms c_k w(x_k) (w at a point, a difference),
      * points on the computed part; empty for other goals.
@@ -62,8 +62,9 @@ namespace PlateOnHalfspace
    *    pressure_field in the w-space, the scene's @p loads on the computed
    *    part plus the uniform @p self_weight_pressure), a_h integrating the
    *    shear term like the element does, and
-   *  - the residual of the half-space equation, rho_F(mu) = (mu, u(q_h) -
-   *    w_h) with u(q_h) the settlement of q_h, on the cells whose nodes
+   *  - the residual of the foundation's equation, rho_F(mu) = (mu, u(q_h)
+   *    - w_h) with u(q_h) the settlement of q_h (FoundationOperator::
+   *    settlement_at_points()), on the cells whose nodes
    *    are all in the contact set,
    * z_h, zeta_h the adjoint solution @p adjoint_solution and its pressure,
    * and I the biquartic interpolation on patches of 2 x 2 cells (the mesh
@@ -121,9 +122,8 @@ namespace PlateOnHalfspace
     /** The loads on the computed part and the self weight's pressure. */
     const Parameters::Loads &loads;
     double                   self_weight_pressure;
-    /** The soil's flexibility constant and the singular quadrature order. */
-    double       alpha;
-    unsigned int singular_order;
+    /** The cycle's foundation operator (its settlement law). */
+    const FoundationOperator &foundation;
   };
 
   /**

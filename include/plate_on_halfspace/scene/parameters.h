@@ -51,12 +51,22 @@ namespace PlateOnHalfspace
       flexural_rigidity() const;
     };
 
-    /** subsection Foundation: the elastic half-space. */
+    /**
+     * subsection Foundation: the soil under the plate, an elastic half-space
+     * or a dense liquid (doc/formulation.md, "Dense-liquid foundation").
+     */
     struct Foundation
     {
-      double youngs_modulus;
-      double poissons_ratio;
-      bool   tensionless; ///< Contact = tensionless (true) or bonded
+      enum class Model
+      {
+        half_space,  ///< Boussinesq: E0, nu0
+        dense_liquid ///< Winkler: q = k w where the soil carries the plate
+      };
+      Model  model;
+      double youngs_modulus;   ///< half-space E0
+      double poissons_ratio;   ///< half-space nu0
+      double subgrade_modulus; ///< dense liquid k [force/length^3]
+      bool   tensionless;      ///< Contact = tensionless (true) or bonded
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -71,7 +81,8 @@ namespace PlateOnHalfspace
       {
         dense,        ///< every entry (LAPACK)
         hierarchical, ///< an H-matrix (hmat-oss)
-        automatic     ///< hierarchical from Hierarchical from nodes
+        automatic,    ///< hierarchical from Hierarchical from nodes
+        sparse        ///< the dense liquid's mass matrix (never an entry)
       };
       Storage storage;
       double  tolerance;
@@ -323,17 +334,28 @@ namespace PlateOnHalfspace
     parse_parameters(ParameterHandler &prm);
 
     /**
-     * The storage of the half-space operator in a cycle with
-     * @p n_foundation_nodes nodes: dense or hierarchical (Foundation
-     * operator/Storage, with auto resolved).
+     * The storage of the foundation operator in a cycle with
+     * @p n_foundation_nodes nodes: dense or hierarchical for the half-space
+     * (Foundation operator/Storage, with auto resolved), sparse for the
+     * dense liquid.
      */
     Parameters::FoundationOperator::Storage
     foundation_storage(const unsigned int n_foundation_nodes) const;
 
     /** The contact solver of such a cycle: direct or iterative
-     *  (Contact/Solver, with auto resolved). */
+     *  (Contact/Solver, with auto resolved; iterative unless the
+     *  storage is dense). */
     Parameters::Contact::Solver
     contact_solver(const unsigned int n_foundation_nodes) const;
+
+    /**
+     * The most foundation nodes a cycle of a goal run may have: the error
+     * estimate's half-space residual costs the square of the nodes (about
+     * 75 s at the limit on 2 cores); the dense liquid's is local and has
+     * no limit.
+     */
+    unsigned int
+    max_goal_foundation_nodes() const;
 
     /** Declare, read @p filename, parse and check. Throws on bad input. */
     void

@@ -1,0 +1,188 @@
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/numerics/rtree.h>
+
+#include <plate_on_halfspace/base/sparse_cholesky.h>
+#include <plate_on_halfspace/halfspace/dense_liquid_operator.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /** The Cholesky factor of the sparse flexibility: F^{-1} exactly. */
+    class SparseCholeskyInverse : public ApproximateInverse
+    {
+    public:
+      explicit SparseCholeskyInverse(const SparseMatrix<double> &flexibility)
+        : n(flexibility.m())
+      {
+        std::vector<types::global_dof_index> rows(n);
+        std::iota(rows.begin(), rows.end(), types::global_dof_index(0));
+        factor.factorize(flexibility, rows);
+      }
+
+      void
+      vmult(Vector<double> &q, const Vector<double> &s) const override
+      {
+        std::vector<double> block(s.begin(), s.end());
+        factor.solve(block, 1);
+        q.reinit(n);
+        std::copy(block.begin(), block.end(), q.begin());
+      }
+
+      std::size_t
+      memory_consumption() const override
+      {
+        // CHOLMOD keeps its factor to itself; a 2-d mass matrix fills in
+        // to about ten times its nonzeros (nested dissection).
+        return 0;
+      }
+
+    private:
+      const unsigned int n;
+      SparseCholesky     factor;
+    };
+  } // namespace
+
+  DenseLiquidOperator::DenseLiquidOperator(const double subgrade_modulus,
+                                           const bool positive_pressure_basis)
+    : subgrade_modulus(subgrade_modulus)
+    , positive_pressure_basis(positive_pressure_basis)
+  {
+    AssertThrow(subgrade_modulus > 0,
+                ExcMessage("Foundation/Modulus of subgrade reaction must be "
+                           "> 0 for Foundation/Model = dense liquid."));
+  }
+
+  DenseLiquidOperator::~DenseLiquidOperator() = default;
+
+  void
+  DenseLiquidOperator::build(const FoundationSpace   &space,
+                             const std::vector<bool> &cell_in_foundation)
+  {
+    AssertThrow(std::find(cell_in_foundation.begin(),
+                          cell_in_foundation.end(),
+                          false) == cell_in_foundation.end(),
+                ExcMessage("The dense-liquid foundation has no element "
+                           "exclusion (Contact/Method = element exclusion "
+                           "belongs to the half-space)."));
+    build_mass_matrix(space, {});
+    set_pressure_basis(space, positive_pressure_basis);
+    // F = B T / k = T^T M T / k (M itself without the positive basis): the
+    // settlement q_h/k tested with the pressure basis.
+    flexibility.clear();
+    if (positive_basis)
+      {
+        flexibility.reinit(flexibility_sparsity);
+        test_coupling().mmult(flexibility, transform);
+      }
+    else
+      {
+        flexibility_sparsity.copy_from(mass.get_sparsity_pattern());
+        flexibility.reinit(flexibility_sparsity);
+        flexibility.copy_from(mass);
+      }
+    flexibility /= subgrade_modulus;
+  }
+
+  void
+  DenseLiquidOperator::apply(const Vector<double> &q, Vector<double> &s) const
+  {
+    s.reinit(q.size());
+    flexibility.vmult(s, q);
+  }
+
+  void
+  DenseLiquidOperator::copy_block(const std::vector<unsigned int> &nodes,
+                                  LAPACKFullMatrix<double>        &block) const
+  {
+    const unsigned int m = nodes.size();
+    block.reinit(m, m);
+    block = 0.;
+    std::vector<int> position(n_nodes(), -1);
+    for (unsigned int i = 0; i < m; ++i)
+      position[nodes[i]] = i;
+    for (unsigned int i = 0; i < m; ++i)
+      for (auto entry = flexibility.begin(nodes[i]);
+           entry != flexibility.end(nodes[i]);
+           ++entry)
+        if (position[entry->column()] >= 0)
+          block(i, position[entry->column()]) = entry->value();
+  }
+
+  std::unique_ptr<ApproximateInverse>
+  DenseLiquidOperator::make_approximate_inverse()
+  {
+    try
+      {
+        return std::make_unique<SparseCholeskyInverse>(flexibility);
+      }
+    catch (...)
+      {
+        AssertThrow(false,
+                    ExcMessage("The dense-liquid flexibility T^T M T / k is "
+                               "not positive definite: the mesh has a "
+                               "degenerate cell."));
+      }
+    return nullptr;
+  }
+
+  std::vector<double>
+  DenseLiquidOperator::settlement_at_points(
+    const FoundationSpace       &space,
+    const Vector<double>        &nodal_pressure,
+    const std::vector<Point<2>> &points) const
+  {
+    namespace bgi = boost::geometry::index;
+    std::vector<std::pair<BoundingBox<2>, unsigned int>> boxes;
+    boxes.reserve(space.cells.size());
+    for (unsigned int c = 0; c < space.cells.size(); ++c)
+      {
+        BoundingBox<2> box(space.cells[c].geometry.bounding_box());
+        box.extend(1e-10 * space.cells[c].geometry.diameter());
+        boxes.emplace_back(box, c);
+      }
+    const auto tree = pack_rtree(boxes);
+
+    std::vector<double> settlement(points.size());
+    std::vector<std::pair<BoundingBox<2>, unsigned int>> candidates;
+    for (unsigned int p = 0; p < points.size(); ++p)
+      {
+        candidates.clear();
+        tree.query(bgi::intersects(points[p]), std::back_inserter(candidates));
+        bool found = false;
+        for (const auto &candidate : candidates)
+          {
+            const FoundationSpace::Cell &cell = space.cells[candidate.second];
+            if (!cell.geometry.contains(points[p]))
+              continue;
+            const std::array<double, 9> shape =
+              q2_shape_values(cell.geometry.inverse_map(points[p]));
+            double pressure = 0;
+            for (unsigned int i = 0; i < 9; ++i)
+              for (const auto &term : cell.expansion[i])
+                pressure += shape[i] * term.second * nodal_pressure[term.first];
+            settlement[p] = pressure / subgrade_modulus;
+            found         = true;
+            break;
+          }
+        AssertThrow(found,
+                    ExcMessage("The point (" + std::to_string(points[p][0]) +
+                               ", " + std::to_string(points[p][1]) +
+                               ") is not on the plate."));
+      }
+    return settlement;
+  }
+
+  std::size_t
+  DenseLiquidOperator::memory_consumption() const
+  {
+    return flexibility.memory_consumption() +
+           flexibility_sparsity.memory_consumption() +
+           coupling_memory_consumption();
+  }
+} // namespace PlateOnHalfspace
