@@ -27,6 +27,7 @@ scenes = [
      "end\n"),
     ("rigid disk, central load", "rigid-disk.prm", ""),
     ("large plate, circular patch", "infinite-plate-patch.prm", ""),
+    ("large plate on a dense liquid", "infinite-plate-dense-liquid.prm", ""),
 ]
 
 check_line = re.compile(r"check (\S+) = (\S+), reference (\S+), "

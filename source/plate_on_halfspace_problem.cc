@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <map>
 #include <numeric>
 
 namespace PlateOnHalfspace
@@ -99,6 +100,8 @@ namespace PlateOnHalfspace
     mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
                                                    parameters.discretization);
     mindlin_plate->set_mirror_symmetry(symmetry);
+    mindlin_plate->set_thermal_load(
+      thermal_load(parameters.plate, parameters.temperature));
     if (parameters.adaptivity.goal.kind != Parameters::Goal::Kind::none)
       goal =
         std::make_unique<GoalFunctional>(parameters.adaptivity.goal, symmetry);
@@ -497,11 +500,15 @@ namespace PlateOnHalfspace
         std::string label = check.quantity;
         if (check.at_point)
           {
-            const PointValues v = values_at(check.location);
-            value               = (check.quantity == "w"  ? v.w :
-                                   check.quantity == "q"  ? v.q :
-                                   check.quantity == "Mx" ? v.mx :
-                                                            v.my);
+            const PointValues             v        = values_at(check.location);
+            std::map<std::string, double> point    = {{"w", v.w},
+                                                      {"q", v.q},
+                                                      {"Mx", v.mx},
+                                                      {"My", v.my}};
+            const auto                    stresses = v.stresses.values();
+            for (unsigned int i = 0; i < stresses.size(); ++i)
+              point[Parameters::fibre_stress_names()[i]] = stresses[i];
+            value = point.at(check.quantity);
             std::ostringstream where;
             where << "(" << check.location[0] << "," << check.location[1]
                   << ")";
@@ -509,14 +516,18 @@ namespace PlateOnHalfspace
           }
         else
           {
-            const CycleSummary &s = cycle_summaries.back();
-            value = (check.quantity == "applied_load"  ? s.applied_load :
-                     check.quantity == "contact_force" ? s.contact_force :
-                     check.quantity == "max_w"         ? s.max_w :
-                     check.quantity == "min_w"         ? s.min_w :
-                     check.quantity == "max_q"         ? s.max_q :
-                     check.quantity == "min_q"         ? s.min_q :
-                                                         s.contact_area_fraction);
+            const CycleSummary                 &s = cycle_summaries.back();
+            const std::map<std::string, double> summary_value = {
+              {"applied_load", s.applied_load},
+              {"contact_force", s.contact_force},
+              {"max_w", s.max_w},
+              {"min_w", s.min_w},
+              {"max_q", s.max_q},
+              {"min_q", s.min_q},
+              {"contact_area_fraction", s.contact_area_fraction},
+              {"max_principal_stress_bottom", s.max_principal_stress_bottom},
+              {"max_principal_stress_top", s.max_principal_stress_top}};
+            value = summary_value.at(check.quantity);
           }
         const double error = std::abs(value - check.reference) /
                              std::max(std::abs(check.reference), 1e-300);

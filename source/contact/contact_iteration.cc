@@ -68,11 +68,13 @@ namespace PlateOnHalfspace
     AssertThrow(plate.get_load_vector().linfty_norm() > 0,
                 ExcMessage("Loads: the total load is zero (Loads/Uniform "
                            "pressure, Rectangular patches, Circular patches, "
-                           "Point loads and Plate/Unit weight give no load); "
-                           "set at least one non-zero load."));
+                           "Point loads, Plate/Unit weight and Temperature "
+                           "give no load); set at least one non-zero load."));
     AssertThrow(!tensionless || plate.applied_load() > 0,
                 ExcMessage("The loads lift the plate off a tensionless "
-                           "foundation: their resultant is not downward."));
+                           "foundation: their resultant is not downward (a "
+                           "temperature difference alone does not hold a "
+                           "plate down: give it its Plate/Unit weight)."));
 
     prepare(plate, foundation, state);
     if (!tensionless)

@@ -49,7 +49,7 @@ namespace PlateOnHalfspace
   } // namespace
 
   DenseLiquidOperator::DenseLiquidOperator(const double subgrade_modulus,
-                                           const bool positive_pressure_basis)
+                                           const bool   positive_pressure_basis)
     : subgrade_modulus(subgrade_modulus)
     , positive_pressure_basis(positive_pressure_basis)
   {

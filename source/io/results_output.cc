@@ -23,13 +23,19 @@ namespace PlateOnHalfspace
 {
   namespace
   {
-    /** Mx, My, Mxy from the rotation gradients (doc/formulation.md). */
+    /**
+     * Mx, My, Mxy from the rotation gradients and the thermal moment
+     * (doc/formulation.md, "Conventions" and "Temperature"), and the
+     * fibre stresses (MindlinPlate::fibre_stresses()).
+     */
     class MomentsPostprocessor : public DataPostprocessor<2>
     {
     public:
-      MomentsPostprocessor(const double D, const double nu)
-        : D(D)
-        , nu(nu)
+      explicit MomentsPostprocessor(const MindlinPlate &plate)
+        : plate(plate)
+        , D(plate.flexural_rigidity())
+        , nu(plate.poissons_ratio())
+        , thermal_moment(plate.get_thermal_load().moment)
       {}
 
       void
@@ -41,17 +47,27 @@ namespace PlateOnHalfspace
           {
             const auto &g = inputs.solution_gradients[p];
             // g[c][d] = d u_c / d x_d; components 1, 2 are beta_x, beta_y
-            computed_quantities[p][0] = -D * (g[1][0] + nu * g[2][1]);
-            computed_quantities[p][1] = -D * (g[2][1] + nu * g[1][0]);
-            computed_quantities[p][2] =
-              -D * 0.5 * (1. - nu) * (g[1][1] + g[2][0]);
+            Moments m;
+            m.mx  = -D * (g[1][0] + nu * g[2][1]) + thermal_moment;
+            m.my  = -D * (g[2][1] + nu * g[1][0]) + thermal_moment;
+            m.mxy = -D * 0.5 * (1. - nu) * (g[1][1] + g[2][0]);
+            Vector<double> &out = computed_quantities[p];
+            out[0]              = m.mx;
+            out[1]              = m.my;
+            out[2]              = m.mxy;
+            const auto stresses = plate.fibre_stresses(m).values();
+            std::copy(stresses.begin(), stresses.end(), out.begin() + 3);
           }
       }
 
       std::vector<std::string>
       get_names() const override
       {
-        return {"Mx", "My", "Mxy"};
+        std::vector<std::string> names = {"Mx", "My", "Mxy"};
+        names.insert(names.end(),
+                     Parameters::fibre_stress_names().begin(),
+                     Parameters::fibre_stress_names().end());
+        return names;
       }
 
       UpdateFlags
@@ -61,7 +77,8 @@ namespace PlateOnHalfspace
       }
 
     private:
-      const double D, nu;
+      const MindlinPlate &plate;
+      const double        D, nu, thermal_moment;
     };
 
     std::string
@@ -208,6 +225,12 @@ namespace PlateOnHalfspace
     set(field_maximum(plate, solution, PlateQuantity::principal_moment),
         summary.max_principal_moment,
         summary.max_principal_moment_at);
+    set(field_maximum(plate, solution, PlateQuantity::principal_stress_bottom),
+        summary.max_principal_stress_bottom,
+        summary.max_principal_stress_bottom_at);
+    set(field_maximum(plate, solution, PlateQuantity::principal_stress_top),
+        summary.max_principal_stress_top,
+        summary.max_principal_stress_top_at);
 
     const FoundationSpace &space    = plate.get_foundation_space();
     const auto [area, contact_area] = space.area_in_contact(contact.in_contact);
@@ -243,13 +266,19 @@ namespace PlateOnHalfspace
     const Point<2> y =
       plate.get_foundation_space().symmetry.to_computed_part(x);
     PointValues values;
-    values.location       = x;
-    values.w              = plate.point_value(solution, y, 0);
-    values.q              = plate.point_value(pressure_field, y, 0);
-    const auto    located = plate.locate(y);
-    const Moments m = plate.moments(located.first, located.second, solution);
-    values.mx       = m.mx;
-    values.my       = m.my;
+    values.location    = x;
+    values.w           = plate.point_value(solution, y, 0);
+    values.q           = plate.point_value(pressure_field, y, 0);
+    const auto located = plate.locate(y);
+    Moments    m       = plate.moments(located.first, located.second, solution);
+    values.mx          = m.mx;
+    values.my          = m.my;
+    // Mxy, and with it sxy, is odd across each mirror plane the point was
+    // reflected in.
+    for (unsigned int d = 0; d < 2; ++d)
+      if (x[d] != y[d])
+        m.mxy = -m.mxy;
+    values.stresses = plate.fibre_stresses(m);
     return values;
   }
 
@@ -295,6 +324,12 @@ namespace PlateOnHalfspace
         peak("max_principal_moment",
              c.max_principal_moment,
              c.max_principal_moment_at);
+        peak("max_principal_stress_bottom",
+             c.max_principal_stress_bottom,
+             c.max_principal_stress_bottom_at);
+        peak("max_principal_stress_top",
+             c.max_principal_stress_top,
+             c.max_principal_stress_top_at);
         j["wall_time_s"]                   = c.wall_time_s;
         j["assembly_time_s"]               = c.assembly_time_s;
         j["foundation_time_s"]             = c.foundation_time_s;
@@ -316,7 +351,9 @@ namespace PlateOnHalfspace
                                  {"w", p.w},
                                  {"q", p.q},
                                  {"Mx", p.mx},
-                                 {"My", p.my}});
+                                 {"My", p.my},
+                                 {"stress_bottom", p.stresses.bottom},
+                                 {"stress_top", p.stresses.top}});
         if (c.has_goal)
           {
             nlohmann::ordered_json goal;
@@ -364,7 +401,10 @@ namespace PlateOnHalfspace
     const Vector<double> pressure =
       plate.foundation_field_to_solution(contact.q);
     std::ostringstream csv;
-    csv << "x,y,w,q,Mx,My\n" << std::setprecision(10);
+    csv << "x,y,w,q,Mx,My";
+    for (const std::string &name : Parameters::fibre_stress_names())
+      csv << ',' << name;
+    csv << '\n' << std::setprecision(10);
     for (unsigned int k = 0; k < n_points; ++k)
       {
         const Point<2> x = start + (end - start) * (k / double(n_points - 1));
@@ -378,7 +418,10 @@ namespace PlateOnHalfspace
             continue; // off the plate (e.g. across a disk's polygon)
           }
         csv << x[0] << ',' << x[1] << ',' << values.w << ',' << values.q << ','
-            << values.mx << ',' << values.my << '\n';
+            << values.mx << ',' << values.my;
+        for (const double s : values.stresses.values())
+          csv << ',' << s;
+        csv << '\n';
       }
     write_file("profile-" + two_digits(cycle) + ".csv", csv.str());
   }
@@ -416,6 +459,7 @@ namespace PlateOnHalfspace
                        update_gradients | update_quadrature_points);
     std::vector<Tensor<2, 2>> grad(rule.size());
     const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
+    const double M_T = plate.get_thermal_load().moment;
     std::vector<std::array<double, 4>> rows;
     // (Mx and My are even across mirror planes: the images of a cell's
     // Gauss points, never on a plane, carry its values.)
@@ -438,10 +482,11 @@ namespace PlateOnHalfspace
                                                                        grad);
           for (unsigned int q = 0; q < rule.size(); ++q)
             if (distance(points[q]) <= nearest * (1 + 1e-8))
-              rows.push_back({{points[q][0],
-                               points[q][1],
-                               -D * (grad[q][0][0] + nu * grad[q][1][1]),
-                               -D * (grad[q][1][1] + nu * grad[q][0][0])}});
+              rows.push_back(
+                {{points[q][0],
+                  points[q][1],
+                  -D * (grad[q][0][0] + nu * grad[q][1][1]) + M_T,
+                  -D * (grad[q][1][1] + nu * grad[q][0][0]) + M_T}});
         }
     std::sort(rows.begin(), rows.end(), [&](const auto &a, const auto &b) {
       return (Point<2>(a[0], a[1]) - start) * direction <
@@ -494,8 +539,7 @@ namespace PlateOnHalfspace
                              solution_kind);
     data_out.add_data_vector(packed,
                              std::vector<std::string>{"q", "gap", "contact"});
-    const MomentsPostprocessor moments(plate.flexural_rigidity(),
-                                       plate.poissons_ratio());
+    const MomentsPostprocessor moments(plate);
     data_out.add_data_vector(solution, moments);
     data_out.build_patches(2);
 

@@ -272,6 +272,11 @@ namespace PlateOnHalfspace
     const QGauss<2>                      cell_rule(3);
     std::vector<bool> rectangle_used(loads.rectangular_patches.size(), false);
     std::vector<bool> disk_used(loads.circular_patches.size(), false);
+    FEValues<2>       thermal_values(mapping,
+                               fe,
+                               cell_rule,
+                               update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector beta(1);
 
     const auto add = [&](const Quadrature<2>         &rule,
                          const double                 pressure,
@@ -316,6 +321,17 @@ namespace PlateOnHalfspace
             if (rule.size() > 0)
               disk_used[k] = true;
             add(rule, patch.pressure, true, geometry);
+          }
+        if (thermal.moment != 0)
+          {
+            // M_T ∫ div(beta_v): the work of the thermal curvature
+            // (doc/formulation.md, "Temperature").
+            thermal_values.reinit(cell);
+            for (unsigned int q = 0; q < cell_rule.size(); ++q)
+              for (unsigned int i = 0; i < n; ++i)
+                local[i] += thermal.moment *
+                            thermal_values[beta].divergence(i, q) *
+                            thermal_values.JxW(q);
           }
         cell->get_dof_indices(dofs);
         constraints.distribute_local_to_global(local, dofs, load);
@@ -591,9 +607,28 @@ namespace PlateOnHalfspace
                                                                  grad);
     const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio;
     Moments      m;
-    m.mx  = -D * (grad[0][0][0] + nu * grad[0][1][1]);
-    m.my  = -D * (grad[0][1][1] + nu * grad[0][0][0]);
+    m.mx  = -D * (grad[0][0][0] + nu * grad[0][1][1]) + thermal.moment;
+    m.my  = -D * (grad[0][1][1] + nu * grad[0][0][0]) + thermal.moment;
     m.mxy = -D * 0.5 * (1. - nu) * (grad[0][0][1] + grad[0][1][0]);
     return m;
+  }
+
+  FibreStresses
+  MindlinPlate::fibre_stresses(const Moments &m) const
+  {
+    const double  scale = 6. / (plate.thickness * plate.thickness);
+    FibreStresses s;
+    s.bottom             = {{scale * m.mx + thermal.nonlinear_stress_bottom,
+                             scale * m.my + thermal.nonlinear_stress_bottom,
+                             scale * m.mxy}};
+    s.top                = {{-scale * m.mx + thermal.nonlinear_stress_top,
+                             -scale * m.my + thermal.nonlinear_stress_top,
+                             -scale * m.mxy}};
+    const auto principal = [](const std::array<double, 3> &t) {
+      return 0.5 * (t[0] + t[1]) + std::hypot(0.5 * (t[0] - t[1]), t[2]);
+    };
+    s.principal_bottom = principal(s.bottom);
+    s.principal_top    = principal(s.top);
+    return s;
   }
 } // namespace PlateOnHalfspace

@@ -274,8 +274,9 @@ namespace PlateOnHalfspace
     unsigned int        next_soil_point = 0;
 
     const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio(),
-                 Ds      = plate.shear_rigidity();
-    const double uniform = loads.uniform_pressure + self_weight_pressure;
+                 Ds             = plate.shear_rigidity();
+    const double uniform        = loads.uniform_pressure + self_weight_pressure;
+    const double thermal_moment = plate.get_thermal_load().moment;
 
     // Bending, pressure and load terms: 5 x 5 Gauss points (exact for the
     // products on parallelograms up to degree 9); the shear term with the
@@ -349,7 +350,8 @@ namespace PlateOnHalfspace
         plate_values[FEValuesExtractors::Scalar(0)].get_function_values(
           pressure_field, q);
 
-        // (uniform - q_h) psi chi - m(u_h) : kappa(psi chi)
+        // (uniform - q_h) psi chi - (m(u_h) - M_T I) : kappa(psi chi), the
+        // thermal moment M_T's work as in MindlinPlate::assemble_loads()
         for (unsigned int p = 0; p < rule.size(); ++p)
           {
             const Resultants r   = resultants(u[p], D, nu, Ds);
@@ -362,7 +364,8 @@ namespace PlateOnHalfspace
                 product_strains(
                   psi[p], chi, hat_values.shape_grad(v, p), kappa, gamma);
                 local[v] += ((uniform - q[p]) * psi[p].value[0] * chi -
-                             (r.moment[0] * kappa[0] + r.moment[1] * kappa[1] +
+                             ((r.moment[0] - thermal_moment) * kappa[0] +
+                              (r.moment[1] - thermal_moment) * kappa[1] +
                               r.moment[2] * kappa[2])) *
                             JxW;
               }

@@ -27,6 +27,10 @@ namespace PlateOnHalfspace
             return PlateQuantity::mxy;
           case Quantity::principal_moment:
             return PlateQuantity::principal_moment;
+          case Quantity::stress_bottom:
+            return PlateQuantity::principal_stress_bottom;
+          case Quantity::stress_top:
+            return PlateQuantity::principal_stress_top;
           case Quantity::w:
           case Quantity::q:
             break;
@@ -249,23 +253,36 @@ namespace PlateOnHalfspace
                   local = d.mxy;
                   break;
                 case Quantity::principal_moment:
+                case Quantity::stress_bottom:
+                case Quantity::stress_top:
                   {
-                    // M1 = (Mx + My)/2 + R, R = sqrt(((Mx - My)/2)^2 +
-                    // Mxy^2): dM1 = (dMx + dMy)/2 + ((Mx - My)/2 (dMx -
-                    // dMy)/2 + Mxy dMxy) / R.
+                    // M1,2 = (Mx + My)/2 +- R, R = sqrt(((Mx - My)/2)^2 +
+                    // Mxy^2): dM1,2 = (dMx + dMy)/2 +- ((Mx - My)/2 (dMx -
+                    // dMy)/2 + Mxy dMxy) / R. The bottom's largest
+                    // principal stress is 6/t^2 M1 (plus a constant), the
+                    // top's -6/t^2 M2 (MindlinPlate::fibre_stresses()).
                     const Moments m = plate.moments(evaluation.cell,
                                                     evaluation.reference_point,
                                                     solution);
                     const double  half_difference = 0.5 * (m.mx - m.my);
                     const double  radius = std::hypot(half_difference, m.mxy);
+                    const double  t      = plate.thickness();
+                    const double  sign =
+                      goal.quantity == Quantity::stress_top ? -1. : 1.;
+                    const double scale =
+                      goal.quantity == Quantity::principal_moment ?
+                        1. :
+                        6. / (t * t);
                     for (unsigned int i = 0; i < n; ++i)
                       {
                         local[i] = 0.5 * (d.mx[i] + d.my[i]);
                         if (radius > 0)
                           local[i] +=
+                            sign *
                             (half_difference * 0.5 * (d.mx[i] - d.my[i]) +
                              m.mxy * d.mxy[i]) /
                             radius;
+                        local[i] *= sign * scale;
                       }
                     break;
                   }

@@ -9,6 +9,7 @@
 
 #include <plate_on_halfspace/scene/parameters.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -18,7 +19,8 @@ namespace PlateOnHalfspace
   {
     /**
      * Split a list entry "a,b,c ; d,e,f" into items of exactly @p n_fields
-     * numbers each. Errors name the section and entry.
+     * numbers each (any number if @p n_fields is 0). Errors name the
+     * section and entry.
      */
     std::vector<std::vector<double>>
     parse_number_list(const std::string &text,
@@ -33,7 +35,7 @@ namespace PlateOnHalfspace
             continue;
           const std::vector<std::string> fields =
             Utilities::split_string_list(item, ',');
-          AssertThrow(fields.size() == n_fields,
+          AssertThrow(n_fields == 0 || fields.size() == n_fields,
                       ExcMessage("Entry <" + entry_name + ">: the item <" +
                                  item + "> must have " +
                                  std::to_string(n_fields) + " fields (" +
@@ -241,6 +243,76 @@ namespace PlateOnHalfspace
       require(poissons_ratio >= 0 && poissons_ratio < 0.5,
               "Foundation/Poisson's ratio must lie in [0, 0.5)" +
                 got(poissons_ratio) + ".");
+    }
+
+    const std::vector<std::string> &
+    fibre_stress_names()
+    {
+      static const std::vector<std::string> names = {"sxx_bottom",
+                                                     "syy_bottom",
+                                                     "sxy_bottom",
+                                                     "s1_bottom",
+                                                     "sxx_top",
+                                                     "syy_top",
+                                                     "sxy_top",
+                                                     "s1_top"};
+      return names;
+    }
+
+    void
+    Temperature::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Temperature");
+      prm.declare_entry("Expansion coefficient",
+                        "1e-5",
+                        Patterns::Double(0),
+                        "Coefficient of thermal expansion alpha of the plate "
+                        "[1/K], >= 0.");
+      prm.declare_entry("Difference",
+                        "0",
+                        Patterns::Double(),
+                        "T_top - T_bottom [K], linear through the thickness: "
+                        "> 0 a warmer top (day; the plate curls its edges "
+                        "down), < 0 a cooler top (night; corners and edges "
+                        "lift).");
+      prm.declare_entry("Profile",
+                        "",
+                        Patterns::Anything(),
+                        "Optional: temperatures [K] at equally spaced depths "
+                        "from the top to the bottom face, at least two, "
+                        "comma separated, linear between them; overrides "
+                        "Difference. Its mean expands the plate freely, its "
+                        "equivalent linear part curls it, its remainder "
+                        "stresses the fibres only.");
+      prm.leave_subsection();
+    }
+
+    void
+    Temperature::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Temperature");
+      expansion_coefficient = prm.get_double("Expansion coefficient");
+      difference            = prm.get_double("Difference");
+      const auto items      = parse_number_list(prm.get("Profile"),
+                                           0,
+                                           "Temperature/Profile",
+                                           "temperatures top to bottom");
+      prm.leave_subsection();
+      require(std::isfinite(expansion_coefficient) &&
+                expansion_coefficient >= 0,
+              "Temperature/Expansion coefficient must be >= 0" +
+                got(expansion_coefficient) + ".");
+      require(std::isfinite(difference),
+              "Temperature/Difference must be a finite number" +
+                got(difference) + ".");
+      require(items.size() <= 1,
+              "Temperature/Profile takes one list of temperatures, top to "
+              "bottom, separated by commas (not ';').");
+      profile = items.empty() ? std::vector<double>() : items[0];
+      require(profile.empty() || profile.size() >= 2,
+              "Temperature/Profile needs at least two temperatures (top and "
+              "bottom face), separated by commas; got " +
+                std::to_string(profile.size()) + ".");
     }
 
     void
@@ -597,8 +669,10 @@ namespace PlateOnHalfspace
       // "w at 0,0", "Mx at 1.5,-2", "peak Mx", "contact area", "mean w",
       // "w at x1,y1 minus x2,y2"; words are separated by blanks.
       const std::string allowed =
-        "Adaptivity/Goal must be one of: w|Mx|My|Mxy|q at x,y ; peak "
-        "Mx|My|M1 ; contact area ; mean w ; w at x1,y1 minus x2,y2 (got <" +
+        "Adaptivity/Goal must be one of: "
+        "w|Mx|My|Mxy|q|stress_bottom|stress_top at x,y ; peak "
+        "Mx|My|M1|stress_bottom|stress_top ; contact area ; mean w ; w at "
+        "x1,y1 minus x2,y2 (got <" +
         entry + ">).";
       Goal goal;
       goal.text = Utilities::trim(entry);
@@ -633,6 +707,10 @@ namespace PlateOnHalfspace
           return Quantity::mxy;
         if (name == "M1" && peak)
           return Quantity::principal_moment;
+        if (name == "stress_bottom")
+          return Quantity::stress_bottom;
+        if (name == "stress_top")
+          return Quantity::stress_top;
         require(false, allowed);
         return Quantity::w;
       };
@@ -771,20 +849,29 @@ namespace PlateOnHalfspace
           check.at_point = (v.size() == 4);
           if (check.at_point)
             {
-              require(quantity == "w" || quantity == "q" || quantity == "Mx" ||
-                        quantity == "My",
+              std::vector<std::string> names = {"w", "q", "Mx", "My"};
+              names.insert(names.end(),
+                           fibre_stress_names().begin(),
+                           fibre_stress_names().end());
+              require(std::find(names.begin(), names.end(), quantity) !=
+                        names.end(),
                       "Verification/Checks: point quantity <" + quantity +
-                        "> must be one of w, q, Mx, My.");
+                        "> must be one of w, q, Mx, My, sxx_bottom, "
+                        "syy_bottom, sxy_bottom, s1_bottom, sxx_top, syy_top, "
+                        "sxy_top, s1_top.");
               check.location = Point<2>(v[0], v[1]);
             }
           else
             require(quantity == "applied_load" || quantity == "contact_force" ||
                       quantity == "max_w" || quantity == "min_w" ||
                       quantity == "max_q" || quantity == "min_q" ||
-                      quantity == "contact_area_fraction",
+                      quantity == "contact_area_fraction" ||
+                      quantity == "max_principal_stress_bottom" ||
+                      quantity == "max_principal_stress_top",
                     "Verification/Checks: summary key <" + quantity +
                       "> is not one of applied_load, contact_force, max_w, "
-                      "min_w, max_q, min_q, contact_area_fraction.");
+                      "min_w, max_q, min_q, contact_area_fraction, "
+                      "max_principal_stress_bottom, max_principal_stress_top.");
           check.reference          = v[v.size() - 2];
           check.relative_tolerance = v[v.size() - 1];
           require(check.relative_tolerance > 0,

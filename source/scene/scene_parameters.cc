@@ -31,6 +31,7 @@ namespace PlateOnHalfspace
     Parameters::Plate::declare_parameters(prm);
     Parameters::Foundation::declare_parameters(prm);
     Parameters::FoundationOperator::declare_parameters(prm);
+    Parameters::Temperature::declare_parameters(prm);
     Parameters::Loads::declare_parameters(prm);
     Parameters::Discretization::declare_parameters(prm);
     Parameters::Contact::declare_parameters(prm);
@@ -76,6 +77,7 @@ namespace PlateOnHalfspace
     plate.parse_parameters(prm);
     foundation.parse_parameters(prm);
     foundation_operator.parse_parameters(prm);
+    temperature.parse_parameters(prm);
     loads.parse_parameters(prm);
     discretization.parse_parameters(prm);
     contact.parse_parameters(prm);

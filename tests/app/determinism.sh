@@ -44,8 +44,13 @@ for key, a in runs["one_a"].items():
         parts = k.split("/")
         if len(parts) > 1 and parts[-2].endswith("_at"):
             return "at"
+        # a probe's [sxx, syy, sxy] and the stress peaks against all stresses
+        if len(parts) > 1 and parts[-2] in ("stress_bottom", "stress_top"):
+            return "stress"
         name = parts[-1]
         name = name[4:] if name[:4] in ("max_", "min_") else name
+        if name.startswith("principal_stress"):
+            return "stress"
         return "M" if name in ("Mx", "My", "principal_moment") else name
     scale = max(abs(v) for k, v in runs["one_a"].items() if kind(k) == kind(key)) or 1.0
     # measures that are relative already (rounding-level residuals and

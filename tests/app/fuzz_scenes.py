@@ -42,6 +42,10 @@ subsection Foundation
   set Modulus of subgrade reaction = 0
   set Contact         = tensionless
 end
+subsection Temperature
+  set Difference = 5
+  set Profile    =
+end
 subsection Loads
   set Uniform pressure    = 1
   set Rectangular patches = 0,0,1,0.75,100
@@ -82,6 +86,7 @@ choices = {
     "Shear integration": ["auto", "reduced", "selective", "full", "none"],
     "Flexibility": ["galerkin", "collocation", "winkler"],
     "Model": ["half-space", "dense liquid", "winkler", ""],
+    "Profile": ["", "20,10", "5", "1,x", "20,15,10,12", "20;10", "nan,1", "1e300,-1e300"],
     "Modulus of subgrade reaction": ["0", "1e4", "-1e4", "1e-300", "1e300", "nan",
                                      "x", "5e4 kN/m3"],
     "Method": ["active set", "element exclusion", "newton"],
@@ -101,7 +106,8 @@ choices = {
     "Goal": ["", "w at 0,0", "Mx at 0.5,0.2", "Mxy at -1,-0.75", "q at 0,0",
              "peak Mx", "peak M1", "peak q", "contact area", "mean w",
              "w at 0,0 minus 1,0.75", "w at 9,9", "Mx at", "w at 0,0 minus",
-             "w at nan,0"],
+             "w at nan,0", "stress_bottom at 0,0", "stress_top at 0.5,0.2",
+             "peak stress_bottom", "peak stress_top", "stress_bottom at 9,9"],
     "Target error": ["0", "1e-3", "0.5", "1", "-1", "x", "1e-300"],
 }
 

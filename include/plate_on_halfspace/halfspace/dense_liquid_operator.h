@@ -31,7 +31,7 @@ namespace PlateOnHalfspace
      *   (galerkin_operator.h).
      */
     explicit DenseLiquidOperator(const double subgrade_modulus,
-                                 const bool positive_pressure_basis = true);
+                                 const bool   positive_pressure_basis = true);
     ~DenseLiquidOperator() override;
 
     /** Throws ExcMessage unless every cell is in the foundation: the

@@ -27,6 +27,8 @@ namespace PlateOnHalfspace
   {
     Point<2> location;
     double   w = 0, q = 0, mx = 0, my = 0;
+    /** Fibre stresses at the point (MindlinPlate::fibre_stresses()). */
+    FibreStresses stresses;
   };
 
   /** What summary.json reports for one cycle. */
@@ -44,10 +46,13 @@ namespace PlateOnHalfspace
     double max_w = 0, min_w = 0, max_q = 0, min_q = 0;
     double max_mx = 0, min_mx = 0, max_my = 0, min_my = 0;
     double max_principal_moment = 0;
+    /** The largest principal stress of the bottom and the top fibre. */
+    double max_principal_stress_bottom = 0, max_principal_stress_top = 0;
     /** Where each peak is (on the computed part of a symmetric scene). */
     Point<2> max_w_at, min_w_at, max_q_at, min_q_at;
     Point<2> max_mx_at, min_mx_at, max_my_at, min_my_at;
     Point<2> max_principal_moment_at;
+    Point<2> max_principal_stress_bottom_at, max_principal_stress_top_at;
     /** Wall time of the cycle and its parts: plate assembly (setup,
      *  loads, condensation), half-space operator, contact solve, output. */
     double wall_time_s = 0, assembly_time_s = 0, foundation_time_s = 0;

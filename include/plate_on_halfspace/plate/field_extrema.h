@@ -37,8 +37,10 @@ namespace PlateOnHalfspace
    * A quantity of the plate's solution at a point (doc/formulation.md sign
    * conventions): the deflection w (downward positive), the moments per
    * unit width Mx, My, Mxy (Mx > 0 sagging, as MindlinPlate::moments()),
-   * and the larger principal moment
-   * M1 = (Mx + My)/2 + sqrt(((Mx - My)/2)^2 + Mxy^2).
+   * the larger principal moment
+   * M1 = (Mx + My)/2 + sqrt(((Mx - My)/2)^2 + Mxy^2), and the largest
+   * principal stress of the bottom and of the top fibre
+   * (MindlinPlate::fibre_stresses(), tension positive).
    */
   enum class PlateQuantity
   {
@@ -46,7 +48,9 @@ namespace PlateOnHalfspace
     mx,
     my,
     mxy,
-    principal_moment
+    principal_moment,
+    principal_stress_bottom,
+    principal_stress_top
   };
 
   /**
@@ -55,7 +59,8 @@ namespace PlateOnHalfspace
    * @p reference_point of @p cell. For PlateQuantity::w it is component 0,
    * so a pressure field stored in the w-space (as the driver's
    * pressure_field) gives q. The moments are those of MindlinPlate::moments()
-   * (rotation gradients through the cell's bilinear map).
+   * (rotation gradients through the cell's bilinear map, with the thermal
+   * moment), the stresses those of MindlinPlate::fibre_stresses().
    */
   double
   plate_quantity(const MindlinPlate                                 &plate,

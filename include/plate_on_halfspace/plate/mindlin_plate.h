@@ -25,8 +25,10 @@
 
 #include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/plate/foundation_space.h>
+#include <plate_on_halfspace/plate/thermal_load.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -38,6 +40,31 @@ namespace PlateOnHalfspace
   struct Moments
   {
     double mx = 0, my = 0, mxy = 0;
+  };
+
+  /**
+   * Bending stresses of the bottom (soil-side) and the top fibre, tension
+   * positive (doc/formulation.md, "Stresses"): sxx, syy, sxy of each face
+   * and its largest principal stress.
+   */
+  struct FibreStresses
+  {
+    std::array<double, 3> bottom{{0, 0, 0}}, top{{0, 0, 0}};
+    double                principal_bottom = 0, principal_top = 0;
+
+    /** In the order of Parameters::fibre_stress_names(). */
+    std::array<double, 8>
+    values() const
+    {
+      return {{bottom[0],
+               bottom[1],
+               bottom[2],
+               principal_bottom,
+               top[0],
+               top[1],
+               top[2],
+               principal_top}};
+    }
   };
 
   /**
@@ -85,7 +112,28 @@ namespace PlateOnHalfspace
       symmetry = mirror_symmetry;
     }
 
-    /** Assemble the load vector of a scene's loads (downward positive). */
+    /**
+     * The temperature through the thickness (thermal_load.h): its moment
+     * joins the load vector of assemble_loads() and the moments(), its
+     * remainder the fibre_stresses(). Call before assemble_loads().
+     */
+    void
+    set_thermal_load(const ThermalLoad &load)
+    {
+      thermal = load;
+    }
+
+    const ThermalLoad &
+    get_thermal_load() const
+    {
+      return thermal;
+    }
+
+    /**
+     * Assemble the load vector of a scene's loads (downward positive) and
+     * of the thermal moment: M_T ∫ div(beta_v) (doc/formulation.md,
+     * "Temperature").
+     */
     void
     assemble_loads(const Parameters::Loads &loads,
                    const double             self_weight_pressure);
@@ -145,11 +193,28 @@ namespace PlateOnHalfspace
     Vector<double>
     foundation_field_to_solution(const Vector<double> &field) const;
 
-    /** Moments at the reference point @p p of @p cell. */
+    /**
+     * Moments at the reference point @p p of @p cell of a solution under
+     * the scene's loads: -D (curvatures) plus the thermal moment in Mx and
+     * My (doc/formulation.md, "Conventions" and "Temperature").
+     */
     Moments
     moments(const typename DoFHandler<2>::active_cell_iterator &cell,
             const Point<2>                                     &p,
             const Vector<double>                               &solution) const;
+
+    /**
+     * The fibre stresses of the moments @p m (of moments()): +-6 M/t^2 at
+     * the bottom and the top face plus the thermal remainder's stress.
+     */
+    FibreStresses
+    fibre_stresses(const Moments &m) const;
+
+    double
+    thickness() const
+    {
+      return plate.thickness;
+    }
 
     /** Cell of the plate containing @p x and the reference point there. */
     std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
@@ -238,6 +303,7 @@ namespace PlateOnHalfspace
     SparseMatrix<double>      stiffness;
     Vector<double>            load;
     double                    total_load = 0;
+    ThermalLoad               thermal;
 
     std::vector<types::global_dof_index> foundation_dofs;
     std::vector<int> foundation_index; ///< per DoF, -1 if none

@@ -95,6 +95,24 @@ namespace PlateOnHalfspace
       parse_parameters(ParameterHandler &prm);
     };
 
+    /**
+     * subsection Temperature: the plate's temperature through its thickness
+     * (doc/formulation.md, "Temperature"), linear (Difference) or a profile.
+     */
+    struct Temperature
+    {
+      double expansion_coefficient; ///< alpha [1/K]
+      double difference;            ///< T_top - T_bottom [K], linear
+      /** Temperatures [K] at equally spaced depths, top to bottom (at least
+       *  two); empty: the linear Difference. */
+      std::vector<double> profile;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     /** A rectangular load patch [x1,x2] x [y1,y2] with a pressure. */
     struct RectangularPatch
     {
@@ -210,6 +228,7 @@ namespace PlateOnHalfspace
     /**
      * The quantity of interest of Adaptivity/Goal (doc/formulation.md,
      * "Goal-oriented refinement"), e.g. "Mx at 0,0", "peak Mx",
+     * "stress_bottom at 0,1.8", "peak stress_top",
      * "contact area", "mean w", "w at 0,0 minus 3,0".
      */
     struct Goal
@@ -231,7 +250,9 @@ namespace PlateOnHalfspace
         mx,
         my,
         mxy,
-        principal_moment ///< the larger principal moment M1
+        principal_moment, ///< the larger principal moment M1
+        stress_bottom,    ///< largest principal stress of the bottom fibre
+        stress_top        ///< largest principal stress of the top fibre
       };
       Kind        kind     = Kind::none;
       Quantity    quantity = Quantity::w;
@@ -285,6 +306,15 @@ namespace PlateOnHalfspace
     };
 
     /**
+     * The names of the fibre stresses at a point, as checks, VTU fields and
+     * profile columns call them: sxx, syy, sxy and s1 (the largest
+     * principal stress) of the bottom, then the same of the top
+     * (doc/formulation.md, "Stresses").
+     */
+    const std::vector<std::string> &
+    fibre_stress_names();
+
+    /**
      * A value the run must reproduce: quantity at a probe point or a summary
      * value, a reference value and a relative tolerance. The program prints
      * the comparison and fails (non-zero exit) if it does not hold, so that a
@@ -321,6 +351,7 @@ namespace PlateOnHalfspace
     Parameters::Plate              plate;
     Parameters::Foundation         foundation;
     Parameters::FoundationOperator foundation_operator;
+    Parameters::Temperature        temperature;
     Parameters::Loads              loads;
     Parameters::Discretization     discretization;
     Parameters::Contact            contact;
