@@ -344,8 +344,7 @@ namespace PlateOnHalfspace
                              " does not overlap the plate."));
     for (unsigned int k = 0; k < disk_used.size(); ++k)
       AssertThrow(disk_used[k],
-                  ExcMessage("Loads/Circular patches: patch " +
-                             std::to_string(k + 1) +
+                  ExcMessage(loads.circular_patches[k].label +
                              " does not overlap the plate."));
 
     for (const auto &point_load : loads.point_loads)

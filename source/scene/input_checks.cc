@@ -380,8 +380,7 @@ namespace PlateOnHalfspace
                  on_plate(Point<2>(c.centre[0] + r, c.centre[1] + r)) &&
                    on_plate(Point<2>(c.centre[0] - r, c.centre[1] - r)));
             if (!inside)
-              warnings.push_back("Loads/Circular patches: patch " +
-                                 std::to_string(k + 1) +
+              warnings.push_back(c.label +
                                  " extends beyond the plate; only the part "
                                  "on the plate is applied (applied_load in "
                                  "summary.json).");

@@ -7,6 +7,8 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include <boost/algorithm/string/join.hpp>
+
 #include <plate_on_halfspace/scene/parameters.h>
 
 #include <algorithm>
@@ -389,6 +391,18 @@ namespace PlateOnHalfspace
                         Patterns::Anything(),
                         "Point loads x,y,force ; ... (downward positive, the "
                         "point must lie on the plate).");
+      prm.declare_entry(
+        "Axles",
+        "",
+        Patterns::Anything(),
+        "Axle groups and aircraft main gears type,x,y,angle,load,tyre "
+        "pressure ; ...: type one of " +
+          boost::algorithm::join(AxleGroup::type_names(), " | ") +
+          " (tyre layouts in metres, doc/parameters.md), (x,y) the group's "
+          "centre, angle [degrees] from the x axis to the direction of "
+          "travel, load the group's total load and the tyre pressure (both > "
+          "0). Each tyre is a circular patch of area load/(tyres * "
+          "pressure).");
       prm.leave_subsection();
     }
 
@@ -419,12 +433,59 @@ namespace PlateOnHalfspace
           require(v[2] > 0,
                   "Loads/Circular patches: the radius must be > 0" + got(v[2]) +
                     ".");
-          circular_patches.push_back({Point<2>(v[0], v[1]), v[2], v[3]});
+          circular_patches.push_back(
+            {Point<2>(v[0], v[1]),
+             v[2],
+             v[3],
+             "Loads/Circular patches: patch " +
+               std::to_string(circular_patches.size() + 1)});
         }
       point_loads.clear();
       for (const auto &v : parse_number_list(
              prm.get("Point loads"), 3, "Loads/Point loads", "x,y,force"))
         point_loads.push_back({Point<2>(v[0], v[1]), v[2]});
+      axles.clear();
+      for (const std::string &item :
+           Utilities::split_string_list(prm.get("Axles"), ';'))
+        {
+          if (item.empty())
+            continue;
+          const std::vector<std::string> fields =
+            Utilities::split_string_list(item, ',');
+          require(fields.size() == 6,
+                  "Entry <Loads/Axles>: the item <" + item +
+                    "> must have 6 fields (type,x,y,angle,load,tyre "
+                    "pressure).");
+          const auto &names = AxleGroup::type_names();
+          const auto  found = std::find(names.begin(), names.end(), fields[0]);
+          require(found != names.end(),
+                  "Loads/Axles: the type <" + fields[0] + "> must be one of " +
+                    boost::algorithm::join(names, ", ") + ".");
+          const std::vector<std::vector<double>> numbers = parse_number_list(
+            boost::algorithm::join(
+              std::vector<std::string>(fields.begin() + 1, fields.end()), ","),
+            5,
+            "Loads/Axles",
+            "x,y,angle,load,tyre pressure");
+          const std::vector<double> &v = numbers[0];
+          AxleGroup                  group;
+          group.type =
+            static_cast<AxleGroup::Type>(std::distance(names.begin(), found));
+          group.centre        = Point<2>(v[0], v[1]);
+          group.angle         = v[2];
+          group.load          = v[3];
+          group.tyre_pressure = v[4];
+          std::ostringstream values;
+          values << " (got " << group.load << " and " << group.tyre_pressure
+                 << ").";
+          require(group.load > 0 && group.tyre_pressure > 0,
+                  "Loads/Axles: the load and the tyre pressure of group " +
+                    std::to_string(axles.size() + 1) + " must be > 0" +
+                    values.str());
+          axles.push_back(group);
+          for (const CircularPatch &tyre : group.tyre_patches(axles.size()))
+            circular_patches.push_back(tyre);
+        }
       prm.leave_subsection();
     }
 

@@ -14,6 +14,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <plate_on_halfspace/scene/axles.h>
+
 #include <string>
 #include <vector>
 
@@ -126,6 +128,8 @@ namespace PlateOnHalfspace
       Point<2> centre;
       double   radius;
       double   pressure;
+      /** How messages name it, e.g. "Loads/Circular patches: patch 2". */
+      std::string label;
     };
 
     /** A point load (force, downward positive). */
@@ -140,8 +144,11 @@ namespace PlateOnHalfspace
     {
       double                        uniform_pressure;
       std::vector<RectangularPatch> rectangular_patches;
-      std::vector<CircularPatch>    circular_patches;
-      std::vector<PointLoad>        point_loads;
+      /** The entry's patches, then one per tyre of the axle groups. */
+      std::vector<CircularPatch> circular_patches;
+      /** Loads/Axles as written (their tyres are in circular_patches). */
+      std::vector<AxleGroup> axles;
+      std::vector<PointLoad> point_loads;
 
       static void
       declare_parameters(ParameterHandler &prm);
