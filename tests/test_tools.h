@@ -39,6 +39,41 @@ namespace TestTools
   }
 
   /**
+   * The scene text of a rectangular slab @p length_x x @p length_y of
+   * thickness @p thickness (E = 3e7, nu = 0.15) on a dense liquid of
+   * modulus @p k, bonded or tensionless (@p contact), on Subdivisions
+   * @p nx x @p ny refined @p refinements times, quietly, results in
+   * ./results; @p extra adds entries (subsections may be entered again).
+   */
+  inline std::string
+  slab_on_dense_liquid(const double       length_x,
+                       const double       length_y,
+                       const double       thickness,
+                       const double       k,
+                       const std::string &contact,
+                       const unsigned int nx,
+                       const unsigned int ny,
+                       const unsigned int refinements,
+                       const std::string &extra)
+  {
+    std::ostringstream prm;
+    prm << "set Output directory = results\n"
+        << "subsection Plate\n set Length x = " << length_x
+        << "\n set Length y = " << length_y
+        << "\n set Thickness = " << thickness
+        << "\n set Young's modulus = 3e7\n set Poisson's ratio = 0.15\nend\n"
+        << "subsection Foundation\n set Model = dense liquid\n"
+        << " set Modulus of subgrade reaction = " << k
+        << "\n set Contact = " << contact << "\nend\n"
+        << "subsection Discretization\n set Subdivisions x = " << nx
+        << "\n set Subdivisions y = " << ny
+        << "\n set Initial refinements = " << refinements << "\nend\n"
+        << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n"
+        << extra;
+    return prm.str();
+  }
+
+  /**
    * Run parameters/@p scene (tests are in tests/unit, so SOURCE_DIR/../..
    * is the project) with the entries @p extra appended, quietly, results
    * in ./results, no verification checks, on the whole plate (Symmetry =

@@ -12,15 +12,15 @@ namespace PlateOnHalfspace
     {
       // The layouts (doc/parameters.md, "Axles", with the sources), in
       // metres: x along the travel, y across it.
-      constexpr double truck_track   = 1.83;  // 72 in between wheel centres
-      constexpr double truck_dual    = 0.343; // 13.5 in between dual tyres
-      constexpr double tandem_axles  = 1.311; // 51.6 in
-      constexpr double tridem_axles  = 1.250; // 49.2 in
-      constexpr double b737_dual     = 0.864; // 34 in
-      constexpr double b767_dual     = 1.143; // 45 in
-      constexpr double b767_tandem   = 1.422; // 56 in
-      constexpr double b777_dual     = 1.397; // 55 in
-      constexpr double b777_tandem   = 1.448; // 57 in
+      constexpr double truck_track  = 1.83;  // 72 in between wheel centres
+      constexpr double truck_dual   = 0.343; // 13.5 in between dual tyres
+      constexpr double tandem_axles = 1.311; // 51.6 in
+      constexpr double tridem_axles = 1.250; // 49.2 in
+      constexpr double b737_dual    = 0.864; // 34 in
+      constexpr double b767_dual    = 1.143; // 45 in
+      constexpr double b767_tandem  = 1.422; // 56 in
+      constexpr double b777_dual    = 1.397; // 55 in
+      constexpr double b777_tandem  = 1.448; // 57 in
 
       /** A truck axle at x: dual sets (or single tyres) at +-track/2. */
       void
@@ -40,14 +40,13 @@ namespace PlateOnHalfspace
     const std::vector<std::string> &
     AxleGroup::type_names()
     {
-      static const std::vector<std::string> names = {
-        "single",
-        "single dual",
-        "tandem",
-        "tridem",
-        "dual gear",
-        "dual tandem gear",
-        "triple dual tandem gear"};
+      static const std::vector<std::string> names = {"single",
+                                                     "single dual",
+                                                     "tandem",
+                                                     "tridem",
+                                                     "dual gear",
+                                                     "dual tandem gear",
+                                                     "triple dual tandem gear"};
       return names;
     }
 
@@ -72,7 +71,8 @@ namespace PlateOnHalfspace
               add_truck_axle(x, true, tyres);
             break;
           case Type::dual_gear:
-            tyres = {Point<2>(0, -0.5 * b737_dual), Point<2>(0, 0.5 * b737_dual)};
+            tyres = {Point<2>(0, -0.5 * b737_dual),
+                     Point<2>(0, 0.5 * b737_dual)};
             break;
           case Type::dual_tandem_gear:
             for (const double x : {-0.5 * b767_tandem, 0.5 * b767_tandem})

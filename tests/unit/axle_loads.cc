@@ -11,7 +11,6 @@
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 
 #include <cmath>
-#include <sstream>
 
 #include "../tests.h"
 
@@ -25,19 +24,18 @@ namespace
   std::unique_ptr<PlateOnHalfspaceProblem>
   run(const std::string &axles, const std::string &symmetry)
   {
-    std::ostringstream prm;
-    prm << "set Output directory = results\n"
-        << "subsection Plate\n set Length x = 8\n set Length y = 8\n"
-        << " set Thickness = 0.3\n set Young's modulus = 3e7\nend\n"
-        << "subsection Foundation\n set Model = dense liquid\n"
-        << " set Modulus of subgrade reaction = 5e4\n set Contact = bonded\n"
-        << "end\n"
-        << "subsection Loads\n set Axles = " << axles << "\nend\n"
-        << "subsection Discretization\n set Subdivisions x = 8\n"
-        << " set Subdivisions y = 8\n set Initial refinements = 1\n"
-        << " set Symmetry = " << symmetry << "\nend\n"
-        << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n";
-    return TestTools::run_scene_text(prm.str());
+    return TestTools::run_scene_text(TestTools::slab_on_dense_liquid(
+      8,
+      8,
+      0.3,
+      5e4,
+      "bonded",
+      8,
+      8,
+      1,
+      "subsection Loads\n set Axles = " + axles +
+        "\nend\nsubsection Discretization\n set Symmetry = " + symmetry +
+        "\nend\n"));
   }
 } // namespace
 
@@ -61,8 +59,8 @@ main()
         load += M_PI * p.radius * p.radius * p.pressure;
       const std::string name = AxleGroup::type_names()[t];
       deallog << name << ": " << patches.size() << " tyres ("
-              << (patches.size() == tyres[t] ? "as documented" : "WRONG")
-              << ")" << std::endl;
+              << (patches.size() == tyres[t] ? "as documented" : "WRONG") << ")"
+              << std::endl;
       AssertThrow(patches.size() == tyres[t], ExcMessage("tyre count"));
       check(name + ": tyres' area x pressure [kN]", load, 160., 1e-14);
       const CycleSummary c =
@@ -73,9 +71,9 @@ main()
 
   // the tandem's layout, and a quarter turn of a single axle
   {
-    const auto layout = AxleGroup::tyre_layout(AxleGroup::Type::tandem);
-    double     error  = 0;
-    unsigned int k    = 0;
+    const auto   layout = AxleGroup::tyre_layout(AxleGroup::Type::tandem);
+    double       error  = 0;
+    unsigned int k      = 0;
     for (const double x : {-0.6555, 0.6555})
       for (const double side : {-0.915, 0.915})
         for (const double dual : {-0.1715, 0.1715})
@@ -104,9 +102,9 @@ main()
 
   // symmetry of a centred tandem, whole plate against a quarter
   {
-    const auto whole   = run("tandem, 0, 0, 0, 160, 700", "none");
-    const auto quarter = run("tandem, 0, 0, 0, 160, 700", "auto");
-    const double scale = whole->summaries().back().max_w;
+    const auto   whole   = run("tandem, 0, 0, 0, 160, 700", "none");
+    const auto   quarter = run("tandem, 0, 0, 0, 160, 700", "auto");
+    const double scale   = whole->summaries().back().max_w;
     double       mirror = 0, parts = 0;
     for (const Point<2> &x :
          {Point<2>(0.6, 0.9), Point<2>(1.7, 0.3), Point<2>(3.1, 2.2)})

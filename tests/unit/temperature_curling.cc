@@ -52,23 +52,20 @@ namespace
        const unsigned int subdivisions_y,
        const unsigned int refinements)
   {
-    std::ostringstream prm;
-    prm << "set Output directory = results\n"
-        << "subsection Plate\n set Length x = " << length_x
-        << "\n set Length y = " << length_y
-        << "\n set Thickness = 0.25\n set Young's modulus = 3e7\n"
-        << " set Poisson's ratio = 0.15\n set Unit weight = " << unit_weight
-        << "\nend\n"
-        << "subsection Foundation\n set Model = dense liquid\n"
-        << " set Modulus of subgrade reaction = " << k
-        << "\n set Contact = " << contact << "\nend\n"
-        << "subsection Temperature\n set Difference = " << difference
-        << "\nend\n"
-        << "subsection Discretization\n set Subdivisions x = " << subdivisions_x
-        << "\n set Subdivisions y = " << subdivisions_y
-        << "\n set Initial refinements = " << refinements << "\nend\n"
-        << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n";
-    return TestTools::run_scene_text(prm.str());
+    std::ostringstream extra;
+    extra << "subsection Plate\n set Unit weight = " << unit_weight << "\nend\n"
+          << "subsection Temperature\n set Difference = " << difference
+          << "\nend\n";
+    return TestTools::run_scene_text(
+      TestTools::slab_on_dense_liquid(length_x,
+                                      length_y,
+                                      0.25,
+                                      k,
+                                      contact,
+                                      subdivisions_x,
+                                      subdivisions_y,
+                                      refinements,
+                                      extra.str()));
   }
 } // namespace
 
@@ -219,21 +216,19 @@ main()
 
   // 6. a stress goal on the strip
   {
-    std::ostringstream prm;
-    prm << "set Output directory = results\n"
-        << "subsection Plate\n set Length x = 3.6\n set Length y = 30\n"
-        << " set Thickness = 0.25\n set Young's modulus = 3e7\n"
-        << " set Poisson's ratio = 0.15\nend\n"
-        << "subsection Foundation\n set Model = dense liquid\n"
-        << " set Modulus of subgrade reaction = 5e4\n set Contact = bonded\n"
-        << "end\n"
-        << "subsection Temperature\n set Difference = 10\nend\n"
-        << "subsection Discretization\n set Subdivisions x = 4\n"
-        << " set Subdivisions y = 30\n set Initial refinements = 1\nend\n"
-        << "subsection Adaptivity\n set Cycles = 3\n set Refinement = goal\n"
-        << " set Goal = stress_bottom at 0,0\nend\n"
-        << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n";
-    const auto problem = TestTools::run_scene_text(prm.str());
+    const auto problem =
+      TestTools::run_scene_text(TestTools::slab_on_dense_liquid(
+        3.6,
+        30,
+        0.25,
+        5e4,
+        "bonded",
+        4,
+        30,
+        1,
+        "subsection Temperature\n set Difference = 10\nend\n"
+        "subsection Adaptivity\n set Cycles = 3\n set Refinement = goal\n"
+        " set Goal = stress_bottom at 0,0\nend\n"));
     for (const CycleSummary &c : problem->summaries())
       {
         const double error       = 1601.106 - c.goal.value;
