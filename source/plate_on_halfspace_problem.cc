@@ -271,7 +271,6 @@ namespace PlateOnHalfspace
       contact,
       pressure_field,
       *contact_solver,
-      foundation_operator->mass_matrix(),
       GoalEstimateScene{computed_loads,
                         parameters.plate.unit_weight *
                           parameters.plate.thickness,

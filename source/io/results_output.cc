@@ -33,9 +33,6 @@ namespace PlateOnHalfspace
     public:
       explicit MomentsPostprocessor(const MindlinPlate &plate)
         : plate(plate)
-        , D(plate.flexural_rigidity())
-        , nu(plate.poissons_ratio())
-        , thermal_moment(plate.get_thermal_load().moment)
       {}
 
       void
@@ -47,10 +44,10 @@ namespace PlateOnHalfspace
           {
             const auto &g = inputs.solution_gradients[p];
             // g[c][d] = d u_c / d x_d; components 1, 2 are beta_x, beta_y
-            Moments m;
-            m.mx  = -D * (g[1][0] + nu * g[2][1]) + thermal_moment;
-            m.my  = -D * (g[2][1] + nu * g[1][0]) + thermal_moment;
-            m.mxy = -D * 0.5 * (1. - nu) * (g[1][1] + g[2][0]);
+            Tensor<2, 2> grad_beta;
+            for (unsigned int c = 0; c < 2; ++c)
+              grad_beta[c] = g[1 + c];
+            const Moments   m   = plate.moments_of_rotation_gradient(grad_beta);
             Vector<double> &out = computed_quantities[p];
             out[0]              = m.mx;
             out[1]              = m.my;
@@ -78,7 +75,6 @@ namespace PlateOnHalfspace
 
     private:
       const MindlinPlate &plate;
-      const double        D, nu, thermal_moment;
     };
 
     std::string
@@ -453,13 +449,11 @@ namespace PlateOnHalfspace
       const Tensor<1, 2> d = x - start;
       return std::abs(d[0] * direction[1] - d[1] * direction[0]);
     };
-    const QGauss<2>           rule(2);
-    FEValues<2>               values(plate.get_fe(),
+    const QGauss<2>                    rule(2);
+    FEValues<2>                        values(plate.get_fe(),
                        rule,
                        update_gradients | update_quadrature_points);
-    std::vector<Tensor<2, 2>> grad(rule.size());
-    const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio();
-    const double M_T = plate.get_thermal_load().moment;
+    std::vector<Tensor<2, 2>>          grad(rule.size());
     std::vector<std::array<double, 4>> rows;
     // (Mx and My are even across mirror planes: the images of a cell's
     // Gauss points, never on a plane, carry its values.)
@@ -482,11 +476,10 @@ namespace PlateOnHalfspace
                                                                        grad);
           for (unsigned int q = 0; q < rule.size(); ++q)
             if (distance(points[q]) <= nearest * (1 + 1e-8))
-              rows.push_back(
-                {{points[q][0],
-                  points[q][1],
-                  -D * (grad[q][0][0] + nu * grad[q][1][1]) + M_T,
-                  -D * (grad[q][1][1] + nu * grad[q][0][0]) + M_T}});
+              {
+                const Moments m = plate.moments_of_rotation_gradient(grad[q]);
+                rows.push_back({{points[q][0], points[q][1], m.mx, m.my}});
+              }
         }
     std::sort(rows.begin(), rows.end(), [&](const auto &a, const auto &b) {
       return (Point<2>(a[0], a[1]) - start) * direction <

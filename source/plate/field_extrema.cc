@@ -60,12 +60,7 @@ namespace PlateOnHalfspace
         : base(plate.get_fe().base_element(0))
         , solution(solution)
         , quantity(quantity)
-        , D(plate.flexural_rigidity())
-        , nu(plate.poissons_ratio())
-        , thermal_moment(plate.get_thermal_load().moment)
-        , stress_scale(6. / (plate.thickness() * plate.thickness()))
-        , nonlinear_bottom(plate.get_thermal_load().nonlinear_stress_bottom)
-        , nonlinear_top(plate.get_thermal_load().nonlinear_stress_top)
+        , plate(plate)
         , local_values(plate.get_fe().n_dofs_per_cell())
       {
         const FiniteElement<2> &fe = plate.get_fe();
@@ -145,35 +140,28 @@ namespace PlateOnHalfspace
         // physical gradient = J^{-T} reference gradient:
         // d/dx = ( xt[1] d/ds - xs[1] d/dt) / det,
         // d/dy = (-xt[0] d/ds + xs[0] d/dt) / det
-        const double dbx_dx = (xt[1] * gx[0] - xs[1] * gx[1]) / det;
-        const double dbx_dy = (-xt[0] * gx[0] + xs[0] * gx[1]) / det;
-        const double dby_dx = (xt[1] * gy[0] - xs[1] * gy[1]) / det;
-        const double dby_dy = (-xt[0] * gy[0] + xs[0] * gy[1]) / det;
-        // MindlinPlate::moments() and fibre_stresses()
-        const double mx  = -D * (dbx_dx + nu * dby_dy) + thermal_moment;
-        const double my  = -D * (dby_dy + nu * dbx_dx) + thermal_moment;
-        const double mxy = -D * 0.5 * (1. - nu) * (dbx_dy + dby_dx);
+        Tensor<2, 2> grad_beta;
+        grad_beta[0][0] = (xt[1] * gx[0] - xs[1] * gx[1]) / det;
+        grad_beta[0][1] = (-xt[0] * gx[0] + xs[0] * gx[1]) / det;
+        grad_beta[1][0] = (xt[1] * gy[0] - xs[1] * gy[1]) / det;
+        grad_beta[1][1] = (-xt[0] * gy[0] + xs[0] * gy[1]) / det;
+        const Moments m = plate.moments_of_rotation_gradient(grad_beta);
         switch (quantity)
           {
             case PlateQuantity::mx:
-              return mx;
+              return m.mx;
             case PlateQuantity::my:
-              return my;
+              return m.my;
             case PlateQuantity::mxy:
-              return mxy;
+              return m.mxy;
             case PlateQuantity::principal_moment:
               // hypot: no overflow for any finite moments
-              return 0.5 * (mx + my) + std::hypot(0.5 * (mx - my), mxy);
+              return 0.5 * (m.mx + m.my) +
+                     std::hypot(0.5 * (m.mx - m.my), m.mxy);
             case PlateQuantity::principal_stress_bottom:
-              return stress_scale *
-                       (0.5 * (mx + my) + std::hypot(0.5 * (mx - my), mxy)) +
-                     nonlinear_bottom;
+              return plate.fibre_stresses(m).principal_bottom;
             case PlateQuantity::principal_stress_top:
-              // the top's stresses are -6 M/t^2: its largest principal
-              // stress is -6/t^2 times the smaller principal moment
-              return -stress_scale *
-                       (0.5 * (mx + my) - std::hypot(0.5 * (mx - my), mxy)) +
-                     nonlinear_top;
+              return plate.fibre_stresses(m).principal_top;
             default:
               return std::numeric_limits<double>::quiet_NaN();
           }
@@ -198,12 +186,10 @@ namespace PlateOnHalfspace
       }
 
     private:
-      const FiniteElement<2> &base;
-      const Vector<double>   &solution;
-      const PlateQuantity     quantity;
-      const double            D, nu;
-      const double            thermal_moment, stress_scale, nonlinear_bottom,
-        nonlinear_top;
+      const FiniteElement<2>            &base;
+      const Vector<double>              &solution;
+      const PlateQuantity                quantity;
+      const MindlinPlate                &plate;
       std::vector<unsigned int>          component, base_index;
       Vector<double>                     local_values;
       std::array<std::vector<double>, 3> coefficients;

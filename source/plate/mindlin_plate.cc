@@ -604,12 +604,7 @@ namespace PlateOnHalfspace
     std::vector<Tensor<2, 2>> grad(1);
     values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
                                                                  grad);
-    const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio;
-    Moments      m;
-    m.mx  = -D * (grad[0][0][0] + nu * grad[0][1][1]) + thermal.moment;
-    m.my  = -D * (grad[0][1][1] + nu * grad[0][0][0]) + thermal.moment;
-    m.mxy = -D * 0.5 * (1. - nu) * (grad[0][0][1] + grad[0][1][0]);
-    return m;
+    return moments_of_rotation_gradient(grad[0]);
   }
 
   FibreStresses

@@ -512,7 +512,6 @@ namespace PlateOnHalfspace
                       const ContactState               &contact,
                       const Vector<double>             &pressure_field,
                       ContactSolver                    &contact_solver,
-                      const SparseMatrix<double>       &mass,
                       const GoalEstimateScene          &scene)
   {
     if (goal.measures_contact_area())
@@ -525,8 +524,12 @@ namespace PlateOnHalfspace
     const ContactState adjoint = contact_solver.solve_linearised(
       goal.derivative(plate, contact.plate_solution, value));
     std::vector<std::pair<Point<2>, double>> terms = goal.deflection_terms();
-    const Vector<double> reaction = remove_carried_goal_density(
-      plate, mass, contact.active_set, adjoint.q, terms);
+    const Vector<double>                     reaction =
+      remove_carried_goal_density(plate,
+                                  scene.foundation.mass_matrix(),
+                                  contact.active_set,
+                                  adjoint.q,
+                                  terms);
     const Vector<double> adjoint_pressure =
       plate.foundation_field_to_solution(reaction);
     const FoundationResidualData soil{

@@ -204,6 +204,23 @@ namespace PlateOnHalfspace
             const Vector<double>                               &solution) const;
 
     /**
+     * The moments of the rotation gradient @p grad_beta (grad_beta[c][d] =
+     * d beta_c / d x_d): -D (curvatures) plus the thermal moment in Mx and
+     * My (doc/formulation.md, "Conventions" and "Temperature"). What
+     * moments(), the peaks and the outputs evaluate.
+     */
+    Moments
+    moments_of_rotation_gradient(const Tensor<2, 2> &grad_beta) const
+    {
+      const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio;
+      Moments      m;
+      m.mx  = -D * (grad_beta[0][0] + nu * grad_beta[1][1]) + thermal.moment;
+      m.my  = -D * (grad_beta[1][1] + nu * grad_beta[0][0]) + thermal.moment;
+      m.mxy = -D * 0.5 * (1. - nu) * (grad_beta[0][1] + grad_beta[1][0]);
+      return m;
+    }
+
+    /**
      * The fibre stresses of the moments @p m (of moments()): +-6 M/t^2 at
      * the bottom and the top face plus the thermal remainder's stress.
      */

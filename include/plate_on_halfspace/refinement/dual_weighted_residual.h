@@ -131,7 +131,8 @@ namespace PlateOnHalfspace
    * goal of the plate's fields the dual-weighted residual above, its
    * adjoint problem solved by the cycle's @p contact_solver on the final
    * contact set of @p contact and the goal's carried density removed with
-   * the foundation's mass matrix @p mass; for the contact area the half
+   * the mass matrix of the scene's foundation operator; for the contact
+   * area the half
    * band of estimate_contact_area_error(); for q at a point none (zero).
    * @p value is the goal on the cycle, @p pressure_field q_h in the
    * plate's w-space.
@@ -143,7 +144,6 @@ namespace PlateOnHalfspace
                       const ContactState               &contact,
                       const Vector<double>             &pressure_field,
                       ContactSolver                    &contact_solver,
-                      const SparseMatrix<double>       &mass,
                       const GoalEstimateScene          &scene);
 } // namespace PlateOnHalfspace
 
