@@ -92,6 +92,8 @@ namespace PlateOnHalfspace
     symmetry       = choose_mirror_symmetry(parameters, triangulation);
     computed_loads = loads_on_computed_part(parameters.loads, symmetry);
     cut_to_computed_part(symmetry, triangulation);
+    slab_grid = std::make_unique<SlabGrid>(parameters.plate, parameters.joints);
+    slab_grid->mark_joint_faces(triangulation);
     triangulation.refine_global(parameters.discretization.initial_refinements);
     if (parameters.output.verbosity > 0 && symmetry.n_copies() > 1)
       log << "symmetry " << symmetry.name() << ": computing "
@@ -100,6 +102,7 @@ namespace PlateOnHalfspace
     mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
                                                    parameters.discretization);
     mindlin_plate->set_mirror_symmetry(symmetry);
+    mindlin_plate->set_slab_grid(*slab_grid);
     mindlin_plate->set_thermal_load(
       thermal_load(parameters.plate, parameters.temperature));
     if (parameters.adaptivity.goal.kind != Parameters::Goal::Kind::none)
@@ -132,6 +135,8 @@ namespace PlateOnHalfspace
         log << "Adaptivity/Max cells reached: no further cycles." << std::endl;
         return false;
       }
+    // the faces of each joint keep facing each other
+    slab_grid->match_refinement(triangulation);
     SolutionTransfer<2> transfer(mindlin_plate->get_dof_handler());
     triangulation.prepare_coarsening_and_refinement();
     if (goal)
@@ -403,7 +408,10 @@ namespace PlateOnHalfspace
     bool all_converged = true;
     for (const auto &s : cycle_summaries)
       all_converged = all_converged && s.converged;
-    output->write_summary(cycle_summaries, symmetry.name(), all_converged);
+    output->write_summary(cycle_summaries,
+                          symmetry.name(),
+                          all_converged,
+                          *slab_grid);
     add_convergence_row(summary);
     output->write_convergence(convergence);
   }

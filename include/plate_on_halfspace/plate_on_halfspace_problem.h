@@ -157,6 +157,8 @@ namespace PlateOnHalfspace
     Parameters::Loads     computed_loads;
     Triangulation<2>      triangulation;
 
+    /** The slabs and joints (one slab unless Plate/Shape = slabs). */
+    std::unique_ptr<SlabGrid>     slab_grid;
     std::unique_ptr<MindlinPlate> mindlin_plate;
     /** The cycle's contact solver (the adjoint problem reuses it). */
     std::unique_ptr<ContactSolver> contact_solver;

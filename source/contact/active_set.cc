@@ -1,5 +1,8 @@
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+
 #include <plate_on_halfspace/contact/active_set.h>
 
 #include <algorithm>
@@ -31,6 +34,37 @@ namespace PlateOnHalfspace
   contact_set_supports_plate(const FoundationSpace   &space,
                              const std::vector<bool> &in_contact)
   {
+    Vector<double>     eigenvalues_below;
+    FullMatrix<double> eigenvectors_below;
+    if (!space.rigid_motions.empty())
+      {
+        // The contact set holds the plate if no rigid-body motion of it
+        // (each slab's, for a grid with free joints) vanishes on the set:
+        // with the motions orthonormal over all nodes, the Gram matrix on
+        // the set is positive definite, its eigenvalues about the set's
+        // share of the nodes where it holds them well.
+        const unsigned int       m         = space.rigid_motions.size();
+        unsigned int             n_contact = 0;
+        LAPACKFullMatrix<double> gram(m, m);
+        for (unsigned int i = 0; i < in_contact.size(); ++i)
+          if (in_contact[i])
+            {
+              ++n_contact;
+              for (unsigned int a = 0; a < m; ++a)
+                for (unsigned int b = 0; b < m; ++b)
+                  gram(a, b) +=
+                    space.rigid_motions[a][i] * space.rigid_motions[b][i];
+            }
+        if (n_contact == 0)
+          return false;
+        gram.compute_eigenvalues_symmetric(-1.,
+                                           1e-10 * n_contact /
+                                             in_contact.size(),
+                                           0.,
+                                           eigenvalues_below,
+                                           eigenvectors_below);
+        return eigenvalues_below.size() == 0;
+      }
     // The nodes in contact on the whole plate: those of the computed
     // part and, for a symmetric scene, their mirror images.
     std::vector<Point<2>> points;

@@ -228,6 +228,49 @@ namespace PlateOnHalfspace
         summary.max_principal_stress_top,
         summary.max_principal_stress_top_at);
 
+    // per slab and per joint of a grid of slabs; a slab of the mirrored
+    // part reads its image
+    summary.slabs.clear();
+    summary.joints = plate.joint_responses(solution);
+    if (const SlabGrid *grid = plate.get_slab_grid();
+        grid != nullptr && grid->n_slabs() > 1)
+      {
+        const MirrorSymmetry &symmetry = plate.get_foundation_space().symmetry;
+        for (const Slab &slab : grid->get_slabs())
+          {
+            const Point<2>     centre   = 0.5 * (slab.lower + slab.upper);
+            const Point<2>     image    = symmetry.to_computed_part(centre);
+            types::material_id computed = 0;
+            for (unsigned int s = 0; s < grid->n_slabs(); ++s)
+              {
+                const Slab &other = grid->get_slabs()[s];
+                if (image[0] > other.lower[0] && image[0] < other.upper[0] &&
+                    image[1] > other.lower[1] && image[1] < other.upper[1])
+                  computed = s;
+              }
+            const auto mirrored = [&](const Point<2> &p) {
+              Point<2> q = p;
+              for (unsigned int d = 0; d < 2; ++d)
+                if (centre[d] != image[d])
+                  q[d] = -q[d];
+              return q;
+            };
+            CycleSummary::SlabPeaks peaks;
+            const FieldExtremum     bottom =
+              field_maximum(plate,
+                            solution,
+                            PlateQuantity::principal_stress_bottom,
+                            computed);
+            const FieldExtremum top = field_maximum(
+              plate, solution, PlateQuantity::principal_stress_top, computed);
+            peaks.max_principal_stress_bottom    = bottom.value;
+            peaks.max_principal_stress_bottom_at = mirrored(bottom.location);
+            peaks.max_principal_stress_top       = top.value;
+            peaks.max_principal_stress_top_at    = mirrored(top.location);
+            summary.slabs.push_back(peaks);
+          }
+      }
+
     const FoundationSpace &space    = plate.get_foundation_space();
     const auto [area, contact_area] = space.area_in_contact(contact.in_contact);
     summary.contact_area_fraction   = contact_area / area;
@@ -281,7 +324,8 @@ namespace PlateOnHalfspace
   void
   ResultsOutput::write_summary(const std::vector<CycleSummary> &cycles,
                                const std::string               &symmetry,
-                               const bool                       converged) const
+                               const bool                       converged,
+                               const SlabGrid                  &slab_grid) const
   {
     nlohmann::ordered_json summary;
     summary["converged"] = converged;
@@ -350,6 +394,74 @@ namespace PlateOnHalfspace
                                  {"My", p.my},
                                  {"stress_bottom", p.stresses.bottom},
                                  {"stress_top", p.stresses.top}});
+        const auto number = [](const double value) {
+          return std::isfinite(value) ? nlohmann::ordered_json(value) :
+                                        nlohmann::ordered_json(nullptr);
+        };
+        const SlabGrid *grid = &slab_grid;
+        if (grid != nullptr && !c.slabs.empty())
+          {
+            j["slabs"] = nlohmann::ordered_json::array();
+            for (unsigned int s = 0; s < c.slabs.size(); ++s)
+              {
+                const Slab &slab = grid->get_slabs()[s];
+                const auto &p    = c.slabs[s];
+                j["slabs"].push_back({{"x1", slab.lower[0]},
+                                      {"y1", slab.lower[1]},
+                                      {"x2", slab.upper[0]},
+                                      {"y2", slab.upper[1]},
+                                      {"max_principal_stress_bottom",
+                                       number(p.max_principal_stress_bottom)},
+                                      {"max_principal_stress_bottom_at",
+                                       {p.max_principal_stress_bottom_at[0],
+                                        p.max_principal_stress_bottom_at[1]}},
+                                      {"max_principal_stress_top",
+                                       number(p.max_principal_stress_top)},
+                                      {"max_principal_stress_top_at",
+                                       {p.max_principal_stress_top_at[0],
+                                        p.max_principal_stress_top_at[1]}}});
+              }
+          }
+        if (grid != nullptr && !c.joints.empty())
+          {
+            j["joints"] = nlohmann::ordered_json::array();
+            for (unsigned int k = 0; k < c.joints.size(); ++k)
+              {
+                const Joint           &joint = grid->get_joints()[k];
+                const JointResponse   &r     = c.joints[k];
+                nlohmann::ordered_json entry;
+                entry["x1"]   = joint.start[0];
+                entry["y1"]   = joint.start[1];
+                entry["x2"]   = joint.end[0];
+                entry["y2"]   = joint.end[1];
+                entry["kind"] = joint.axis == 0 ? "transverse" : "longitudinal";
+                entry["load_transfer"] =
+                  Parameters::Joints::name(joint.transfer);
+                entry["lte"]             = number(r.lte);
+                entry["lte_at"]          = {r.lte_at[0], r.lte_at[1]};
+                entry["w_loaded"]        = r.w_loaded;
+                entry["w_unloaded"]      = r.w_unloaded;
+                entry["max_shear_force"] = r.max_shear_force;
+                if (joint.transfer == Parameters::Joints::LoadTransfer::dowels)
+                  {
+                    double largest = 0, bearing = 0;
+                    entry["dowels"] = nlohmann::ordered_json::array();
+                    for (const DowelForce &d : r.dowels)
+                      {
+                        entry["dowels"].push_back(
+                          {{"x", d.location[0]},
+                           {"y", d.location[1]},
+                           {"force", d.force},
+                           {"bearing_stress", d.bearing_stress}});
+                        largest = std::max(largest, std::abs(d.force));
+                        bearing = std::max(bearing, d.bearing_stress);
+                      }
+                    entry["max_dowel_force"]          = largest;
+                    entry["max_dowel_bearing_stress"] = bearing;
+                  }
+                j["joints"].push_back(entry);
+              }
+          }
         if (c.has_goal)
           {
             nlohmann::ordered_json goal;

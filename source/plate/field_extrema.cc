@@ -526,11 +526,12 @@ namespace PlateOnHalfspace
 
     /** The lattice sweep over all cells, then the searches asked for. */
     FieldExtrema
-    find_extrema(const MindlinPlate   &plate,
-                 const Vector<double> &solution,
-                 const PlateQuantity   quantity,
-                 const bool            minimum,
-                 const bool            maximum)
+    find_extrema(const MindlinPlate      &plate,
+                 const Vector<double>    &solution,
+                 const PlateQuantity      quantity,
+                 const bool               minimum,
+                 const bool               maximum,
+                 const types::material_id slab = numbers::invalid_material_id)
     {
       CellField              field(plate, solution, quantity);
       std::vector<ShapeData> lattice_shapes(n_lattice_points);
@@ -542,6 +543,9 @@ namespace PlateOnHalfspace
       double magnitude = 0;
       for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
         {
+          if (slab != numbers::invalid_material_id &&
+              cell->material_id() != slab)
+            continue;
           field.reinit(cell);
           samples.push_back(sample(field, cell, lattice_shapes));
           for (const double v : {samples.back().high, samples.back().low})
@@ -570,11 +574,12 @@ namespace PlateOnHalfspace
   }
 
   FieldExtremum
-  field_maximum(const MindlinPlate   &plate,
-                const Vector<double> &solution,
-                const PlateQuantity   quantity)
+  field_maximum(const MindlinPlate      &plate,
+                const Vector<double>    &solution,
+                const PlateQuantity      quantity,
+                const types::material_id slab)
   {
-    return find_extrema(plate, solution, quantity, false, true).maximum;
+    return find_extrema(plate, solution, quantity, false, true, slab).maximum;
   }
 
   FieldExtremum

@@ -4,6 +4,9 @@
 
 #include <deal.II/fe/mapping_q1.h>
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+
 #include <plate_on_halfspace/plate/generalized_inverse.h>
 
 #include <algorithm>
@@ -46,41 +49,103 @@ namespace PlateOnHalfspace
       extent = std::max(extent, points[dof].distance(centre));
     extent = std::max(extent, 1e-300);
 
-    const double stiffness_scale = stiffness.linfty_norm();
-    for (unsigned int mode = 0; mode < 3; ++mode)
+    // The slab of each DoF (material id): each slab of a grid moves on its
+    // own where its joints allow.
+    std::vector<types::material_id> slab_of(n_dofs, 0);
+    types::material_id              n_slabs = 1;
+    for (const auto &cell : dof_handler.active_cell_iterators())
       {
-        Vector<double> motion(n_dofs);
-        for (unsigned int i = 0; i < n_dofs; ++i)
+        cell->get_dof_indices(dofs);
+        for (const auto dof : dofs)
+          slab_of[dof] = cell->material_id();
+        n_slabs =
+          std::max<types::material_id>(n_slabs, cell->material_id() + 1);
+      }
+
+    const double stiffness_scale = stiffness.linfty_norm();
+    // How far a candidate is from a motion: the change distribute() makes
+    // (the constraints do not allow it) and its image under K on the
+    // unconstrained DoFs, relative to the stiffness.
+    const auto defect = [&](const Vector<double> &candidate) {
+      Vector<double> distributed(candidate);
+      constraints.distribute(distributed);
+      distributed -= candidate;
+      Vector<double> motion(candidate), image(n_dofs);
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (constraints.is_constrained(i))
+          motion[i] = 0;
+      stiffness.vmult(image, motion);
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        distributed[i] += constraints.is_constrained(i) ?
+                            0. :
+                            image[i] / std::max(stiffness_scale, 1e-300);
+      return distributed;
+    };
+    const auto without_constrained = [&](Vector<double> motion) {
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (constraints.is_constrained(i))
+          motion[i] = 0;
+      return motion;
+    };
+
+    std::vector<Vector<double>> failed, failed_defects;
+    for (types::material_id slab = 0; slab < n_slabs; ++slab)
+      for (unsigned int mode = 0; mode < 3; ++mode)
+        {
+          Vector<double> motion(n_dofs);
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            {
+              if (slab_of[i] != slab)
+                continue;
+              if (component[i] == 0)
+                motion[i] =
+                  (mode == 0 ?
+                     1. :
+                     (points[i][mode - 1] - centre[mode - 1]) / extent);
+              else if (mode > 0 && component[i] == mode)
+                motion[i] = 1. / extent;
+            }
+          // Allowed by the constraints (hanging nodes and the serendipity
+          // centres reproduce linear fields; supports, mirror planes and
+          // tied joints may not) and in the kernel of the stiffness (the
+          // constrained rows and columns of K only hold a diagonal entry;
+          // joints' springs may hold a slab's motion).
+          if (motion.linfty_norm() == 0)
+            continue; // a slab of the mirrored part: no DoFs here
+          Vector<double> d = defect(motion);
+          if (d.linfty_norm() <= 1e-8 * motion.linfty_norm())
+            motions.push_back(without_constrained(motion));
+          else if (n_slabs > 1)
+            {
+              failed.push_back(motion);
+              failed_defects.push_back(d);
+            }
+        }
+
+    // Slabs joined by joints move together, or hinge about a joint held in
+    // shear only: the combinations of the failed candidates without
+    // defect, the kernel of their defects' Gram matrix.
+    const unsigned int m = failed.size();
+    if (m > 0)
+      {
+        LAPACKFullMatrix<double> gram(m, m);
+        double                   trace = 0;
+        for (unsigned int a = 0; a < m; ++a)
+          for (unsigned int b = 0; b < m; ++b)
+            gram(a, b) = failed_defects[a] * failed_defects[b];
+        for (unsigned int a = 0; a < m; ++a)
+          trace += gram(a, a);
+        Vector<double>     eigenvalues;
+        FullMatrix<double> eigenvectors;
+        gram.compute_eigenvalues_symmetric(
+          -1., std::max(1e-20, 1e-14 * trace), 0., eigenvalues, eigenvectors);
+        for (unsigned int k = 0; k < eigenvalues.size(); ++k)
           {
-            if (component[i] == 0)
-              motion[i] =
-                (mode == 0 ? 1. :
-                             (points[i][mode - 1] - centre[mode - 1]) / extent);
-            else if (mode > 0 && component[i] == mode)
-              motion[i] = 1. / extent;
+            Vector<double> motion(n_dofs);
+            for (unsigned int a = 0; a < m; ++a)
+              motion.add(eigenvectors(a, k), failed[a]);
+            motions.push_back(without_constrained(motion));
           }
-        // Allowed by the constraints (hanging nodes and the serendipity
-        // centres reproduce linear fields; supports and mirror planes
-        // may not): distribute() from the unconstrained values gives it
-        // back.
-        Vector<double> distributed(motion);
-        constraints.distribute(distributed);
-        distributed -= motion;
-        if (distributed.linfty_norm() > 1e-10 * motion.linfty_norm())
-          continue;
-        // In the kernel of the stiffness on the unconstrained DoFs (the
-        // constrained rows and columns of K only hold a diagonal entry).
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          if (constraints.is_constrained(i))
-            motion[i] = 0;
-        Vector<double> image(n_dofs);
-        stiffness.vmult(image, motion);
-        double largest = 0;
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          if (!constraints.is_constrained(i))
-            largest = std::max(largest, std::abs(image[i]));
-        if (largest <= 1e-8 * stiffness_scale * motion.linfty_norm())
-          motions.push_back(motion);
       }
     return motions;
   }

@@ -8,6 +8,7 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <plate_on_halfspace/plate/generalized_inverse.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
 #include <cmath>
@@ -58,23 +59,56 @@ namespace PlateOnHalfspace
     attached_triangulation = &triangulation;
     dof_handler.distribute_dofs(fe);
 
+    if (slab_grid)
+      joint_coupling.reinit(*slab_grid, dof_handler, symmetry);
+
     constraints.clear();
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     add_centre_constraints();
     add_mirror_plane_constraints(dof_handler, symmetry, constraints);
     if (extra_constraints)
       extra_constraints(dof_handler, constraints);
+    if (slab_grid)
+      joint_coupling.add_tied_constraints(constraints);
     constraints.close();
 
     build_foundation_space();
 
     DynamicSparsityPattern dsp(dof_handler.n_dofs());
     DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    if (slab_grid)
+      joint_coupling.add_sparsity(constraints, dsp);
     sparsity.copy_from(dsp);
     stiffness.reinit(sparsity);
     load.reinit(dof_handler.n_dofs());
     total_load = 0;
     assemble_stiffness();
+    if (slab_grid)
+      joint_coupling.assemble(constraints, stiffness);
+    // what the contact iteration's mechanism check needs of the plate
+    // (orthonormal over the nodes: Gram-Schmidt, twice)
+    auto &motions = foundation_space.rigid_motions;
+    motions.clear();
+    for (const Vector<double> &motion : rigid_body_motions(*this))
+      {
+        Vector<double> r = restrict_to_foundation(motion);
+        for (unsigned int pass = 0; pass < 2; ++pass)
+          for (const Vector<double> &e : motions)
+            r.add(-(r * e), e);
+        if (r.l2_norm() > 0)
+          {
+            r /= r.l2_norm();
+            motions.push_back(r);
+          }
+      }
+  }
+
+  std::vector<JointResponse>
+  MindlinPlate::joint_responses(const Vector<double> &solution) const
+  {
+    if (!slab_grid)
+      return {};
+    return joint_coupling.responses(solution, shear_rigidity());
   }
 
   void

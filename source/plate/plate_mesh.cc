@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 
 namespace PlateOnHalfspace
 {
@@ -41,6 +42,51 @@ namespace PlateOnHalfspace
                                              Point<2>(),
                                              plate.radius);
           break;
+        case Parameters::Plate::Shape::slabs:
+          {
+            // Each slab its own vertices (plate/slab_grid.h): the faces of a
+            // joint lie on each other but are not shared, so each slab has
+            // its own unknowns. Subdivisions x/y are per slab.
+            std::vector<Point<2>>    vertices;
+            std::vector<CellData<2>> cells;
+            const unsigned int       nx = discretization.subdivisions_x;
+            const unsigned int       ny = discretization.subdivisions_y;
+            double y0 = -std::accumulate(plate.slab_lengths_y.begin(),
+                                         plate.slab_lengths_y.end(),
+                                         0.) /
+                        2;
+            types::material_id slab = 0;
+            for (const double ly : plate.slab_lengths_y)
+              {
+                double x0 = -std::accumulate(plate.slab_lengths_x.begin(),
+                                             plate.slab_lengths_x.end(),
+                                             0.) /
+                            2;
+                for (const double lx : plate.slab_lengths_x)
+                  {
+                    const unsigned int first = vertices.size();
+                    for (unsigned int j = 0; j <= ny; ++j)
+                      for (unsigned int i = 0; i <= nx; ++i)
+                        vertices.emplace_back(
+                          (i == nx ? x0 + lx : x0 + lx * i / nx),
+                          (j == ny ? y0 + ly : y0 + ly * j / ny));
+                    for (unsigned int j = 0; j < ny; ++j)
+                      for (unsigned int i = 0; i < nx; ++i)
+                        {
+                          CellData<2>        cell;
+                          const unsigned int v = first + j * (nx + 1) + i;
+                          cell.vertices    = {v, v + 1, v + nx + 1, v + nx + 2};
+                          cell.material_id = slab;
+                          cells.push_back(cell);
+                        }
+                    ++slab;
+                    x0 += lx;
+                  }
+                y0 += ly;
+              }
+            triangulation.create_triangulation(vertices, cells, SubCellData());
+            break;
+          }
         case Parameters::Plate::Shape::mesh_file:
           {
             std::ifstream file(plate.mesh_file);

@@ -303,6 +303,15 @@ namespace PlateOnHalfspace
         refinement;
     else if (p.shape == Parameters::Plate::Shape::disk)
       h = 0.8 * p.radius * refinement; // hyper_ball_balanced's largest cells
+    else if (p.shape == Parameters::Plate::Shape::slabs)
+      // Subdivisions x/y are per slab (plate/slab_grid.h)
+      h = std::max(*std::max_element(p.slab_lengths_x.begin(),
+                                     p.slab_lengths_x.end()) /
+                     d.subdivisions_x,
+                   *std::max_element(p.slab_lengths_y.begin(),
+                                     p.slab_lengths_y.end()) /
+                     d.subdivisions_y) *
+          refinement;
 
     // tests/unit/thin_plate_limit: these choices lose the thin-plate limit
     // (shear locking) once cells are much larger than the thickness; the
@@ -350,7 +359,8 @@ namespace PlateOnHalfspace
     // before it is read).
     const auto on_plate = [&](const Point<2> &x) {
       const double slack = 1e-12 * std::max({p.length_x, p.length_y, p.radius});
-      if (p.shape == Parameters::Plate::Shape::rectangle)
+      if (p.shape == Parameters::Plate::Shape::rectangle ||
+          p.shape == Parameters::Plate::Shape::slabs)
         return std::abs(x[0]) <= p.length_x / 2 + slack &&
                std::abs(x[1]) <= p.length_y / 2 + slack;
       return x.norm() <= p.radius + slack;

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 
 namespace PlateOnHalfspace
@@ -91,9 +92,11 @@ namespace PlateOnHalfspace
       prm.enter_subsection("Plate");
       prm.declare_entry("Shape",
                         "rectangle",
-                        Patterns::Selection("rectangle|disk|mesh file"),
+                        Patterns::Selection("rectangle|disk|mesh file|slabs"),
                         "Plan of the plate: a rectangle [-Lx/2,Lx/2]x[-Ly/2,"
-                        "Ly/2], a disk centred at the origin, or a Gmsh mesh.");
+                        "Ly/2], a disk centred at the origin, a Gmsh mesh, "
+                        "or a grid of slabs with joints between them "
+                        "(subsection Joints).");
       prm.declare_entry("Length x",
                         "12",
                         Patterns::Double(0),
@@ -102,6 +105,17 @@ namespace PlateOnHalfspace
                         "8",
                         Patterns::Double(0),
                         "Shape = rectangle: side along y [length].");
+      prm.declare_entry("Slab lengths x",
+                        "4.5, 4.5",
+                        Patterns::Anything(),
+                        "Shape = slabs: the slabs' sizes along x [length], "
+                        "a comma-separated list; the grid is centred at the "
+                        "origin and transverse joints lie between them.");
+      prm.declare_entry("Slab lengths y",
+                        "3.6",
+                        Patterns::Anything(),
+                        "Shape = slabs: the slabs' sizes along y [length]; "
+                        "longitudinal joints lie between them.");
       prm.declare_entry("Radius",
                         "1",
                         Patterns::Double(0),
@@ -140,15 +154,46 @@ namespace PlateOnHalfspace
       const std::string s = prm.get("Shape");
       shape               = (s == "rectangle" ? Shape::rectangle :
                              s == "disk"      ? Shape::disk :
+                             s == "slabs"     ? Shape::slabs :
                                                 Shape::mesh_file);
-      length_x            = prm.get_double("Length x");
-      length_y            = prm.get_double("Length y");
-      radius              = prm.get_double("Radius");
-      mesh_file           = prm.get("Mesh file");
-      thickness           = prm.get_double("Thickness");
-      youngs_modulus      = prm.get_double("Young's modulus");
-      poissons_ratio      = prm.get_double("Poisson's ratio");
-      unit_weight         = prm.get_double("Unit weight");
+      const auto lengths  = [&](const std::string &entry) {
+        std::vector<double> values;
+        for (const auto &item :
+             parse_number_list(prm.get(entry), 0, "Plate/" + entry, ""))
+          values.insert(values.end(), item.begin(), item.end());
+        if (shape == Shape::slabs)
+          {
+            require(!values.empty() && values.size() <= 20,
+                    "Plate/" + entry +
+                      " must list 1 to 20 slab sizes for Shape = slabs"
+                       " (got " +
+                      std::to_string(values.size()) + ").");
+            for (const double value : values)
+              require(value > 0,
+                      "Plate/" + entry + ": every slab size must be > 0" +
+                        got(value) + ".");
+          }
+        return values;
+      };
+      slab_lengths_x = lengths("Slab lengths x");
+      slab_lengths_y = lengths("Slab lengths y");
+      // The grid's outline is a rectangle: what the checks of the
+      // rectangle (loads on the plate, cell size) read.
+      if (shape == Shape::slabs)
+        {
+          length_x =
+            std::accumulate(slab_lengths_x.begin(), slab_lengths_x.end(), 0.);
+          length_y =
+            std::accumulate(slab_lengths_y.begin(), slab_lengths_y.end(), 0.);
+        }
+      length_x       = prm.get_double("Length x");
+      length_y       = prm.get_double("Length y");
+      radius         = prm.get_double("Radius");
+      mesh_file      = prm.get("Mesh file");
+      thickness      = prm.get_double("Thickness");
+      youngs_modulus = prm.get_double("Young's modulus");
+      poissons_ratio = prm.get_double("Poisson's ratio");
+      unit_weight    = prm.get_double("Unit weight");
       prm.leave_subsection();
 
       if (shape == Shape::rectangle)
@@ -245,6 +290,133 @@ namespace PlateOnHalfspace
       require(poissons_ratio >= 0 && poissons_ratio < 0.5,
               "Foundation/Poisson's ratio must lie in [0, 0.5)" +
                 got(poissons_ratio) + ".");
+    }
+
+    std::string
+    Joints::name(const LoadTransfer transfer)
+    {
+      switch (transfer)
+        {
+          case LoadTransfer::free:
+            return "free";
+          case LoadTransfer::aggregate_interlock:
+            return "aggregate interlock";
+          case LoadTransfer::dowels:
+            return "dowels";
+          case LoadTransfer::tied:
+            return "tied";
+        }
+      return "";
+    }
+
+    void
+    Joints::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Joints");
+      prm.declare_entry("Load transfer",
+                        "aggregate interlock",
+                        Patterns::Selection(
+                          "free|aggregate interlock|dowels|tied"),
+                        "Plate/Shape = slabs: how the joints carry load from "
+                        "slab to slab. free: two free edges; aggregate "
+                        "interlock: a shear spring along the joint (Shear "
+                        "stiffness); dowels: dowel bars across it (Dowel "
+                        "...); tied: tie bars, continuous deflection and "
+                        "rotations. Applies to every joint unless "
+                        "Longitudinal load transfer says otherwise.");
+      prm.declare_entry("Longitudinal load transfer",
+                        "same",
+                        Patterns::Selection(
+                          "same|free|aggregate interlock|dowels|tied"),
+                        "The load transfer of the longitudinal joints (along "
+                        "x, between Slab lengths y); same: as Load transfer.");
+      prm.declare_entry("Shear stiffness",
+                        "1e6",
+                        Patterns::Double(),
+                        "Aggregate interlock: shear force per length of "
+                        "joint per unit deflection difference across it "
+                        "[force/length^2], > 0.");
+      prm.declare_entry("Dowel diameter",
+                        "0.032",
+                        Patterns::Double(),
+                        "Dowels: bar diameter [length], > 0.");
+      prm.declare_entry("Dowel spacing",
+                        "0.3",
+                        Patterns::Double(),
+                        "Dowels: distance between bars [length], > 0; the "
+                        "bars are centred on each joint.");
+      prm.declare_entry("Dowel modulus",
+                        "2e8",
+                        Patterns::Double(),
+                        "Dowels: Young's modulus of the bar "
+                        "[force/length^2], > 0.");
+      prm.declare_entry("Joint opening",
+                        "0.006",
+                        Patterns::Double(),
+                        "Dowels: width of the joint the bar spans [length], "
+                        ">= 0.");
+      prm.declare_entry("Dowel support modulus",
+                        "4.07e8",
+                        Patterns::Double(),
+                        "Dowels: modulus of dowel support K, the concrete's "
+                        "reaction per bar surface deflection "
+                        "[force/length^3], > 0 (4.07e8 kN/m^3 = 1.5e6 pci).");
+      prm.leave_subsection();
+    }
+
+    void
+    Joints::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Joints");
+      const auto transfer = [](const std::string &text) {
+        return text == "free" ? LoadTransfer::free :
+               text == "aggregate interlock" ?
+                                LoadTransfer::aggregate_interlock :
+               text == "dowels" ? LoadTransfer::dowels :
+                                  LoadTransfer::tied;
+      };
+      transverse              = transfer(prm.get("Load transfer"));
+      const std::string along = prm.get("Longitudinal load transfer");
+      longitudinal          = (along == "same" ? transverse : transfer(along));
+      shear_stiffness       = prm.get_double("Shear stiffness");
+      dowel_diameter        = prm.get_double("Dowel diameter");
+      dowel_spacing         = prm.get_double("Dowel spacing");
+      dowel_modulus         = prm.get_double("Dowel modulus");
+      joint_opening         = prm.get_double("Joint opening");
+      dowel_support_modulus = prm.get_double("Dowel support modulus");
+      prm.leave_subsection();
+    }
+
+    void
+    Joints::check() const
+    {
+      const bool interlock = transverse == LoadTransfer::aggregate_interlock ||
+                             longitudinal == LoadTransfer::aggregate_interlock;
+      const bool dowelled = transverse == LoadTransfer::dowels ||
+                            longitudinal == LoadTransfer::dowels;
+      if (interlock)
+        require(shear_stiffness > 0 && std::isfinite(shear_stiffness),
+                "Joints/Shear stiffness must be > 0 with aggregate "
+                "interlock" +
+                  got(shear_stiffness) + ".");
+      if (dowelled)
+        {
+          require(dowel_diameter > 0,
+                  "Joints/Dowel diameter must be > 0 with dowels" +
+                    got(dowel_diameter) + ".");
+          require(dowel_spacing > 0,
+                  "Joints/Dowel spacing must be > 0 with dowels" +
+                    got(dowel_spacing) + ".");
+          require(dowel_modulus > 0,
+                  "Joints/Dowel modulus must be > 0 with dowels" +
+                    got(dowel_modulus) + ".");
+          require(joint_opening >= 0,
+                  "Joints/Joint opening must be >= 0 with dowels" +
+                    got(joint_opening) + ".");
+          require(dowel_support_modulus > 0,
+                  "Joints/Dowel support modulus must be > 0 with dowels" +
+                    got(dowel_support_modulus) + ".");
+        }
     }
 
     const std::vector<std::string> &
@@ -512,11 +684,13 @@ namespace PlateOnHalfspace
       prm.declare_entry("Subdivisions x",
                         "10",
                         Patterns::Integer(1, 1000),
-                        "Shape = rectangle: initial cells along x.");
+                        "Shape = rectangle: initial cells along x; Shape = "
+                        "slabs: along x in each slab.");
       prm.declare_entry("Subdivisions y",
                         "10",
                         Patterns::Integer(1, 1000),
-                        "Shape = rectangle: initial cells along y.");
+                        "Shape = rectangle: initial cells along y; Shape = "
+                        "slabs: along y in each slab.");
       prm.declare_entry("Initial refinements",
                         "0",
                         Patterns::Integer(0, 10),

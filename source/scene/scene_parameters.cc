@@ -29,6 +29,7 @@ namespace PlateOnHalfspace
                       "Directory for summary.json, profiles, VTU and "
                       "convergence.txt (created if missing).");
     Parameters::Plate::declare_parameters(prm);
+    Parameters::Joints::declare_parameters(prm);
     Parameters::Foundation::declare_parameters(prm);
     Parameters::FoundationOperator::declare_parameters(prm);
     Parameters::Temperature::declare_parameters(prm);
@@ -75,6 +76,7 @@ namespace PlateOnHalfspace
     output_directory = prm.get("Output directory");
     require(!output_directory.empty(), "Output directory must not be empty.");
     plate.parse_parameters(prm);
+    joints.parse_parameters(prm);
     foundation.parse_parameters(prm);
     foundation_operator.parse_parameters(prm);
     temperature.parse_parameters(prm);
@@ -85,6 +87,15 @@ namespace PlateOnHalfspace
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
 
+    if (plate.shape == Parameters::Plate::Shape::slabs)
+      joints.check();
+    if (discretization.flexibility ==
+        Parameters::Discretization::Flexibility::collocation)
+      require(plate.shape != Parameters::Plate::Shape::slabs,
+              "Discretization/Flexibility = collocation needs one slab: "
+              "the nodes facing each other across a joint would collocate "
+              "the same settlement twice; use galerkin for Plate/Shape = "
+              "slabs.");
     if (discretization.flexibility ==
         Parameters::Discretization::Flexibility::collocation)
       require(plate.shape != Parameters::Plate::Shape::disk,

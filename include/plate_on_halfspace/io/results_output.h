@@ -69,6 +69,16 @@ namespace PlateOnHalfspace
     /** 1/κ₁ estimates of the coupled matrix and of the half-space block. */
     double coupled_matrix_rcond = 1, foundation_block_rcond = 1;
     std::vector<PointValues> probes;
+    /** Per slab of a grid of slabs (plate/slab_grid.h): the largest
+     *  principal stress of the bottom and the top fibre, and where. */
+    struct SlabPeaks
+    {
+      double   max_principal_stress_bottom = 0, max_principal_stress_top = 0;
+      Point<2> max_principal_stress_bottom_at, max_principal_stress_top_at;
+    };
+    std::vector<SlabPeaks> slabs;
+    /** What each joint carries (plate/joints.h). */
+    std::vector<JointResponse> joints;
 
     /** The cycle's value and error estimate of Adaptivity/Goal. */
     struct Goal
@@ -160,11 +170,13 @@ namespace PlateOnHalfspace
                  const Vector<double> &pressure_field,
                  const Point<2>       &x) const;
 
-    /** summary.json over all cycles so far. */
+    /** summary.json over all cycles so far; @p slab_grid names the slabs
+     *  and joints of the cycles' per-slab and per-joint results. */
     void
     write_summary(const std::vector<CycleSummary> &cycles,
                   const std::string               &symmetry,
-                  const bool                       converged) const;
+                  const bool                       converged,
+                  const SlabGrid                  &slab_grid) const;
 
     /** profile-NN.csv along a line (points off the plate are skipped). */
     void

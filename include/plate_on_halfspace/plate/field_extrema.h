@@ -95,12 +95,15 @@ namespace PlateOnHalfspace
    * and its value may lie that little below the largest. A smooth peak is
    * located to far below 1e-6 of the cell size; where the field is flat
    * to second order (a ridge, a plateau) the location is any point of the
-   * flat part. A field without a finite value gives a NaN value.
+   * flat part. A field without a finite value gives a NaN value. With
+   * @p slab, only that slab's cells (material id, plate/slab_grid.h) are
+   * searched.
    */
   FieldExtremum
-  field_maximum(const MindlinPlate   &plate,
-                const Vector<double> &solution,
-                const PlateQuantity   quantity);
+  field_maximum(const MindlinPlate      &plate,
+                const Vector<double>    &solution,
+                const PlateQuantity      quantity,
+                const types::material_id slab = numbers::invalid_material_id);
 
   /** The smallest value, as field_maximum(). */
   FieldExtremum

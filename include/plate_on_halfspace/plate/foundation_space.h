@@ -67,6 +67,14 @@ namespace PlateOnHalfspace
     MirrorSymmetry symmetry;
 
     /**
+     * The plate's rigid-body motions (generalized_inverse.h) at the
+     * foundation nodes, orthonormal: a contact set must hold each of them
+     * (contact_set_supports_plate()). A grid of slabs has more than three
+     * when its joints let slabs move on their own.
+     */
+    std::vector<Vector<double>> rigid_motions;
+
+    /**
      * The mirror images of the cells, for each reflection of
      * symmetry.reflections() in turn (cells.size() each), with the same
      * foundation nodes: the image of cell c under reflection r is element

@@ -25,11 +25,14 @@
 
 #include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/plate/foundation_space.h>
+#include <plate_on_halfspace/plate/joints.h>
+#include <plate_on_halfspace/plate/slab_grid.h>
 #include <plate_on_halfspace/plate/thermal_load.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -111,6 +114,30 @@ namespace PlateOnHalfspace
     {
       symmetry = mirror_symmetry;
     }
+
+    /**
+     * The slabs and joints of the plate (slab_grid.h): the mesh given to
+     * setup() holds each slab's cells with the slab's index as material
+     * id, and the joints couple the facing faces (joints.h). Call before
+     * setup(); without it the plate is one slab.
+     */
+    void
+    set_slab_grid(const SlabGrid &grid)
+    {
+      slab_grid.emplace(grid);
+    }
+
+    /** The slab grid given by set_slab_grid(), or nullptr. */
+    const SlabGrid *
+    get_slab_grid() const
+    {
+      return slab_grid ? &*slab_grid : nullptr;
+    }
+
+    /** What each joint of the slab grid carries in @p solution (full DoF
+     *  vector, constraints distributed); empty without joints. */
+    std::vector<JointResponse>
+    joint_responses(const Vector<double> &solution) const;
 
     /**
      * The temperature through the thickness (thermal_load.h): its moment
@@ -310,6 +337,8 @@ namespace PlateOnHalfspace
     const Parameters::Plate          plate;
     const Parameters::Discretization discretization;
     MirrorSymmetry                   symmetry;
+    std::optional<SlabGrid>          slab_grid;
+    JointCoupling                    joint_coupling;
 
     FESystem<2>               fe;
     MappingQ1<2>              mapping;

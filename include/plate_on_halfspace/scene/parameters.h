@@ -32,16 +32,20 @@ namespace PlateOnHalfspace
       {
         rectangle,
         disk,
-        mesh_file
+        mesh_file,
+        slabs
       };
-      Shape       shape;
-      double      length_x, length_y; ///< rectangle spans [-L/2, L/2]
-      double      radius;             ///< disk centred at the origin
-      std::string mesh_file;          ///< Gmsh .msh with quadrilaterals
-      double      thickness;
-      double      youngs_modulus;
-      double      poissons_ratio;
-      double      unit_weight; ///< self weight = unit weight * thickness
+      Shape  shape;
+      double length_x, length_y; ///< rectangle spans [-L/2, L/2]
+      /** Shape = slabs: the slab sizes along x and along y; the grid of
+       *  slabs is centred at the origin, joints lie between them. */
+      std::vector<double> slab_lengths_x, slab_lengths_y;
+      double              radius;    ///< disk centred at the origin
+      std::string         mesh_file; ///< Gmsh .msh with quadrilaterals
+      double              thickness;
+      double              youngs_modulus;
+      double              poissons_ratio;
+      double unit_weight; ///< self weight = unit weight * thickness
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -108,6 +112,42 @@ namespace PlateOnHalfspace
       /** Temperatures [K] at equally spaced depths, top to bottom (at least
        *  two); empty: the linear Difference. */
       std::vector<double> profile;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * subsection Joints: the load transfer between the slabs of Plate/
+     * Shape = slabs (doc/formulation.md, "Joints"). Transverse joints lie
+     * across the direction of travel x (lines x = const), longitudinal
+     * joints along it (lines y = const).
+     */
+    struct Joints
+    {
+      enum class LoadTransfer
+      {
+        free,                ///< no connection: two free edges
+        aggregate_interlock, ///< distributed shear spring
+        dowels,              ///< discrete shear springs (dowel bars)
+        tied                 ///< continuous in w and the rotations
+      };
+      LoadTransfer transverse;      ///< Load transfer
+      LoadTransfer longitudinal;    ///< Longitudinal load transfer, resolved
+      double       shear_stiffness; ///< aggregate interlock [force/length^2]
+      double       dowel_diameter, dowel_spacing, dowel_modulus, joint_opening;
+      double dowel_support_modulus; ///< K of the concrete [force/length^3]
+
+      /** The range checks of the entries the joints use (the scene checks
+       *  them for Plate/Shape = slabs only). */
+      void
+      check() const;
+
+      /** The entry's text of @p transfer ("aggregate interlock", ...). */
+      static std::string
+      name(LoadTransfer transfer);
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -356,6 +396,7 @@ namespace PlateOnHalfspace
     std::string output_directory;
 
     Parameters::Plate              plate;
+    Parameters::Joints             joints;
     Parameters::Foundation         foundation;
     Parameters::FoundationOperator foundation_operator;
     Parameters::Temperature        temperature;
