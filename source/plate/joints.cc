@@ -25,10 +25,12 @@ namespace PlateOnHalfspace
     {
       std::vector<unsigned int> order(values.n_quadrature_points);
       std::iota(order.begin(), order.end(), 0u);
-      std::sort(order.begin(), order.end(), [&](unsigned int a, unsigned int b) {
-        return values.quadrature_point(a)[along] <
-               values.quadrature_point(b)[along];
-      });
+      std::sort(order.begin(),
+                order.end(),
+                [&](unsigned int a, unsigned int b) {
+                  return values.quadrature_point(a)[along] <
+                         values.quadrature_point(b)[along];
+                });
       return order;
     }
 
@@ -60,9 +62,9 @@ namespace PlateOnHalfspace
 
     // The joint faces by centre: facing faces have the same centre (the
     // mesh keeps them facing, SlabGrid::match_refinement()).
-    std::map<std::pair<long long, long long>,
-             std::vector<std::pair<DoFHandler<2>::active_cell_iterator,
-                                   unsigned int>>>
+    std::map<
+      std::pair<long long, long long>,
+      std::vector<std::pair<DoFHandler<2>::active_cell_iterator, unsigned int>>>
                  by_centre;
     const double tolerance = grid->tolerance();
     for (const auto &cell : dofs.active_cell_iterators())
@@ -99,14 +101,13 @@ namespace PlateOnHalfspace
           }
         else
           {
-            const bool first_low =
-              faces[0].first->material_id() == j.slab_low;
-            const auto &low  = faces[first_low ? 0 : 1];
-            const auto &high = faces[first_low ? 1 : 0];
-            pair.cell_low    = low.first;
-            pair.face_low    = low.second;
-            pair.cell_high   = high.first;
-            pair.face_high   = high.second;
+            const bool  first_low = faces[0].first->material_id() == j.slab_low;
+            const auto &low       = faces[first_low ? 0 : 1];
+            const auto &high      = faces[first_low ? 1 : 0];
+            pair.cell_low         = low.first;
+            pair.face_low         = low.second;
+            pair.cell_high        = high.first;
+            pair.face_high        = high.second;
           }
         pairs.push_back(pair);
       }
@@ -120,16 +121,16 @@ namespace PlateOnHalfspace
               continue;
             const auto         face  = pair.cell_low->face(pair.face_low);
             const unsigned int along = 1 - grid->get_joints()[joint].axis;
-            const double       a = std::min(face->vertex(0)[along],
-                                      face->vertex(1)[along]);
-            const double       b = std::max(face->vertex(0)[along],
-                                      face->vertex(1)[along]);
+            const double       a =
+              std::min(face->vertex(0)[along], face->vertex(1)[along]);
+            const double b =
+              std::max(face->vertex(0)[along], face->vertex(1)[along]);
             if (bar[along] < a - tolerance || bar[along] > b + tolerance)
               continue;
             DowelSite site;
-            site.joint    = joint;
-            site.location = bar;
-            site.cell_low = pair.cell_low;
+            site.joint     = joint;
+            site.location  = bar;
+            site.cell_low  = pair.cell_low;
             site.cell_high = pair.cell_high;
             site.reference_low =
               mapping.transform_real_to_unit_cell(pair.cell_low, bar);
@@ -160,8 +161,8 @@ namespace PlateOnHalfspace
     // groups of DoFs joined by tied faces (a corner of four tied slabs
     // joins four), each group's smallest unconstrained DoF its master
     std::map<types::global_dof_index, types::global_dof_index> parent;
-    const std::function<types::global_dof_index(types::global_dof_index)>
-      root = [&](const types::global_dof_index i) {
+    const std::function<types::global_dof_index(types::global_dof_index)> root =
+      [&](const types::global_dof_index i) {
         auto it = parent.find(i);
         if (it == parent.end() || it->second == i)
           return i;
@@ -180,8 +181,7 @@ namespace PlateOnHalfspace
           for (unsigned int k = 0; k < high.size(); ++k)
             if (fe.face_system_to_component_index(i).first ==
                   fe.face_system_to_component_index(k).first &&
-                support[low[i]].distance(support[high[k]]) <=
-                  grid->tolerance())
+                support[low[i]].distance(support[high[k]]) <= grid->tolerance())
               {
                 const auto a = root(low[i]), b = root(high[k]);
                 if (a != b)
@@ -244,17 +244,17 @@ namespace PlateOnHalfspace
     const FiniteElement<2> &fe = dof_handler->get_fe();
     const unsigned int      n  = fe.n_dofs_per_cell();
     // (w_low - w_high)^2 is a quartic along a face: 3 Gauss points
-    const QGauss<1>    rule(3);
-    FEFaceValues<2>    low_values(mapping,
+    const QGauss<1>                      rule(3);
+    FEFaceValues<2>                      low_values(mapping,
                                fe,
                                rule,
                                update_values | update_quadrature_points |
                                  update_JxW_values);
-    FEFaceValues<2>    high_values(mapping,
+    FEFaceValues<2>                      high_values(mapping,
                                 fe,
                                 rule,
                                 update_values | update_quadrature_points);
-    FullMatrix<double> local(2 * n, 2 * n);
+    FullMatrix<double>                   local(2 * n, 2 * n);
     std::vector<types::global_dof_index> dofs(2 * n), high(n);
     std::vector<double>                  jump(2 * n);
     const double k_s = grid->get_joint_parameters().shear_stiffness;
@@ -291,7 +291,7 @@ namespace PlateOnHalfspace
             const unsigned int ql = low_order[q], qh = high_order[q];
             for (unsigned int i = 0; i < n; ++i)
               {
-                jump[i] = low_values.shape_value_component(i, ql, 0);
+                jump[i]     = low_values.shape_value_component(i, ql, 0);
                 jump[n + i] = -high_values.shape_value_component(i, qh, 0);
               }
             add_spring(k_s * low_values.JxW(ql));
@@ -316,23 +316,22 @@ namespace PlateOnHalfspace
   JointCoupling::responses(const Vector<double> &solution,
                            const double          shear_rigidity) const
   {
-    const auto              &joints = grid->get_joints();
+    const auto                &joints = grid->get_joints();
     std::vector<JointResponse> result(joints.size());
     if (joints.empty())
       return result;
     const FiniteElement<2> &fe = dof_handler->get_fe();
     const QGaussLobatto<1>  rule(5);
     const UpdateFlags       flags = update_values | update_gradients |
-                              update_quadrature_points |
-                              update_normal_vectors;
-    FEFaceValues<2>         low_values(mapping, fe, rule, flags);
-    FEFaceValues<2>         high_values(mapping, fe, rule, flags);
-    std::vector<Vector<double>>              low_u(rule.size(), Vector<double>(3)),
+                              update_quadrature_points | update_normal_vectors;
+    FEFaceValues<2>             low_values(mapping, fe, rule, flags);
+    FEFaceValues<2>             high_values(mapping, fe, rule, flags);
+    std::vector<Vector<double>> low_u(rule.size(), Vector<double>(3)),
       high_u(rule.size(), Vector<double>(3));
     std::vector<std::vector<Tensor<1, 2>>> low_grad(
       rule.size(), std::vector<Tensor<1, 2>>(3)),
       high_grad(rule.size(), std::vector<Tensor<1, 2>>(3));
-    const double k_s = grid->get_joint_parameters().shear_stiffness;
+    const double        k_s = grid->get_joint_parameters().shear_stiffness;
     std::vector<double> highest(joints.size(),
                                 -std::numeric_limits<double>::infinity());
 
@@ -376,13 +375,12 @@ namespace PlateOnHalfspace
                   beta[1] = u[2];
                   return shear_rigidity * ((grad[0] - beta) * normal);
                 };
-                shear =
-                  0.5 * std::abs(Qn(low_grad[ql],
-                                    low_u[ql],
-                                    low_values.normal_vector(ql)) -
-                                 Qn(high_grad[qh],
-                                    high_u[qh],
-                                    high_values.normal_vector(qh)));
+                shear = 0.5 * std::abs(Qn(low_grad[ql],
+                                          low_u[ql],
+                                          low_values.normal_vector(ql)) -
+                                       Qn(high_grad[qh],
+                                          high_u[qh],
+                                          high_values.normal_vector(qh)));
               }
             response.max_shear_force =
               std::max(response.max_shear_force, shear);
@@ -392,7 +390,7 @@ namespace PlateOnHalfspace
     std::vector<double> site_force(dowel_sites.size());
     for (unsigned int k = 0; k < dowel_sites.size(); ++k)
       {
-        const DowelSite &site = dowel_sites[k];
+        const DowelSite                     &site = dowel_sites[k];
         std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
         double                               wl = 0, wh = 0;
         site.cell_low->get_dof_indices(dofs);
@@ -427,8 +425,8 @@ namespace PlateOnHalfspace
                 DowelForce dowel;
                 dowel.location = bar;
                 // a reflection across the joint swaps its sides
-                dowel.force = (image[axis] != bar[axis] ? -1. : 1.) *
-                              site_force[k];
+                dowel.force =
+                  (image[axis] != bar[axis] ? -1. : 1.) * site_force[k];
                 dowel.bearing_stress =
                   grid->dowel_bearing_stress(std::abs(dowel.force));
                 result[j].dowels.push_back(dowel);
@@ -440,9 +438,9 @@ namespace PlateOnHalfspace
         }
     for (unsigned int j = 0; j < joints.size(); ++j)
       if (result[j].computed)
-        result[j].lte = (result[j].w_loaded > 0 ?
-                           result[j].w_unloaded / result[j].w_loaded :
-                           std::numeric_limits<double>::quiet_NaN());
+        result[j].lte =
+          (result[j].w_loaded > 0 ? result[j].w_unloaded / result[j].w_loaded :
+                                    std::numeric_limits<double>::quiet_NaN());
 
     // a joint in the mirrored part: its image's response, mirrored
     for (unsigned int j = 0; j < joints.size(); ++j)

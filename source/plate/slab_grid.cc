@@ -37,11 +37,10 @@ namespace PlateOnHalfspace
     if (plate.shape != Parameters::Plate::Shape::slabs)
       {
         // one slab without joints: the whole plate
-        const double extent =
-          (plate.shape == Parameters::Plate::Shape::disk ?
-             plate.radius :
-             std::max(plate.length_x, plate.length_y));
-        point_tolerance = 1e-10 * extent;
+        const double extent = (plate.shape == Parameters::Plate::Shape::disk ?
+                                 plate.radius :
+                                 std::max(plate.length_x, plate.length_y));
+        point_tolerance     = 1e-10 * extent;
         slabs.push_back({Point<2>(-extent, -extent), Point<2>(extent, extent)});
         return;
       }
@@ -59,9 +58,8 @@ namespace PlateOnHalfspace
           lines[axis].push_back(lines[axis].back() + length);
         lines[axis].back() = total / 2;
       }
-    point_tolerance =
-      1e-10 * std::max(lines[0].back() - lines[0].front(),
-                       lines[1].back() - lines[1].front());
+    point_tolerance       = 1e-10 * std::max(lines[0].back() - lines[0].front(),
+                                       lines[1].back() - lines[1].front());
     const unsigned int nx = lines[0].size() - 1, ny = lines[1].size() - 1;
     for (unsigned int j = 0; j < ny; ++j)
       for (unsigned int i = 0; i < nx; ++i)
@@ -73,7 +71,7 @@ namespace PlateOnHalfspace
                                      const unsigned int along) {
       // bars Dowel spacing apart, centred on the joint (EverFE's and
       // ISLAB2000's layout; a joint shorter than the spacing has one bar)
-      const double length = end[along] - start[along];
+      const double       length = end[along] - start[along];
       const unsigned int n =
         std::max(1u,
                  static_cast<unsigned int>(
@@ -83,8 +81,8 @@ namespace PlateOnHalfspace
       std::vector<Point<2>> bars;
       for (unsigned int k = 0; k < n; ++k)
         {
-          Point<2> p  = start;
-          p[along]    = first + k * parameters.dowel_spacing;
+          Point<2> p = start;
+          p[along]   = first + k * parameters.dowel_spacing;
           bars.push_back(p);
         }
       return bars;
@@ -121,6 +119,20 @@ namespace PlateOnHalfspace
         joint.dowels = dowel_positions(joint.start, joint.end, 1 - joint.axis);
   }
 
+  namespace
+  {
+    /** The dowel bar of @p joints as a beam on the concrete's support:
+     *  E I and beta = (K d / (4 E I))^(1/4). */
+    std::pair<double, double>
+    dowel_beam(const Parameters::Joints &joints)
+    {
+      const double d = joints.dowel_diameter;
+      const double EI =
+        joints.dowel_modulus * numbers::PI * std::pow(d, 4) / 64.;
+      return {EI, std::pow(joints.dowel_support_modulus * d / (4. * EI), 0.25)};
+    }
+  } // namespace
+
   double
   SlabGrid::dowel_stiffness() const
   {
@@ -131,32 +143,25 @@ namespace PlateOnHalfspace
     // theta0 = P (1 + beta z) / (2 beta^2 E I); across the opening the bar
     // bends as two cantilevers of z/2 and shears (steel, nu = 0.3, shear
     // factor 10/9 of a circle).
-    const double d     = parameters.dowel_diameter;
-    const double E     = parameters.dowel_modulus;
-    const double z     = parameters.joint_opening;
-    const double I     = numbers::PI * std::pow(d, 4) / 64.;
-    const double A     = numbers::PI * d * d / 4.;
-    const double G     = E / (2. * (1. + 0.3));
-    const double beta  = std::pow(parameters.dowel_support_modulus * d /
-                                   (4. * E * I),
-                                 0.25);
-    const double compliance =
-      (2. + beta * z) / (2. * std::pow(beta, 3) * E * I) +
-      (1. + beta * z) * z / (2. * beta * beta * E * I) +
-      std::pow(z, 3) / (12. * E * I) + 10. / 9. * z / (G * A);
+    const auto [EI, beta] = dowel_beam(parameters);
+    const double d        = parameters.dowel_diameter;
+    const double z        = parameters.joint_opening;
+    const double GA =
+      parameters.dowel_modulus / (2. * (1. + 0.3)) * numbers::PI * d * d / 4.;
+    const double compliance = (2. + beta * z) / (2. * std::pow(beta, 3) * EI) +
+                              (1. + beta * z) * z / (2. * beta * beta * EI) +
+                              std::pow(z, 3) / (12. * EI) + 10. / 9. * z / GA;
     return 1. / compliance;
   }
 
   double
   SlabGrid::dowel_bearing_stress(const double force) const
   {
-    const double d    = parameters.dowel_diameter;
-    const double E    = parameters.dowel_modulus;
-    const double z    = parameters.joint_opening;
-    const double I    = numbers::PI * std::pow(d, 4) / 64.;
-    const double K    = parameters.dowel_support_modulus;
-    const double beta = std::pow(K * d / (4. * E * I), 0.25);
-    return K * force * (2. + beta * z) / (4. * std::pow(beta, 3) * E * I);
+    // K y0, y0 the deflection at the joint face
+    const auto [EI, beta] = dowel_beam(parameters);
+    return parameters.dowel_support_modulus * force *
+           (2. + beta * parameters.joint_opening) /
+           (4. * std::pow(beta, 3) * EI);
   }
 
   unsigned int

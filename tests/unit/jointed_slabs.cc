@@ -52,9 +52,12 @@ namespace
         << lengths_x << "\n set Slab lengths y = " << lengths_y
         << "\n set Thickness = 0.25\n set Young's modulus = 3e7\n"
         << " set Poisson's ratio = 0.15\nend\n"
-        << "subsection Foundation\n" << foundation << "\nend\n"
-        << "subsection Joints\n" << joints << "\nend\n"
-        << "subsection Loads\n" << loads << "\nend\n"
+        << "subsection Foundation\n"
+        << foundation << "\nend\n"
+        << "subsection Joints\n"
+        << joints << "\nend\n"
+        << "subsection Loads\n"
+        << loads << "\nend\n"
         << "subsection Discretization\n set Subdivisions x = " << subdivisions
         << "\n set Subdivisions y = " << subdivisions
         << "\n set Initial refinements = " << refinements << "\nend\n"
@@ -139,8 +142,8 @@ main()
         std::ostringstream joints;
         joints << " set Load transfer = aggregate interlock\n"
                << " set Shear stiffness = " << stiffness;
-        const auto problem = TestTools::run_scene_text(slabs(
-          "4, 4", "3.6", dense_liquid_bonded, joints.str(), tyre, 8, 1));
+        const auto problem = TestTools::run_scene_text(
+          slabs("4, 4", "3.6", dense_liquid_bonded, joints.str(), tyre, 8, 1));
         const double lte = problem->summaries().back().joints[0].lte;
         deallog << "shear stiffness " << stiffness << ": LTE "
                 << std::setprecision(8) << lte << std::endl;
@@ -153,9 +156,16 @@ main()
 
   // 4. tied slabs are one slab
   {
-    const auto one = TestTools::run_scene_text(TestTools::slab_on_dense_liquid(
-      8, 3.6, 0.25, 5e4, "bonded", 16, 8, 1, "subsection Loads\n" + tyre +
-        "\nend\n"));
+    const auto one = TestTools::run_scene_text(
+      TestTools::slab_on_dense_liquid(8,
+                                      3.6,
+                                      0.25,
+                                      5e4,
+                                      "bonded",
+                                      16,
+                                      8,
+                                      1,
+                                      "subsection Loads\n" + tyre + "\nend\n"));
     for (const auto &[lengths_y, n] :
          std::vector<std::pair<std::string, unsigned int>>{{"3.6", 8},
                                                            {"1.8, 1.8", 8}})
@@ -250,21 +260,18 @@ main()
     double largest_difference = 0;
     for (unsigned int j = 0; j < a.joints.size(); ++j)
       {
-        largest_difference =
-          std::max({largest_difference,
-                    std::abs(a.joints[j].max_shear_force -
-                             b.joints[j].max_shear_force) /
-                      force_scale,
-                    std::abs(a.joints[j].w_loaded - b.joints[j].w_loaded) /
-                      w_scale});
+        largest_difference = std::max(
+          {largest_difference,
+           std::abs(a.joints[j].max_shear_force - b.joints[j].max_shear_force) /
+             force_scale,
+           std::abs(a.joints[j].w_loaded - b.joints[j].w_loaded) / w_scale});
         AssertThrow(a.joints[j].dowels.size() == b.joints[j].dowels.size(),
                     ExcMessage("bars missing"));
         for (unsigned int k = 0; k < a.joints[j].dowels.size(); ++k)
-          largest_difference =
-            std::max(largest_difference,
-                     std::abs(a.joints[j].dowels[k].force -
-                              b.joints[j].dowels[k].force) /
-                       force_scale);
+          largest_difference = std::max(largest_difference,
+                                        std::abs(a.joints[j].dowels[k].force -
+                                                 b.joints[j].dowels[k].force) /
+                                          force_scale);
       }
     deallog << "joints: largest difference, quarter against whole, "
             << (largest_difference < 1e-8 ? "below 1e-8" : "ABOVE 1e-8")

@@ -109,12 +109,12 @@ namespace PlateOnHalfspace
       double share;
     };
 
-    MirrorSymmetry                             symmetry;
-    const SlabGrid                            *grid        = nullptr;
-    const DoFHandler<2>                       *dof_handler = nullptr;
-    MappingQ1<2>                               mapping;
-    std::vector<FacePair>                      pairs;
-    std::vector<DowelSite>                     dowel_sites;
+    MirrorSymmetry         symmetry;
+    const SlabGrid        *grid        = nullptr;
+    const DoFHandler<2>   *dof_handler = nullptr;
+    MappingQ1<2>           mapping;
+    std::vector<FacePair>  pairs;
+    std::vector<DowelSite> dowel_sites;
   };
 } // namespace PlateOnHalfspace
 

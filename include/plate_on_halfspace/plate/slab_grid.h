@@ -6,10 +6,10 @@
  * so the driver holds a SlabGrid whatever the scene.
  *
  * The mesh of a grid (plate_mesh.h) is one triangulation whose slabs share
- * no vertex, each slab's index the material id of its cells: the two faces of a joint are boundary faces that lie on each other, each
- * slab has its own plate unknowns, and the joint model (plate/joints.h)
- * couples the facing faces. match_refinement() keeps the faces facing each
- * other through refinement.
+ * no vertex, each slab's index the material id of its cells: the two faces of a
+ * joint are boundary faces that lie on each other, each slab has its own plate
+ * unknowns, and the joint model (plate/joints.h) couples the facing faces.
+ * match_refinement() keeps the faces facing each other through refinement.
  */
 #ifndef plate_on_halfspace_plate_slab_grid_h
 #define plate_on_halfspace_plate_slab_grid_h
@@ -48,7 +48,7 @@ namespace PlateOnHalfspace
     unsigned int axis;
     Point<2>     start, end;
     /** The slabs on its lower and its upper side along the axis. */
-    unsigned int slab_low, slab_high;
+    unsigned int                     slab_low, slab_high;
     Parameters::Joints::LoadTransfer transfer;
     /** Dowels: the bars' positions, spaced Dowel spacing, centred. */
     std::vector<Point<2>> dowels;
@@ -105,9 +105,9 @@ namespace PlateOnHalfspace
     /**
      * Mark the boundary faces of @p triangulation on a joint with
      * joint_boundary_id. A joint on a mirror plane (a face marked by
-     * cut_to_computed_part()) stays a mirror plane if it is tied (the slab is continuous there) and becomes
-     * two free edges otherwise: a symmetric solution moves both sides alike,
-     * so the joint carries no force.
+     * cut_to_computed_part()) stays a mirror plane if it is tied (the slab is
+     * continuous there) and becomes two free edges otherwise: a symmetric
+     * solution moves both sides alike, so the joint carries no force.
      */
     void
     mark_joint_faces(Triangulation<2> &triangulation) const;
