@@ -4,14 +4,17 @@
 
 #include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
+#include <plate_on_halfspace/plate/field_extrema.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/refinement/interface.h>
 
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <numeric>
+#include <sstream>
 
 namespace PlateOnHalfspace
 {
@@ -34,6 +37,7 @@ namespace PlateOnHalfspace
       {
         make_mesh();
         setup_plate();
+        check_sweep_positions();
         for (unsigned int cycle = 0; cycle < parameters.adaptivity.cycles;
              ++cycle)
           {
@@ -62,6 +66,8 @@ namespace PlateOnHalfspace
                 break;
               }
           }
+        if (parameters.loads.sweep_steps > 0)
+          run_sweep();
       }
     catch (...)
       {
@@ -117,6 +123,42 @@ namespace PlateOnHalfspace
     Timer              setup_timer;
     mindlin_plate->setup(triangulation);
     setup_time_s = setup_timer.wall_time();
+  }
+
+  void
+  PlateOnHalfspaceProblem::check_sweep_positions()
+  {
+    // Every position's loads must lie on the plate: found before the
+    // first cycle writes anything.
+    const Parameters::Loads &loads = parameters.loads;
+    for (unsigned int step = 0; step < loads.sweep_steps; ++step)
+      {
+        const Point<2> offset = loads.sweep_position(step);
+        try
+          {
+            mindlin_plate->assemble_loads(
+              computed_loads.with_axles_moved(offset),
+              parameters.plate.unit_weight * parameters.plate.thickness);
+          }
+        catch (const ExceptionBase &e)
+          {
+            std::ostringstream info;
+            e.print_info(info);
+            std::string reason;
+            for (const char c : info.str())
+              if (std::isspace(static_cast<unsigned char>(c)))
+                {
+                  if (!reason.empty() && reason.back() != ' ')
+                    reason += ' ';
+                }
+              else
+                reason += c;
+            std::ostringstream where;
+            where << "Loads/Sweep: at position " << step << " (offset "
+                  << offset[0] << ", " << offset[1] << "): ";
+            AssertThrow(false, ExcMessage(where.str() + reason));
+          }
+      }
   }
 
   bool
@@ -310,6 +352,40 @@ namespace PlateOnHalfspace
   }
 
   void
+  PlateOnHalfspaceProblem::solve_standing_loads()
+  {
+    // The joints' LTE is that of the deflection the moving loads (patches,
+    // axles, point loads) add to the plate under its standing loads
+    // (weight, temperature, uniform pressure), as a falling-weight test
+    // measures it (doc/formulation.md, "Joints"). Only a grid with joints
+    // needs it; without standing loads it is zero.
+    standing_solution.reinit(0);
+    if (slab_grid->get_joints().empty())
+      return;
+    Parameters::Loads standing = computed_loads;
+    standing.rectangular_patches.clear();
+    standing.circular_patches.clear();
+    standing.axles.clear();
+    standing.point_loads.clear();
+    standing.sweep_steps = 0;
+    const double self_weight =
+      parameters.plate.unit_weight * parameters.plate.thickness;
+    const bool has_load   = standing.uniform_pressure + self_weight != 0;
+    const bool has_moment = mindlin_plate->get_thermal_load().moment != 0;
+    // A weightless curled plate on a tensionless soil is not held: the
+    // moving loads alone hold it, and its deflections are theirs.
+    if (!has_load && (!has_moment || parameters.foundation.tensionless))
+      return;
+    mindlin_plate->assemble_loads(standing, self_weight);
+    const auto solver = create_contact_solver(
+      parameters, parameters.contact_solver(summary.n_foundation_dofs), 0, log);
+    standing_solution =
+      solver->solve(*mindlin_plate, *foundation_operator, contact.active_set)
+        .plate_solution;
+    mindlin_plate->assemble_loads(computed_loads, self_weight);
+  }
+
+  void
   PlateOnHalfspaceProblem::postprocess()
   {
     TimerOutput::Scope scope(timer_output, "output");
@@ -318,8 +394,13 @@ namespace PlateOnHalfspace
     foundation_operator->nodal_forces(contact.pressure_coefficients, forces);
     summary.contact_force =
       symmetry.n_copies() * std::accumulate(forces.begin(), forces.end(), 0.);
-    output->evaluate(
-      *mindlin_plate, contact.plate_solution, pressure_field, contact, summary);
+    solve_standing_loads();
+    output->evaluate(*mindlin_plate,
+                     contact.plate_solution,
+                     pressure_field,
+                     contact,
+                     summary,
+                     standing_solution);
     summary.foundation_storage = foundation_operator->storage_name();
     summary.foundation_memory_bytes =
       foundation_operator->memory_consumption() + contact.factor_memory_bytes;
@@ -340,6 +421,100 @@ namespace PlateOnHalfspace
                                    ") is not on the plate."));
           }
       }
+  }
+
+  void
+  PlateOnHalfspaceProblem::run_sweep()
+  {
+    // The last mesh, foundation operator and contact solver serve every
+    // position (doc/formulation.md, "Critical position"): a bonded scene's
+    // solver solves each load on its factorisation, a tensionless one
+    // starts each position's active set from the last.
+    TimerOutput::Scope       scope(timer_output, "sweep");
+    const Parameters::Loads &loads = parameters.loads;
+    const double             self_weight =
+      parameters.plate.unit_weight * parameters.plate.thickness;
+    std::vector<bool>     warm_start = contact.active_set;
+    std::vector<SweepRow> rows;
+    const Vector<double>  scene_load = mindlin_plate->get_load_vector();
+    for (unsigned int step = 0; step < loads.sweep_steps; ++step)
+      {
+        Timer          phase;
+        const Point<2> offset = loads.sweep_position(step);
+        mindlin_plate->assemble_loads(computed_loads.with_axles_moved(offset),
+                                      self_weight);
+        ContactState state;
+        if (parameters.foundation.tensionless)
+          {
+            state = contact_solver->solve(*mindlin_plate,
+                                          *foundation_operator,
+                                          warm_start);
+            AssertThrow(state.converged,
+                        ExcMessage("Loads/Sweep: the contact set did not "
+                                   "settle within Contact/Max iterations "
+                                   "at position " +
+                                   std::to_string(step) + "."));
+            warm_start = state.active_set;
+          }
+        else
+          {
+            state = contact_solver->solve_linearised(
+              mindlin_plate->get_load_vector());
+            state.in_contact = contact.in_contact;
+          }
+        SweepRow row;
+        row.position = offset;
+        const FieldExtremum w =
+          field_maximum(*mindlin_plate, state.plate_solution, PlateQuantity::w);
+        const FieldExtremum bottom =
+          field_maximum(*mindlin_plate,
+                        state.plate_solution,
+                        PlateQuantity::principal_stress_bottom);
+        const FieldExtremum top =
+          field_maximum(*mindlin_plate,
+                        state.plate_solution,
+                        PlateQuantity::principal_stress_top);
+        row.max_w                     = w.value;
+        row.max_w_at                  = w.location;
+        row.max_stress_bottom         = bottom.value;
+        row.max_stress_bottom_at      = bottom.location;
+        row.max_stress_top            = top.value;
+        row.max_stress_top_at         = top.location;
+        const FoundationSpace &space  = mindlin_plate->get_foundation_space();
+        const auto [area, in_contact] = space.area_in_contact(state.in_contact);
+        row.contact_area_fraction     = in_contact / area;
+        row.min_lte = std::numeric_limits<double>::quiet_NaN();
+        const std::vector<JointResponse> joints =
+          mindlin_plate->joint_responses(state.plate_solution,
+                                         standing_solution);
+        // the LTE of the joint the axles load most (the largest deflection
+        // they add there); far joints' ratios of small deflections say
+        // nothing of the transfer
+        double most_loaded = 0;
+        for (unsigned int j = 0; j < joints.size(); ++j)
+          if (std::isfinite(joints[j].lte) && joints[j].w_loaded > most_loaded)
+            {
+              most_loaded       = joints[j].w_loaded;
+              row.min_lte       = joints[j].lte;
+              row.min_lte_joint = j;
+            }
+        row.contact_iterations = state.iterations;
+        row.wall_time_s        = phase.wall_time();
+        rows.push_back(row);
+        if (parameters.output.verbosity > 0)
+          log << std::defaultfloat << std::setprecision(6) << "sweep " << step
+              << " at (" << offset[0] << ", " << offset[1]
+              << "): max s1 bottom " << row.max_stress_bottom << ", top "
+              << row.max_stress_top << ", " << row.contact_iterations
+              << " contact iterations" << std::endl;
+      }
+    mindlin_plate->set_load_vector(scene_load);
+    output->write_sweep(rows);
+    bool all_converged = true;
+    for (const auto &s : cycle_summaries)
+      all_converged = all_converged && s.converged;
+    output->write_summary(
+      cycle_summaries, symmetry.name(), all_converged, *slab_grid, rows);
   }
 
   void

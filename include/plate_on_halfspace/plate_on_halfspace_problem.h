@@ -148,6 +148,20 @@ namespace PlateOnHalfspace
     void
     add_convergence_row(const CycleSummary &summary);
 
+    /** standing_solution: the plate under its weight, temperature and
+     *  uniform pressure alone, for the joints' LTE. */
+    void
+    solve_standing_loads();
+
+    /** Every position of Loads/Sweep has its loads on the plate. */
+    void
+    check_sweep_positions();
+
+    /** Loads/Sweep: move the axles along the path on the last mesh and
+     *  write the envelope (sweep.csv, summary.json "sweep"). */
+    void
+    run_sweep();
+
     bool
     run_checks() const;
 
@@ -173,6 +187,9 @@ namespace PlateOnHalfspace
     ContactState      contact;
     /** q as a field on the plate's w-space (for point values). */
     Vector<double> pressure_field;
+    /** The plate under its standing loads alone (solve_standing_loads()),
+     *  empty where the joints' LTE needs none. */
+    Vector<double> standing_solution;
 
     /** The cycle being solved and the summaries of all cycles so far. */
     CycleSummary                   summary;

@@ -194,7 +194,8 @@ namespace PlateOnHalfspace
                           const Vector<double> &solution,
                           const Vector<double> &pressure_field,
                           const ContactState   &contact,
-                          CycleSummary         &summary) const
+                          CycleSummary         &summary,
+                          const Vector<double> &standing) const
   {
     // Peaks of the finite element fields over the plate, each with its
     // location: the extremes of the fields, not of samples, so a probe's
@@ -231,7 +232,7 @@ namespace PlateOnHalfspace
     // per slab and per joint of a grid of slabs; a slab of the mirrored
     // part reads its image
     summary.slabs.clear();
-    summary.joints = plate.joint_responses(solution);
+    summary.joints = plate.joint_responses(solution, standing);
     if (const SlabGrid *grid = plate.get_slab_grid();
         grid != nullptr && grid->n_slabs() > 1)
       {
@@ -325,7 +326,8 @@ namespace PlateOnHalfspace
   ResultsOutput::write_summary(const std::vector<CycleSummary> &cycles,
                                const std::string               &symmetry,
                                const bool                       converged,
-                               const SlabGrid                  &slab_grid) const
+                               const SlabGrid                  &slab_grid,
+                               const std::vector<SweepRow>     &sweep) const
   {
     nlohmann::ordered_json summary;
     summary["converged"] = converged;
@@ -494,8 +496,104 @@ namespace PlateOnHalfspace
                                           {"relative_error", goal.relative_error},
                                           {"met", goal.target_met}};
       }
+    if (!sweep.empty())
+      {
+        // the envelope: each extreme with the position where it occurs
+        const auto extreme = [&](const auto &value, const bool largest) {
+          unsigned int best = sweep.size();
+          for (unsigned int k = 0; k < sweep.size(); ++k)
+            if (std::isfinite(value(sweep[k])) &&
+                (best == sweep.size() ||
+                 (largest ? value(sweep[k]) > value(sweep[best]) :
+                            value(sweep[k]) < value(sweep[best]))))
+              best = k;
+          return best;
+        };
+        nlohmann::ordered_json envelope;
+        const auto             entry = [&](const std::string &name,
+                               const unsigned int k,
+                               const double       value,
+                               const Point<2>    &at) {
+          if (k == sweep.size())
+            {
+              envelope[name] = nullptr;
+              return;
+            }
+          envelope[name] = {{"value", value},
+                            {"step", k},
+                            {"position",
+                             {sweep[k].position[0], sweep[k].position[1]}},
+                            {"at", {at[0], at[1]}}};
+        };
+        unsigned int k =
+          extreme([](const SweepRow &r) { return r.max_w; }, true);
+        entry("max_w", k, sweep[k].max_w, sweep[k].max_w_at);
+        k =
+          extreme([](const SweepRow &r) { return r.max_stress_bottom; }, true);
+        entry("max_principal_stress_bottom",
+              k,
+              sweep[k].max_stress_bottom,
+              sweep[k].max_stress_bottom_at);
+        k = extreme([](const SweepRow &r) { return r.max_stress_top; }, true);
+        entry("max_principal_stress_top",
+              k,
+              sweep[k].max_stress_top,
+              sweep[k].max_stress_top_at);
+        k = extreme([](const SweepRow &r) { return r.min_lte; }, false);
+        if (k < sweep.size())
+          {
+            const Joint &joint = slab_grid.get_joints()[sweep[k].min_lte_joint];
+            entry("min_lte",
+                  k,
+                  sweep[k].min_lte,
+                  joint.start + 0.5 * (joint.end - joint.start));
+            envelope["min_lte"]["joint"] = sweep[k].min_lte_joint;
+          }
+        else
+          envelope["min_lte"] = nullptr;
+        k = extreme([](const SweepRow &r) { return r.contact_area_fraction; },
+                    false);
+        entry("min_contact_area_fraction",
+              k,
+              sweep[k].contact_area_fraction,
+              sweep[k].position);
+        envelope["min_contact_area_fraction"].erase("at");
+        summary["sweep"] = {
+          {"steps", sweep.size()},
+          {"start", {sweep.front().position[0], sweep.front().position[1]}},
+          {"end", {sweep.back().position[0], sweep.back().position[1]}},
+          {"envelope", envelope}};
+      }
     write_file("summary.json", summary.dump(2) + "\n");
   }
+
+  void
+  ResultsOutput::write_sweep(const std::vector<SweepRow> &sweep) const
+  {
+    std::ostringstream csv;
+    csv << "step,x,y,max_w,max_w_x,max_w_y,max_s1_bottom,max_s1_bottom_x,"
+           "max_s1_bottom_y,max_s1_top,max_s1_top_x,max_s1_top_y,"
+           "contact_area_fraction,min_lte,min_lte_joint,contact_iterations,"
+           "wall_time_s\n"
+        << std::setprecision(10);
+    for (unsigned int k = 0; k < sweep.size(); ++k)
+      {
+        const SweepRow &r = sweep[k];
+        csv << k << ',' << r.position[0] << ',' << r.position[1] << ','
+            << r.max_w << ',' << r.max_w_at[0] << ',' << r.max_w_at[1] << ','
+            << r.max_stress_bottom << ',' << r.max_stress_bottom_at[0] << ','
+            << r.max_stress_bottom_at[1] << ',' << r.max_stress_top << ','
+            << r.max_stress_top_at[0] << ',' << r.max_stress_top_at[1] << ','
+            << r.contact_area_fraction << ',';
+        if (std::isfinite(r.min_lte))
+          csv << r.min_lte << ',' << r.min_lte_joint;
+        else
+          csv << ',';
+        csv << ',' << r.contact_iterations << ',' << r.wall_time_s << '\n';
+      }
+    write_file("sweep.csv", csv.str());
+  }
+
 
   void
   ResultsOutput::write_profile(const unsigned int    cycle,

@@ -314,7 +314,8 @@ namespace PlateOnHalfspace
 
   std::vector<JointResponse>
   JointCoupling::responses(const Vector<double> &solution,
-                           const double          shear_rigidity) const
+                           const double          shear_rigidity,
+                           const Vector<double> &standing) const
   {
     const auto                &joints = grid->get_joints();
     std::vector<JointResponse> result(joints.size());
@@ -331,6 +332,9 @@ namespace PlateOnHalfspace
     std::vector<std::vector<Tensor<1, 2>>> low_grad(
       rule.size(), std::vector<Tensor<1, 2>>(3)),
       high_grad(rule.size(), std::vector<Tensor<1, 2>>(3));
+    // zero: the deflections themselves
+    std::vector<Vector<double>> low_standing(rule.size(), Vector<double>(3)),
+      high_standing(rule.size(), Vector<double>(3));
     const double        k_s = grid->get_joint_parameters().shear_stiffness;
     std::vector<double> highest(joints.size(),
                                 -std::numeric_limits<double>::infinity());
@@ -346,12 +350,18 @@ namespace PlateOnHalfspace
         high_values.get_function_values(solution, high_u);
         low_values.get_function_gradients(solution, low_grad);
         high_values.get_function_gradients(solution, high_grad);
+        if (standing.size() == solution.size())
+          {
+            low_values.get_function_values(standing, low_standing);
+            high_values.get_function_values(standing, high_standing);
+          }
         const auto low_order  = order_along(low_values, 1 - joint.axis);
         const auto high_order = order_along(high_values, 1 - joint.axis);
         for (unsigned int q = 0; q < rule.size(); ++q)
           {
             const unsigned int ql = low_order[q], qh = high_order[q];
-            const double       wl = low_u[ql][0], wh = high_u[qh][0];
+            const double       wl = low_u[ql][0] - low_standing[ql][0],
+                         wh       = high_u[qh][0] - high_standing[qh][0];
             if (std::max(wl, wh) > highest[pair.joint])
               {
                 highest[pair.joint] = std::max(wl, wh);
@@ -361,7 +371,7 @@ namespace PlateOnHalfspace
               }
             double shear = 0;
             if (joint.transfer == LoadTransfer::aggregate_interlock)
-              shear = k_s * std::abs(wl - wh);
+              shear = k_s * std::abs(low_u[ql][0] - high_u[qh][0]);
             else if (joint.transfer == LoadTransfer::tied &&
                      pair.cell_low != pair.cell_high)
               {

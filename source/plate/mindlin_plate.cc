@@ -104,11 +104,12 @@ namespace PlateOnHalfspace
   }
 
   std::vector<JointResponse>
-  MindlinPlate::joint_responses(const Vector<double> &solution) const
+  MindlinPlate::joint_responses(const Vector<double> &solution,
+                                const Vector<double> &standing) const
   {
     if (!slab_grid)
       return {};
-    return joint_coupling.responses(solution, shear_rigidity());
+    return joint_coupling.responses(solution, shear_rigidity(), standing);
   }
 
   void

@@ -225,6 +225,16 @@ namespace PlateOnHalfspace
     symmetry.tolerance = 1e-10 * mesh_extent(coarse_mesh);
     if (requested == "none")
       return symmetry;
+    // a sweep moves the axles off any plane of the first position
+    if (parameters.loads.sweep_steps > 0)
+      {
+        AssertThrow(requested == "auto",
+                    ExcMessage("Discretization/Symmetry = " + requested +
+                               ": Loads/Sweep moves the axles, so the scene "
+                               "is not symmetric at every position. Use "
+                               "auto or none."));
+        return symmetry;
+      }
     const double tolerance = symmetry.tolerance;
     for (const unsigned int axis : {0u, 1u})
       {

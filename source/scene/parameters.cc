@@ -575,7 +575,40 @@ namespace PlateOnHalfspace
           "travel, load the group's total load and the tyre pressure (both > "
           "0). Each tyre is a circular patch of area load/(tyres * "
           "pressure).");
+      prm.declare_entry(
+        "Sweep",
+        "",
+        Patterns::Anything(),
+        "x1,y1,x2,y2,steps: after the last cycle, move every axle group by "
+        "the offsets from (x1,y1) to (x2,y2) in steps >= 2 equal steps on "
+        "the last mesh and report the envelope (sweep.csv, summary.json "
+        "\"sweep\"); empty: no sweep. Needs Loads/Axles.");
       prm.leave_subsection();
+    }
+
+    Point<2>
+    Loads::sweep_position(const unsigned int step) const
+    {
+      return sweep_start +
+             (sweep_end - sweep_start) *
+               (sweep_steps > 1 ? step / double(sweep_steps - 1) : 0.);
+    }
+
+    Loads
+    Loads::with_axles_moved(const Tensor<1, 2> &offset) const
+    {
+      Loads        moved   = *this;
+      unsigned int n_tyres = 0;
+      for (const AxleGroup &group : axles)
+        n_tyres += AxleGroup::tyre_layout(group.type).size();
+      moved.circular_patches.resize(circular_patches.size() - n_tyres);
+      for (unsigned int g = 0; g < axles.size(); ++g)
+        {
+          moved.axles[g].centre += offset;
+          for (const CircularPatch &tyre : moved.axles[g].tyre_patches(g + 1))
+            moved.circular_patches.push_back(tyre);
+        }
+      return moved;
     }
 
     void
@@ -658,7 +691,27 @@ namespace PlateOnHalfspace
           for (const CircularPatch &tyre : group.tyre_patches(axles.size()))
             circular_patches.push_back(tyre);
         }
+      sweep_steps      = 0;
+      const auto sweep = parse_number_list(prm.get("Sweep"),
+                                           5,
+                                           "Loads/Sweep",
+                                           "x1,y1,x2,y2,steps");
       prm.leave_subsection();
+      require(sweep.size() <= 1,
+              "Loads/Sweep takes one path x1,y1,x2,y2,steps (got " +
+                std::to_string(sweep.size()) + ").");
+      if (sweep.size() == 1)
+        {
+          const std::vector<double> &v = sweep[0];
+          require(v[4] == std::floor(v[4]) && v[4] >= 2 && v[4] <= 1000,
+                  "Loads/Sweep: steps must be a whole number in [2, 1000]" +
+                    got(v[4]) + ".");
+          require(!axles.empty(),
+                  "Loads/Sweep moves the axle groups: set Loads/Axles.");
+          sweep_start = Point<2>(v[0], v[1]);
+          sweep_end   = Point<2>(v[2], v[3]);
+          sweep_steps = static_cast<unsigned int>(v[4]);
+        }
     }
 
     void

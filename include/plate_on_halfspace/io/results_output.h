@@ -117,6 +117,22 @@ namespace PlateOnHalfspace
     Goal goal;
   };
 
+  /** One position of Loads/Sweep (doc/outputs.md, "sweep.csv"). */
+  struct SweepRow
+  {
+    /** The offset of every axle group at this position. */
+    Point<2> position;
+    double   max_w = 0, max_stress_bottom = 0, max_stress_top = 0;
+    Point<2> max_w_at, max_stress_bottom_at, max_stress_top_at;
+    double   contact_area_fraction = 0;
+    /** The LTE of the joint the axles load most (the largest w_loaded;
+     *  NaN without joints) and that joint's index. */
+    double       min_lte            = 0;
+    unsigned int min_lte_joint      = 0;
+    unsigned int contact_iterations = 0;
+    double       wall_time_s        = 0;
+  };
+
   /**
    * Evaluates a solved cycle (fields, extremes, points) and writes the result
    * files. Every file is written to a temporary name and renamed, so no file
@@ -154,14 +170,17 @@ namespace PlateOnHalfspace
      * interpolated in the w-space), Mx, My and the larger principal
      * moment: the extremes of the finite element fields over the plate
      * with their locations (plate/field_extrema.h); the contact area, the
-     * counts of nodes in contact and tensile, and the contact measures.
+     * counts of nodes in contact and tensile, and the contact measures;
+     * per slab and joint of a slab grid, the joints' LTE relative to
+     * @p standing (the plate under its standing loads; empty: none).
      */
     void
     evaluate(const MindlinPlate   &plate,
              const Vector<double> &solution,
              const Vector<double> &pressure_field,
              const ContactState   &contact,
-             CycleSummary         &summary) const;
+             CycleSummary         &summary,
+             const Vector<double> &standing = Vector<double>()) const;
 
     /** w, q, Mx, My at @p x (q from the FE pressure field). */
     PointValues
@@ -171,12 +190,18 @@ namespace PlateOnHalfspace
                  const Point<2>       &x) const;
 
     /** summary.json over all cycles so far; @p slab_grid names the slabs
-     *  and joints of the cycles' per-slab and per-joint results. */
+     *  and joints of the cycles' per-slab and per-joint results; a
+     *  non-empty @p sweep adds its envelope. */
     void
     write_summary(const std::vector<CycleSummary> &cycles,
                   const std::string               &symmetry,
                   const bool                       converged,
-                  const SlabGrid                  &slab_grid) const;
+                  const SlabGrid                  &slab_grid,
+                  const std::vector<SweepRow>     &sweep = {}) const;
+
+    /** sweep.csv: one row per position of Loads/Sweep. */
+    void
+    write_sweep(const std::vector<SweepRow> &sweep) const;
 
     /** profile-NN.csv along a line (points off the plate are skipped). */
     void

@@ -84,11 +84,16 @@ namespace PlateOnHalfspace
     /**
      * The response of every joint of the grid to @p solution (full DoF
      * vector, constraints distributed) of a plate with shear rigidity
-     * @p shear_rigidity.
+     * @p shear_rigidity. The LTE and w_loaded, w_unloaded are those of the
+     * deflection the moving loads add to @p standing, the plate under its
+     * standing loads alone (weight, temperature, uniform pressure), as a
+     * falling-weight test measures them; empty: the deflections
+     * themselves. The forces are those of @p solution.
      */
     std::vector<JointResponse>
     responses(const Vector<double> &solution,
-              const double          shear_rigidity) const;
+              const double          shear_rigidity,
+              const Vector<double> &standing = Vector<double>()) const;
 
   private:
     struct FacePair

@@ -135,9 +135,12 @@ namespace PlateOnHalfspace
     }
 
     /** What each joint of the slab grid carries in @p solution (full DoF
-     *  vector, constraints distributed); empty without joints. */
+     *  vector, constraints distributed), its LTE of the deflections
+     *  relative to @p standing (JointCoupling::responses()); empty without
+     *  joints. */
     std::vector<JointResponse>
-    joint_responses(const Vector<double> &solution) const;
+    joint_responses(const Vector<double> &solution,
+                    const Vector<double> &standing = Vector<double>()) const;
 
     /**
      * The temperature through the thickness (thermal_load.h): its moment

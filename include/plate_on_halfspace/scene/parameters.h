@@ -189,6 +189,19 @@ namespace PlateOnHalfspace
       /** Loads/Axles as written (their tyres are in circular_patches). */
       std::vector<AxleGroup> axles;
       std::vector<PointLoad> point_loads;
+      /** Loads/Sweep: the axles move along [sweep_start, sweep_end] in
+       *  sweep_steps positions (0: no sweep). */
+      Point<2>     sweep_start, sweep_end;
+      unsigned int sweep_steps = 0;
+
+      /** Position @p step of the sweep, the offset added to every axle. */
+      Point<2>
+      sweep_position(const unsigned int step) const;
+
+      /** These loads with every axle group moved by @p offset (the other
+       *  patches, point loads and pressures stay). */
+      Loads
+      with_axles_moved(const Tensor<1, 2> &offset) const;
 
       static void
       declare_parameters(ParameterHandler &prm);
