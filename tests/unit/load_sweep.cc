@@ -39,7 +39,8 @@ namespace
         << "subsection Plate\n set Shape = slabs\n set Slab lengths x = 4, 4\n"
         << " set Slab lengths y = 3.6\n set Thickness = 0.25\n"
         << " set Young's modulus = 3e7\n set Poisson's ratio = 0.15\nend\n"
-        << "subsection Foundation\n" << foundation << "\nend\n"
+        << "subsection Foundation\n"
+        << foundation << "\nend\n"
         << "subsection Joints\n set Load transfer = dowels\nend\n"
         << "subsection Loads\n set Axles = single dual, " << axle_x
         << ", 0, 0, 80, 700\nend\n"
@@ -74,9 +75,11 @@ namespace
           const std::string &extra,
           const double       tolerance)
   {
-    TestTools::run_scene_text(
-      scene(foundation, "0", extra + "subsection Loads\n set Sweep = -1.5, 0, "
-                                     "1.5, 0, 5\nend\n"));
+    TestTools::run_scene_text(scene(foundation,
+                                    "0",
+                                    extra +
+                                      "subsection Loads\n set Sweep = -1.5, 0, "
+                                      "1.5, 0, 5\nend\n"));
     const auto           rows = read_sweep_csv();
     std::ifstream        file("results/summary.json");
     const nlohmann::json summary = nlohmann::json::parse(file);
@@ -85,7 +88,7 @@ namespace
     double largest_difference = 0;
     for (const unsigned int step : {0u, 1u, 3u, 4u})
       {
-        const double x = rows[step][1];
+        const double       x = rows[step][1];
         std::ostringstream axle;
         axle << x;
         const auto single =
@@ -107,8 +110,8 @@ namespace
                 ExcMessage(name + ": the sweep differs from single runs"));
 
     // the envelope names the largest bottom stress and its position
-    const auto &envelope = summary["sweep"]["envelope"];
-    unsigned int best = 0;
+    const auto  &envelope = summary["sweep"]["envelope"];
+    unsigned int best     = 0;
     for (unsigned int k = 1; k < rows.size(); ++k)
       if (rows[k][6] > rows[best][6])
         best = k;
@@ -116,15 +119,14 @@ namespace
       envelope["max_principal_stress_bottom"]["step"].get<unsigned int>();
     const double value =
       envelope["max_principal_stress_bottom"]["value"].get<double>();
-    AssertThrow(std::abs(value - rows[best][6]) <= 1e-9 * rows[best][6] &&
-                  std::abs(rows[step][6] - rows[best][6]) <=
-                    1e-9 * rows[best][6] &&
-                  envelope["max_principal_stress_bottom"]["position"][0]
-                      .get<double>() == rows[step][1],
-                ExcMessage("the envelope is not the column's largest"));
+    AssertThrow(
+      std::abs(value - rows[best][6]) <= 1e-9 * rows[best][6] &&
+        std::abs(rows[step][6] - rows[best][6]) <= 1e-9 * rows[best][6] &&
+        envelope["max_principal_stress_bottom"]["position"][0].get<double>() ==
+          rows[step][1],
+      ExcMessage("the envelope is not the column's largest"));
     deallog << name << ": largest bottom stress " << rows[best][6]
-            << " with the axle at x = " << std::abs(rows[best][1])
-            << std::endl;
+            << " with the axle at x = " << std::abs(rows[best][1]) << std::endl;
   }
 } // namespace
 
