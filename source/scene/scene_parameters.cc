@@ -104,6 +104,17 @@ namespace PlateOnHalfspace
               "galerkin for Plate/Shape = disk.");
     if (foundation.model == Parameters::Foundation::Model::dense_liquid)
       {
+        // Below this the soil no longer holds the plate in any digit that
+        // the flexibility 1/k and its products can carry (tests/unit/
+        // temperature_curling's k -> 0 limit uses k t / E = 8e-12).
+        const double smallest = 1e-15 * plate.youngs_modulus / plate.thickness;
+        std::ostringstream limit;
+        limit << smallest << " for this plate (got "
+              << foundation.subgrade_modulus << ")";
+        require(foundation.subgrade_modulus >= smallest,
+                "Foundation/Modulus of subgrade reaction must be at least "
+                "1e-15 E/t = " +
+                  limit.str() + ": a softer soil does not hold the plate.");
         // The dense liquid is a sparse operator: nothing may densify it,
         // and the paper's element exclusion and collocation belong to the
         // half-space (doc/formulation.md, "Dense-liquid foundation").

@@ -2,7 +2,8 @@
 """Fuzz-style test of the executable: randomly perturbed versions
 of a small valid scene (tests/app/bad_input_base.prm made tensionless with a
 patch and a point load, every second one on a dense liquid instead of the
-half-space), a fixed seed, each run with a time limit. Every run
+half-space, every third one two jointed slabs with an axle swept across the
+joint), a fixed seed, each run with a time limit. Every run
 must either succeed (status 0, summary.json without NaN and without null
 except a goal's "change" on the first cycle and "dwr" of the contact area,
 "converged": true) or fail cleanly (status 1, exactly one "Error: ..." line on stderr
@@ -80,7 +81,18 @@ end
 numbers = ["0", "-1", "1e-300", "1e300", "nan", "inf", "-inf", "x", "", "1,2",
            "0.5", "0.499", "1e-6", "1e9", "2.5", "-0.2", "3", "1e999"]
 choices = {
-    "Shape": ["rectangle", "disk", "mesh file", "square", ""],
+    "Shape": ["rectangle", "disk", "mesh file", "square", "slabs", ""],
+    "Slab lengths x": ["1, 1", "2", "1, 0", "1, -1", "1, x", "", "0.5, 0.5, 0.5, 0.5"],
+    "Slab lengths y": ["1.5", "0.75, 0.75", "0", "nan", ""],
+    "Load transfer": ["free", "aggregate interlock", "dowels", "tied", "welded", ""],
+    "Longitudinal load transfer": ["same", "free", "dowels", "tied", "x"],
+    "Shear stiffness": ["1e6", "0", "-1", "1e300", "nan", "x"],
+    "Dowel spacing": ["0.3", "0", "5", "-0.3", "x"],
+    "Joint opening": ["0.006", "0", "-1", "1"],
+    "Axles": ["", "single, 0, 0, 0, 40, 700", "tandem, 0, 0, 90, 80, 700",
+              "single dual, 0, 0, 0", "truck, 0, 0, 0, 40, 700", "single, 9, 9, 0, 40, 700"],
+    "Sweep": ["", "-0.3, 0, 0.3, 0, 3", "-0.3, 0, 0.3, 0, 1", "0, 0, 5, 0, 3",
+              "-0.3, 0, 0.3, 0", "0, 0, 0, 0, 2.5"],
     "Contact": ["bonded", "tensionless", "glued"],
     "Element": ["serendipity", "heterosis", "lagrange", "quad"],
     "Shear integration": ["auto", "reduced", "selective", "full", "none"],
@@ -113,10 +125,14 @@ choices = {
 
 
 def unexpected_nulls(value, key=None, parent=None):
-    """The keys holding null in a summary, except the goal block's
-    documented ones (doc/outputs.md)."""
+    """The keys holding null in a summary, except the documented ones
+    (doc/outputs.md): the goal block's change and dwr, a joint's lte where
+    neither side deflects downward, and the sweep envelope's min_lte then."""
     if value is None:
-        return [] if parent == "goal" and key in ("change", "dwr") else [key]
+        documented = ((parent == "goal" and key in ("change", "dwr")) or
+                      (parent == "joints" and key == "lte") or
+                      (parent == "envelope" and key == "min_lte"))
+        return [] if documented else [key]
     if isinstance(value, dict):
         return [n for k, v in value.items()
                 for n in unexpected_nulls(v, k, key)]
@@ -128,6 +144,20 @@ def unexpected_nulls(value, key=None, parent=None):
 dense_liquid = base.replace("Model           = half-space",
                             "Model           = dense liquid").replace(
     "Modulus of subgrade reaction = 0", "Modulus of subgrade reaction = 2e4")
+
+
+jointed = base.replace("  set Shape           = rectangle",
+                       "  set Shape           = slabs\n  set Slab lengths x  = 1, 1\n"
+                       "  set Slab lengths y  = 1.5").replace(
+    "subsection Temperature",
+    "subsection Joints\n  set Load transfer = dowels\n"
+    "  set Longitudinal load transfer = tied\n  set Shear stiffness = 1e6\n"
+    "  set Dowel spacing = 0.3\n  set Joint opening = 0.006\nend\n"
+    "subsection Temperature").replace(
+    "  set Point loads         = -0.5,0,20",
+    "  set Point loads         = -0.5,0,20\n"
+    "  set Axles               = single, 0, 0, 90, 40, 700\n"
+    "  set Sweep               = 0, -0.3, 0, 0.3, 3")
 
 
 def perturb(rng, scene):
@@ -161,7 +191,8 @@ def main():
     failures = []
     try:
         for n in range(runs):
-            scene = perturb(rng, dense_liquid if n % 2 else base)
+            scene = perturb(rng, jointed if n % 3 == 2 else
+                            dense_liquid if n % 2 else base)
             with open(os.path.join(work, "scene.prm"), "w") as f:
                 f.write(scene)
             shutil.rmtree(os.path.join(work, "results"), ignore_errors=True)
