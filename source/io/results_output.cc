@@ -744,6 +744,12 @@ namespace PlateOnHalfspace
                              std::vector<std::string>{"q", "gap", "contact"});
     const MomentsPostprocessor moments(plate);
     data_out.add_data_vector(solution, moments);
+    // each cell's slab (plate/slab_grid.h): the joints lie where it changes
+    Vector<float> slab(
+      plate.get_dof_handler().get_triangulation().n_active_cells());
+    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+      slab[cell->active_cell_index()] = cell->material_id();
+    data_out.add_data_vector(slab, "slab", DataOut<2>::type_cell_data);
     data_out.build_patches(2);
 
     const std::string  name = "solution-" + two_digits(cycle) + ".vtu";
