@@ -8,6 +8,7 @@
 #include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/refinement/interface.h>
+#include <plate_on_halfspace/scene/input_checks.h>
 
 #include <cmath>
 #include <iomanip>
@@ -142,21 +143,10 @@ namespace PlateOnHalfspace
           }
         catch (const ExceptionBase &e)
           {
-            std::ostringstream info;
-            e.print_info(info);
-            std::string reason;
-            for (const char c : info.str())
-              if (std::isspace(static_cast<unsigned char>(c)))
-                {
-                  if (!reason.empty() && reason.back() != ' ')
-                    reason += ' ';
-                }
-              else
-                reason += c;
             std::ostringstream where;
             where << "Loads/Sweep: at position " << step << " (offset "
                   << offset[0] << ", " << offset[1] << "): ";
-            AssertThrow(false, ExcMessage(where.str() + reason));
+            AssertThrow(false, ExcMessage(where.str() + one_line_message(e)));
           }
       }
   }
@@ -362,6 +352,14 @@ namespace PlateOnHalfspace
     standing_solution.reinit(0);
     if (slab_grid->get_joints().empty())
       return;
+    // Without moving loads the plate's state is the standing one.
+    if (computed_loads.rectangular_patches.empty() &&
+        computed_loads.circular_patches.empty() &&
+        computed_loads.point_loads.empty())
+      {
+        standing_solution = contact.plate_solution;
+        return;
+      }
     Parameters::Loads standing = computed_loads;
     standing.rectangular_patches.clear();
     standing.circular_patches.clear();

@@ -249,13 +249,6 @@ namespace PlateOnHalfspace
                     image[1] > other.lower[1] && image[1] < other.upper[1])
                   computed = s;
               }
-            const auto mirrored = [&](const Point<2> &p) {
-              Point<2> q = p;
-              for (unsigned int d = 0; d < 2; ++d)
-                if (centre[d] != image[d])
-                  q[d] = -q[d];
-              return q;
-            };
             CycleSummary::SlabPeaks peaks;
             const FieldExtremum     bottom =
               field_maximum(plate,
@@ -264,10 +257,12 @@ namespace PlateOnHalfspace
                             computed);
             const FieldExtremum top = field_maximum(
               plate, solution, PlateQuantity::principal_stress_top, computed);
-            peaks.max_principal_stress_bottom    = bottom.value;
-            peaks.max_principal_stress_bottom_at = mirrored(bottom.location);
-            peaks.max_principal_stress_top       = top.value;
-            peaks.max_principal_stress_top_at    = mirrored(top.location);
+            peaks.max_principal_stress_bottom = bottom.value;
+            peaks.max_principal_stress_bottom_at =
+              symmetry.from_computed_part(bottom.location, centre);
+            peaks.max_principal_stress_top = top.value;
+            peaks.max_principal_stress_top_at =
+              symmetry.from_computed_part(top.location, centre);
             summary.slabs.push_back(peaks);
           }
       }

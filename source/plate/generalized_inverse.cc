@@ -62,7 +62,13 @@ namespace PlateOnHalfspace
           std::max<types::material_id>(n_slabs, cell->material_id() + 1);
       }
 
-    const double stiffness_scale = stiffness.linfty_norm();
+    const double stiffness_scale     = stiffness.linfty_norm();
+    const auto   without_constrained = [&](Vector<double> motion) {
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (constraints.is_constrained(i))
+          motion[i] = 0;
+      return motion;
+    };
     // How far a candidate is from a motion: the change distribute() makes
     // (the constraints do not allow it) and its image under K on the
     // unconstrained DoFs, relative to the stiffness.
@@ -70,22 +76,13 @@ namespace PlateOnHalfspace
       Vector<double> distributed(candidate);
       constraints.distribute(distributed);
       distributed -= candidate;
-      Vector<double> motion(candidate), image(n_dofs);
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        if (constraints.is_constrained(i))
-          motion[i] = 0;
-      stiffness.vmult(image, motion);
+      Vector<double> image(n_dofs);
+      stiffness.vmult(image, without_constrained(candidate));
       for (unsigned int i = 0; i < n_dofs; ++i)
         distributed[i] += constraints.is_constrained(i) ?
                             0. :
                             image[i] / std::max(stiffness_scale, 1e-300);
       return distributed;
-    };
-    const auto without_constrained = [&](Vector<double> motion) {
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        if (constraints.is_constrained(i))
-          motion[i] = 0;
-      return motion;
     };
 
     std::vector<Vector<double>> failed, failed_defects;

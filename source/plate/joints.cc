@@ -33,18 +33,6 @@ namespace PlateOnHalfspace
                 });
       return order;
     }
-
-    /** The point of @p p's mirror images that lies on the side of
-     *  @p target's signs (undoes to_computed_part()). */
-    Point<2>
-    mirrored_like(const Point<2> &p, const Point<2> &target)
-    {
-      Point<2> image = p;
-      for (unsigned int d = 0; d < 2; ++d)
-        if (target[d] * p[d] < 0)
-          image[d] = -p[d];
-      return image;
-    }
   } // namespace
 
   void
@@ -77,10 +65,8 @@ namespace PlateOnHalfspace
               grid->joint_at(cell->face(f)->center()) <
                 grid->get_joints().size())))
           {
-            const Point<2> c = cell->face(f)->center();
-            by_centre[{std::llround(c[0] / tolerance / 16),
-                       std::llround(c[1] / tolerance / 16)}]
-              .emplace_back(cell, f);
+            by_centre[grid->face_key(cell->face(f)->center())].emplace_back(
+              cell, f);
           }
     for (const auto &[key, faces] : by_centre)
       {
@@ -464,7 +450,8 @@ namespace PlateOnHalfspace
             continue;
           const std::vector<DowelForce> dowels = result[j].dowels;
           result[j]                            = result[image];
-          result[j].lte_at = mirrored_like(result[j].lte_at, middle);
+          result[j].lte_at =
+            symmetry.from_computed_part(result[j].lte_at, middle);
           result[j].dowels = dowels;
         }
     return result;

@@ -200,11 +200,7 @@ namespace PlateOnHalfspace
     if (joints.empty())
       return;
     // The cells on the two sides of a joint face, found by the face's
-    // centre: facing faces have the same centre.
-    const auto key = [this](const Point<2> &p) {
-      return std::make_pair(std::llround(p[0] / point_tolerance / 16),
-                            std::llround(p[1] / point_tolerance / 16));
-    };
+    // centre (face_key()).
     bool changed = true;
     while (changed)
       {
@@ -217,7 +213,7 @@ namespace PlateOnHalfspace
           for (const unsigned int f : cell->face_indices())
             if (cell->at_boundary(f) &&
                 cell->face(f)->boundary_id() == joint_boundary_id)
-              facing[key(cell->face(f)->center())].push_back(cell);
+              facing[face_key(cell->face(f)->center())].push_back(cell);
         for (auto &[centre, cells] : facing)
           {
             (void)centre;

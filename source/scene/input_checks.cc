@@ -192,9 +192,7 @@ namespace PlateOnHalfspace
   }
 
   std::string
-  explain_parameter_file_error(const std::exception &error,
-                               const std::string    &text,
-                               const std::string    &file_name)
+  one_line_message(const std::exception &error)
   {
     std::string info;
     if (const auto *deal_error = dynamic_cast<const ExceptionBase *>(&error))
@@ -205,7 +203,6 @@ namespace PlateOnHalfspace
       }
     else
       info = error.what();
-    // one line, single spaces
     std::string flat;
     for (const char c : info)
       if (std::isspace(static_cast<unsigned char>(c)))
@@ -215,7 +212,15 @@ namespace PlateOnHalfspace
         }
       else
         flat += c;
-    flat = trimmed(flat);
+    return trimmed(flat);
+  }
+
+  std::string
+  explain_parameter_file_error(const std::exception &error,
+                               const std::string    &text,
+                               const std::string    &file_name)
+  {
+    const std::string flat = one_line_message(error);
 
     std::smatch where;
     if (!std::regex_search(flat,

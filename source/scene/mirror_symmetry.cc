@@ -37,6 +37,14 @@ namespace PlateOnHalfspace
     return Point<2>(x ? std::abs(p[0]) : p[0], y ? std::abs(p[1]) : p[1]);
   }
 
+  Point<2>
+  MirrorSymmetry::from_computed_part(const Point<2> &p,
+                                     const Point<2> &reference) const
+  {
+    return Point<2>(x && reference[0] < 0 ? -p[0] : p[0],
+                    y && reference[1] < 0 ? -p[1] : p[1]);
+  }
+
   std::vector<Point<2>>
   MirrorSymmetry::images(const Point<2> &p) const
   {

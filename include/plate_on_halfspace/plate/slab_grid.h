@@ -22,7 +22,9 @@
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
+#include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -120,6 +122,15 @@ namespace PlateOnHalfspace
      */
     void
     match_refinement(Triangulation<2> &triangulation) const;
+
+    /** A key of the centre @p p of a joint face: facing faces, whose
+     *  centres are the same, have the same key. */
+    std::pair<long long, long long>
+    face_key(const Point<2> &p) const
+    {
+      return {std::llround(p[0] / point_tolerance / 16),
+              std::llround(p[1] / point_tolerance / 16)};
+    }
 
     /** The joint whose segment holds @p p, or n_joints if none. */
     unsigned int

@@ -33,6 +33,14 @@ namespace PlateOnHalfspace
   describe_pattern(const std::string &pattern_description);
 
   /**
+   * The message of @p error on one line with single spaces: a deal.II
+   * exception's additional information (its ExcMessage text), otherwise
+   * what().
+   */
+  std::string
+  one_line_message(const std::exception &error);
+
+  /**
    * The message for an error that ParameterHandler::parse_input() threw
    * while reading @p text (the contents of the file @p file_name; files
    * named in the error that are not @p file_name, i.e. included ones, are

@@ -69,6 +69,14 @@ namespace PlateOnHalfspace
     to_computed_part(const Point<2> &p) const;
 
     /**
+     * The point of the whole plate that @p p of the computed part stands
+     * for on the side of @p reference: @p p reflected in each plane in
+     * which to_computed_part() reflects @p reference.
+     */
+    Point<2>
+    from_computed_part(const Point<2> &p, const Point<2> &reference) const;
+
+    /**
      * The points of the whole plate that @p p of the computed part stands
      * for: p itself and its distinct mirror images (1, 2 or 4 points; a
      * point on a mirror plane is its own image there).
