@@ -3,9 +3,12 @@
  * half-space. Usage:
  *   plate-on-halfspace scene.prm
  *   plate-on-halfspace --print-parameters
+ *   mpirun -np P plate-on-halfspace scene.prm
+ * Under MPI every rank runs the same program on a shared mesh; rank 0
+ * writes the log, the messages and the results (doc/parallel.md).
  */
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
@@ -13,6 +16,7 @@
 #include <plate_on_halfspace/scene/parameters.h>
 
 #include <iostream>
+#include <ostream>
 #include <string>
 
 
@@ -20,13 +24,21 @@ int
 main(int argc, char **argv)
 {
   using namespace PlateOnHalfspace;
+  // Each rank takes its share of the cores for deal.II's threads.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   dealii::deal_II_exceptions::disable_abort_on_exception();
+  const bool is_root =
+    dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  // The other ranks compute the same scene; only rank 0 speaks.
+  std::ostream  silent(nullptr);
+  std::ostream &out = is_root ? std::cout : silent;
+  std::ostream &err = is_root ? std::cerr : silent;
 
   const std::string usage =
     "usage: plate-on-halfspace SCENE.prm | --print-parameters";
   if (argc != 2)
     {
-      std::cerr << usage << std::endl;
+      err << usage << std::endl;
       return 2;
     }
   const std::string argument = argv[1];
@@ -37,32 +49,54 @@ main(int argc, char **argv)
           dealii::ParameterHandler prm;
           SceneParameters::declare_parameters(prm);
           prm.print_parameters(
-            std::cout,
+            out,
             dealii::ParameterHandler::PRM |
               dealii::ParameterHandler::KeepDeclarationOrder);
           return 0;
         }
       if (argument == "--help" || argument == "-h")
         {
-          std::cout << usage << std::endl;
+          out << usage << std::endl;
           return 0;
         }
+      // Every rank reads the same file and fails alike: a bad scene ends
+      // every rank here with one message.
       SceneParameters parameters;
       parameters.read(argument);
       for (const std::string &warning : scene_warnings(parameters))
-        std::cerr << "Warning: " << warning << std::endl;
-      PlateOnHalfspaceProblem problem(parameters, std::cout);
-      if (!problem.run())
+        err << "Warning: " << warning << std::endl;
+      try
         {
-          std::cerr << "Error: a Verification/Checks value was not reproduced."
+          PlateOnHalfspaceProblem problem(parameters, out);
+          if (!problem.run())
+            {
+              err << "Error: a Verification/Checks value was not reproduced."
+                  << std::endl;
+              return 1;
+            }
+        }
+      catch (const std::exception &e)
+        {
+          // During the run a rank may fail while the others wait for it in
+          // a collective step: on several processes the failing rank says
+          // why and stops them all (doc/parallel.md). Its earlier results
+          // are already restored (ResultsOutput).
+          out.flush();
+          const unsigned int n_ranks =
+            dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+          if (n_ranks == 1)
+            throw;
+          std::cerr << "Error (rank "
+                    << dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)
+                    << " of " << n_ranks << "): " << short_error_message(e)
                     << std::endl;
-          return 1;
+          MPI_Abort(MPI_COMM_WORLD, 1);
         }
     }
   catch (const std::exception &e)
     {
-      std::cout.flush();
-      std::cerr << "Error: " << short_error_message(e) << std::endl;
+      out.flush();
+      err << "Error: " << short_error_message(e) << std::endl;
       return 1;
     }
   return 0;

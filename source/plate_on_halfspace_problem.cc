@@ -24,6 +24,8 @@ namespace PlateOnHalfspace
     std::ostream          &log)
     : parameters(parameters)
     , log(log)
+    , communicator(Utilities::MPI::job_supports_mpi() ? MPI_COMM_WORLD :
+                                                        MPI_COMM_SELF)
     , timer_output(log, TimerOutput::never, TimerOutput::wall_times)
   {}
 
@@ -31,8 +33,10 @@ namespace PlateOnHalfspace
   PlateOnHalfspaceProblem::run()
   {
     // Long phases report their progress on a terminal (base/progress.h).
-    ProgressReport::enable(parameters.output.verbosity > 0);
-    output = std::make_unique<ResultsOutput>(parameters.output_directory);
+    ProgressReport::enable(parameters.output.verbosity > 0 &&
+                           Utilities::MPI::this_mpi_process(communicator) == 0);
+    output = std::make_unique<ResultsOutput>(parameters.output_directory,
+                                             communicator);
     // A run that fails keeps the earlier run's results (results_output.h).
     try
       {
@@ -109,6 +113,7 @@ namespace PlateOnHalfspace
     mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
                                                    parameters.discretization);
     mindlin_plate->set_mirror_symmetry(symmetry);
+    mindlin_plate->set_communicator(communicator);
     mindlin_plate->set_slab_grid(*slab_grid);
     mindlin_plate->set_thermal_load(
       thermal_load(parameters.plate, parameters.temperature));
@@ -122,6 +127,7 @@ namespace PlateOnHalfspace
   {
     TimerOutput::Scope scope(timer_output, "plate setup");
     Timer              setup_timer;
+    partition_plate_mesh(triangulation, communicator);
     mindlin_plate->setup(triangulation);
     setup_time_s = setup_timer.wall_time();
   }
@@ -225,11 +231,23 @@ namespace PlateOnHalfspace
     summary.n_dofs            = mindlin_plate->n_unconstrained_dofs();
     summary.n_foundation_dofs = mindlin_plate->get_foundation_dofs().size();
     summary.applied_load = symmetry.n_copies() * mindlin_plate->applied_load();
+    summary.foundation_nodes_per_rank = Utilities::MPI::all_gather(
+      communicator,
+      static_cast<unsigned int>(
+        mindlin_plate->get_foundation_space().owned_nodes.n_elements()));
     summary.assembly_time_s = setup_time_s + phase.wall_time();
     if (parameters.output.verbosity > 0)
       log << "cycle " << cycle << ": " << summary.n_cells << " cells, "
           << summary.n_dofs << " dofs, " << summary.n_foundation_dofs
           << " foundation nodes" << std::endl;
+    if (parameters.output.verbosity > 0 &&
+        summary.foundation_nodes_per_rank.size() > 1)
+      {
+        log << "   foundation nodes per rank (METIS):";
+        for (const unsigned int n : summary.foundation_nodes_per_rank)
+          log << ' ' << n;
+        log << std::endl;
+      }
   }
 
   void

@@ -169,7 +169,10 @@ namespace PlateOnHalfspace
     std::ostream         &log;
     MirrorSymmetry        symmetry;
     Parameters::Loads     computed_loads;
-    Triangulation<2>      triangulation;
+    /** MPI_COMM_WORLD under MPI, else MPI_COMM_SELF: the ranks that
+     *  share the mesh (doc/parallel.md). */
+    const MPI_Comm   communicator;
+    Triangulation<2> triangulation;
 
     /** The slabs and joints (one slab unless Plate/Shape = slabs). */
     std::unique_ptr<SlabGrid>     slab_grid;

@@ -22,6 +22,8 @@ namespace PlateOnHalfspace
       struct AssemblyContext
       {
         const CellPairSummation *summation;
+        /** The nodes of the row and column trees. */
+        const TreeNodes *rows, *columns;
         /** Counts the blocks done. */
         ProgressReport *progress;
         std::string     error;
@@ -87,20 +89,30 @@ namespace PlateOnHalfspace
                     const int           n_columns,
                     double             *out)
       {
-        const int first_row    = request.row_start + row_begin;
-        const int first_column = request.column_start + column_begin;
+        const int        first_row    = request.row_start + row_begin;
+        const int        first_column = request.column_start + column_begin;
+        const TreeNodes &rows         = *request.context->rows;
+        const TreeNodes &columns      = *request.context->columns;
+        // hmat-oss numbers each tree's unknowns; the summation the nodes.
         std::vector<unsigned int> row_nodes(n_rows), column_nodes(n_columns);
         for (int p = 0; p < n_rows; ++p)
-          row_nodes[p] = request.row_hmat_to_node[first_row + p];
+          row_nodes[p] = rows.node(request.row_hmat_to_node[first_row + p]);
         for (int q = 0; q < n_columns; ++q)
-          column_nodes[q] = request.column_hmat_to_node[first_column + q];
+          column_nodes[q] =
+            columns.node(request.column_hmat_to_node[first_column + q]);
         std::fill(out, out + std::size_t(n_rows) * n_columns, 0.);
         const auto row_position = [&](const unsigned int node) {
-          const int p = request.row_node_to_hmat[node] - first_row;
+          const int k = rows.unknown(node);
+          if (k < 0)
+            return -1;
+          const int p = request.row_node_to_hmat[k] - first_row;
           return (p >= 0 && p < n_rows) ? p : -1;
         };
         const auto column_position = [&](const unsigned int node) {
-          const int q = request.column_node_to_hmat[node] - first_column;
+          const int k = columns.unknown(node);
+          if (k < 0)
+            return -1;
+          const int q = request.column_node_to_hmat[k] - first_column;
           return (q >= 0 && q < n_columns) ? q : -1;
         };
         request.context->summation->add_entries(row_nodes,
@@ -150,13 +162,16 @@ namespace PlateOnHalfspace
     double
     assemble_flexibility(hmat_matrix_t           *matrix,
                          const CellPairSummation &summation,
+                         const TreeNodes         &rows,
+                         const TreeNodes         &columns,
+                         const bool               lower_symmetric,
                          const double             tolerance)
     {
       // The empty H-matrix has its leaves already: the blocks to assemble.
       const hmat_info_t leaves = info_of(matrix);
       ProgressReport    progress("Hierarchical flexibility (ACA+)",
                               leaves.full_count + leaves.rk_count);
-      AssemblyContext   context{&summation, &progress, "", 0};
+      AssemblyContext   context{&summation, &rows, &columns, &progress, "", 0};
 
       hmat_assemble_context_t assembly;
       hmat_assemble_context_init(&assembly);
@@ -166,7 +181,7 @@ namespace PlateOnHalfspace
       assembly.user_context    = &context;
       assembly.prepare         = prepare_block;
       assembly.block_compute   = compute_block_callback;
-      assembly.lower_symmetric = 1;
+      assembly.lower_symmetric = lower_symmetric ? 1 : 0;
       assembly.factorization   = hmat_factorization_none;
       assembly.progress        = nullptr; // hmat-oss's own bar is on stdout
       int status;

@@ -64,12 +64,21 @@ namespace PlateOnHalfspace
       hmat().destroy(factor);
     if (matrix != nullptr)
       hmat().destroy(matrix);
-    if (tree != nullptr)
-      hmat_delete_cluster_tree(tree);
-    factor = nullptr;
-    matrix = nullptr;
-    tree   = nullptr;
-    hmat_to_node.clear();
+    if (column_tree != nullptr && column_tree != row_tree)
+      hmat_delete_cluster_tree(column_tree);
+    if (row_tree != nullptr)
+      hmat_delete_cluster_tree(row_tree);
+    factor      = nullptr;
+    matrix      = nullptr;
+    row_tree    = nullptr;
+    column_tree = nullptr;
+    row_nodes.clear();
+    column_nodes.clear();
+    row_unknowns.clear();
+    column_unknowns.clear();
+    hmat_to_row.clear();
+    hmat_to_column.clear();
+    symmetric      = true;
     n_nodes        = 0;
     times          = Times();
     row_error      = 0;
@@ -96,29 +105,48 @@ namespace PlateOnHalfspace
     const double                              alpha,
     const unsigned int                        singular_order)
   {
-    release();
-    Timer timer;
-    n_nodes = node_locations.size();
-    AssertThrow(n_nodes > 0 && n_copies > 0,
+    AssertThrow(!node_locations.empty() && n_copies > 0,
                 ExcMessage("HierarchicalFlexibility: no foundation nodes."));
+    Timer                   timer;
     const CellPairSummation summation(
-      cells, n_copies, n_nodes, alpha, singular_order);
-    times.integration             = timer.wall_time();
-    const unsigned int n_computed = summation.n_computed_cells();
+      cells, n_copies, node_locations.size(), alpha, singular_order);
+    const double summation_time = timer.wall_time();
+    build(cells, summation, node_locations, {}, {});
+    times.integration += summation_time;
+  }
 
-    // The cluster tree. Points: the nodes, then the vertices of the
-    // computed cells; the extent ("span") of node i is the node itself
-    // and the vertices of the cells containing it, its support. hmat-oss
-    // 1.8.1 leaves out all but the first span point of the first node of a
-    // cluster from the cluster's bounding box, so that first point is the
-    // node itself, which always lies in the box.
+  namespace
+  {
+    /**
+     * The cluster tree of @p nodes (natural numbers, empty: all). Points:
+     * the nodes, then the vertices of the computed cells; the extent
+     * ("span") of node i is the node itself and the vertices of the cells
+     * containing it, its support. hmat-oss 1.8.1 leaves out all but the
+     * first span point of the first node of a cluster from the cluster's
+     * bounding box, so that first point is the node itself, which always
+     * lies in the box. Returns the tree and its numbering (position k
+     * holds node natural[k] of the block).
+     */
+    hmat_cluster_tree_struct *
+    make_cluster_tree(const std::vector<FoundationSpace::Cell> &cells,
+                      const CellPairSummation                  &summation,
+                      const std::vector<Point<2>>              &node_locations,
+                      const std::vector<unsigned int>          &nodes,
+                      const unsigned int                        leaf_size,
+                      std::vector<unsigned int>                &hmat_to_node)
     {
+      const unsigned int n_computed = summation.n_computed_cells();
+      const unsigned int n_tree =
+        nodes.empty() ? node_locations.size() : nodes.size();
+      const auto node = [&](const unsigned int k) {
+        return nodes.empty() ? k : nodes[k];
+      };
       std::vector<double> coordinates;
-      coordinates.reserve(2 * (n_nodes + 4 * n_computed));
-      for (const Point<2> &p : node_locations)
+      coordinates.reserve(2 * (n_tree + 4 * n_computed));
+      for (unsigned int k = 0; k < n_tree; ++k)
         {
-          coordinates.push_back(p[0]);
-          coordinates.push_back(p[1]);
+          coordinates.push_back(node_locations[node(k)][0]);
+          coordinates.push_back(node_locations[node(k)][1]);
         }
       for (unsigned int c = 0; c < n_computed; ++c)
         for (const Point<2> &v : cells[c].geometry.get_vertices())
@@ -126,61 +154,120 @@ namespace PlateOnHalfspace
             coordinates.push_back(v[0]);
             coordinates.push_back(v[1]);
           }
-      std::vector<unsigned int> span_ends(n_nodes), spans;
-      for (unsigned int i = 0; i < n_nodes; ++i)
+      std::vector<unsigned int> span_ends(n_tree), spans;
+      for (unsigned int k = 0; k < n_tree; ++k)
         {
-          AssertThrow(!summation.cells_containing(i).empty(),
+          AssertThrow(!summation.cells_containing(node(k)).empty(),
                       ExcMessage("HierarchicalFlexibility: foundation node " +
-                                 std::to_string(i) + " lies in no cell."));
-          spans.push_back(i);
-          for (const unsigned int c : summation.cells_containing(i))
+                                 std::to_string(node(k)) +
+                                 " lies in no cell."));
+          spans.push_back(k);
+          for (const unsigned int c : summation.cells_containing(node(k)))
             for (unsigned int v = 0; v < 4; ++v)
-              spans.push_back(n_nodes + 4 * c + v);
-          span_ends[i] = spans.size();
+              spans.push_back(n_tree + 4 * c + v);
+          span_ends[k] = spans.size();
         }
       hmat_clustering_algorithm_t *median = hmat_create_clustering_median();
       hmat_clustering_algorithm_t *clustering =
-        hmat_create_clustering_max_dof(median, settings.leaf_size);
+        hmat_create_clustering_max_dof(median, leaf_size);
       hmat_cluster_tree_builder_t *builder =
         hmat_create_cluster_tree_builder(clustering);
       hmat_cluster_tree_create_context_t context;
       context.dimension        = 2;
       context.number_of_points = coordinates.size() / 2;
       context.coordinates      = coordinates.data();
-      context.number_of_dof    = n_nodes;
+      context.number_of_dof    = n_tree;
       context.span_offsets     = span_ends.data();
       context.spans            = spans.data();
       context.group_index      = nullptr;
       context.builder          = builder;
-      tree                     = hmat_create_cluster_tree_generic(&context);
+      hmat_cluster_tree_struct *tree =
+        hmat_create_cluster_tree_generic(&context);
       hmat_delete_cluster_tree_builder(builder);
       hmat_delete_clustering(clustering);
       hmat_delete_clustering(median);
       AssertThrow(tree != nullptr,
                   ExcMessage("Foundation operator/Storage = hierarchical: "
                              "hmat-oss could not build the cluster tree."));
-    }
-    {
+
       const int *indices = hmat_cluster_get_indices(tree);
-      hmat_to_node.assign(indices, indices + n_nodes);
-      std::vector<bool> seen(n_nodes, false);
-      for (const unsigned int node : hmat_to_node)
+      hmat_to_node.resize(n_tree);
+      std::vector<bool> seen(n_tree, false);
+      for (unsigned int k = 0; k < n_tree; ++k)
         {
-          AssertThrow(node < n_nodes && !seen[node],
+          const int unknown = indices[k];
+          AssertThrow(unknown >= 0 && unknown < static_cast<int>(n_tree) &&
+                        !seen[unknown],
                       ExcMessage("HierarchicalFlexibility: the cluster tree's "
                                  "numbering is not a permutation."));
-          seen[node] = true;
+          seen[unknown]   = true;
+          hmat_to_node[k] = node(unknown);
         }
+      return tree;
     }
+
+    /** Each node's place in @p nodes, -1 if absent (empty if all). */
+    std::vector<int>
+    unknowns_of(const std::vector<unsigned int> &nodes,
+                const unsigned int               n_nodes)
+    {
+      std::vector<int> unknowns;
+      if (!nodes.empty())
+        {
+          unknowns.assign(n_nodes, -1);
+          for (unsigned int k = 0; k < nodes.size(); ++k)
+            unknowns[nodes[k]] = k;
+        }
+      return unknowns;
+    }
+  } // namespace
+
+  void
+  HierarchicalFlexibility::build(
+    const std::vector<FoundationSpace::Cell> &cells,
+    const CellPairSummation                  &summation,
+    const std::vector<Point<2>>              &node_locations,
+    const std::vector<unsigned int>          &rows,
+    const std::vector<unsigned int>          &columns)
+  {
+    release();
+    Timer timer;
+    n_nodes = node_locations.size();
+    AssertThrow(n_nodes > 0,
+                ExcMessage("HierarchicalFlexibility: no foundation nodes."));
+    row_nodes       = rows;
+    column_nodes    = columns;
+    symmetric       = (rows == columns);
+    row_unknowns    = unknowns_of(row_nodes, n_nodes);
+    column_unknowns = unknowns_of(column_nodes, n_nodes);
+
+    row_tree = make_cluster_tree(cells,
+                                 summation,
+                                 node_locations,
+                                 row_nodes,
+                                 settings.leaf_size,
+                                 hmat_to_row);
+    if (symmetric)
+      {
+        column_tree    = row_tree;
+        hmat_to_column = hmat_to_row;
+      }
+    else
+      column_tree = make_cluster_tree(cells,
+                                      summation,
+                                      node_locations,
+                                      column_nodes,
+                                      settings.leaf_size,
+                                      hmat_to_column);
 
     hmat_admissibility_param_t admissibility_parameters;
     hmat_init_admissibility_param(&admissibility_parameters);
     admissibility_parameters.eta = settings.eta;
     hmat_admissibility_t *admissibility =
       hmat_create_admissibility(&admissibility_parameters);
-    matrix = hmat().create_empty_hmatrix_admissibility(tree,
-                                                       tree,
-                                                       /*lower_symmetric=*/1,
+    matrix = hmat().create_empty_hmatrix_admissibility(row_tree,
+                                                       column_tree,
+                                                       symmetric ? 1 : 0,
                                                        admissibility);
     hmat_delete_admissibility(admissibility);
     AssertThrow(matrix != nullptr,
@@ -191,8 +278,13 @@ namespace PlateOnHalfspace
     hmat().set_low_rank_epsilon(matrix, settings.tolerance);
 
     timer.restart();
-    const double integration_time =
-      HmatGlue::assemble_flexibility(matrix, summation, settings.tolerance);
+    const double integration_time = HmatGlue::assemble_flexibility(
+      matrix,
+      summation,
+      HmatGlue::TreeNodes{row_nodes, row_unknowns},
+      HmatGlue::TreeNodes{column_nodes, column_unknowns},
+      symmetric,
+      settings.tolerance);
     // ACA+ interleaves the entries it asks for with its own algebra: what
     // the callbacks did not spend is the compression's.
     times.integration += integration_time;
@@ -211,19 +303,21 @@ namespace PlateOnHalfspace
     // tolerance too coarse for this mesh stops here with a message rather
     // than giving a wrong answer later. Rows spread over the numbering.
     timer.restart();
-    const unsigned int n_samples = std::min<unsigned int>(n_nodes, 4);
-    Vector<double>     unit(n_nodes), row(n_nodes);
+    const unsigned int n_rows    = hmat_to_row.size();
+    const unsigned int n_samples = std::min<unsigned int>(n_rows, 4);
     for (unsigned int s = 0; s < n_samples; ++s)
       {
-        const unsigned int        i = (2 * s + 1) * n_nodes / (2 * n_samples);
+        const unsigned int i =
+          row_nodes.empty() ? (2 * s + 1) * n_nodes / (2 * n_samples) :
+                              row_nodes[(2 * s + 1) * n_rows / (2 * n_samples)];
         const std::vector<double> exact =
           HmatGlue::exact_row(summation, i, n_nodes);
-        unit    = 0.;
-        unit[i] = 1.;
-        vmult(row, unit); // A symmetric: row i = column i
-        std::vector<double> difference(n_nodes);
-        for (unsigned int j = 0; j < n_nodes; ++j)
-          difference[j] = row[j] - exact[j];
+        const Vector<double> row = block_row(i);
+        std::vector<double>  difference;
+        for (const unsigned int j : hmat_to_column)
+          difference.push_back(row[j] - exact[j]);
+        // Against the whole row of A: what a product's row is made of when
+        // the block is one rank's part of it.
         row_error = std::max(row_error, norm(difference) / norm(exact));
       }
     times.integration += timer.wall_time();
@@ -243,20 +337,32 @@ namespace PlateOnHalfspace
                            tolerance_advice));
   }
 
-  void
-  HierarchicalFlexibility::to_hmat_order(const double *natural,
-                                         double       *ordered) const
+  Vector<double>
+  HierarchicalFlexibility::block_row(const unsigned int i) const
   {
-    for (unsigned int k = 0; k < n_nodes; ++k)
-      ordered[k] = natural[hmat_to_node[k]];
-  }
-
-  void
-  HierarchicalFlexibility::to_natural_order(const double *ordered,
-                                            double       *natural) const
-  {
-    for (unsigned int k = 0; k < n_nodes; ++k)
-      natural[hmat_to_node[k]] = ordered[k];
+    Vector<double> row(n_nodes);
+    if (symmetric)
+      {
+        // row i = column i
+        Vector<double> unit(n_nodes);
+        unit[i] = 1.;
+        vmult(row, unit);
+        return row;
+      }
+    // row i = A^T e_i
+    const unsigned int  n_rows = hmat_to_row.size();
+    std::vector<double> x(n_rows, 0.), y(hmat_to_column.size(), 0.);
+    for (unsigned int k = 0; k < n_rows; ++k)
+      if (hmat_to_row[k] == i)
+        x[k] = 1.;
+    const double             one = 1., zero = 0.;
+    const SingleThreadedBlas single_threaded_blas;
+    check_hmat(hmat().gemm_dense(
+                 'T', 'N', 'L', &one, matrix, x.data(), &zero, y.data(), 1),
+               "a row of the flexibility");
+    for (unsigned int k = 0; k < y.size(); ++k)
+      row[hmat_to_column[k]] = y[k];
+    return row;
   }
 
   void
@@ -266,27 +372,30 @@ namespace PlateOnHalfspace
     AssertThrow(matrix != nullptr,
                 ExcMessage("HierarchicalFlexibility::vmult before build()."));
     AssertDimension(src.size(), n_nodes);
-    std::vector<double> x(n_nodes), y(n_nodes, 0.);
-    to_hmat_order(src.data(), x.data());
+    const unsigned int  n_rows = hmat_to_row.size();
+    std::vector<double> x(hmat_to_column.size()), y(n_rows, 0.);
+    for (unsigned int k = 0; k < x.size(); ++k)
+      x[k] = src[hmat_to_column[k]];
     const double             one = 1., zero = 0.;
     const SingleThreadedBlas single_threaded_blas;
     check_hmat(hmat().gemm_dense(
                  'N', 'N', 'L', &one, matrix, x.data(), &zero, y.data(), 1),
                "the product with the flexibility");
-    AssertThrow(HmatGlue::all_finite(y.data(), n_nodes),
+    AssertThrow(HmatGlue::all_finite(y.data(), n_rows),
                 ExcMessage("Foundation operator/Tolerance: the product with "
                            "the compressed flexibility is not finite." +
                            tolerance_advice));
     dst.reinit(n_nodes);
-    to_natural_order(y.data(), dst.data());
+    for (unsigned int k = 0; k < n_rows; ++k)
+      dst[hmat_to_row[k]] = y[k];
   }
 
   void
   HierarchicalFlexibility::factorize()
   {
-    AssertThrow(matrix != nullptr,
+    AssertThrow(matrix != nullptr && symmetric,
                 ExcMessage("HierarchicalFlexibility::factorize before "
-                           "build()."));
+                           "build(), or of a block off the diagonal."));
     const Timer timer;
     if (factor != nullptr)
       hmat().destroy(factor);
@@ -308,9 +417,10 @@ namespace PlateOnHalfspace
                  "the recompression of the copy to factorise");
     // hmat-oss reports the rows factorised so far (after each diagonal
     // leaf) through the update function of a progress bar.
-    ProgressReport  progress("H-Cholesky factorisation", n_nodes);
-    hmat_progress_t bar;
-    bar.max       = n_nodes;
+    const unsigned int n_rows = hmat_to_row.size();
+    ProgressReport     progress("H-Cholesky factorisation", n_rows);
+    hmat_progress_t    bar;
+    bar.max       = n_rows;
     bar.current   = 0;
     bar.user_data = &progress;
     bar.update    = [](hmat_progress_t *self) {
@@ -347,7 +457,7 @@ namespace PlateOnHalfspace
     // Check the factor on a known vector: a smooth pressure plus a
     // node-to-node oscillation, so that both ends of the spectrum count.
     Vector<double> x(n_nodes), b(n_nodes), solution(n_nodes), residual;
-    for (unsigned int i = 0; i < n_nodes; ++i)
+    for (const unsigned int i : hmat_to_row)
       x[i] = 1. + 0.5 * std::sin(0.7 * i) + 0.25 * ((i % 2) ? 1. : -1.);
     vmult(b, x);
     solve(solution, b);
@@ -378,11 +488,11 @@ namespace PlateOnHalfspace
   {
     AssertDimension(src.size(), n_nodes);
     FullMatrix<double> rhs(n_nodes, 1);
-    for (unsigned int i = 0; i < n_nodes; ++i)
+    for (const unsigned int i : hmat_to_row)
       rhs(i, 0) = src[i];
     solve(rhs);
     dst.reinit(n_nodes);
-    for (unsigned int i = 0; i < n_nodes; ++i)
+    for (const unsigned int i : hmat_to_row)
       dst[i] = rhs(i, 0);
   }
 
@@ -393,12 +503,13 @@ namespace PlateOnHalfspace
                 ExcMessage("HierarchicalFlexibility::solve before "
                            "factorize()."));
     AssertDimension(rhs.m(), n_nodes);
-    const unsigned int  n_rhs = rhs.n();
-    std::vector<double> ordered(std::size_t(n_nodes) * n_rhs);
+    const unsigned int  n_rhs  = rhs.n();
+    const unsigned int  n_rows = hmat_to_row.size();
+    std::vector<double> ordered(std::size_t(n_rows) * n_rhs);
     // column-major, hmat order
     for (unsigned int c = 0; c < n_rhs; ++c)
-      for (unsigned int k = 0; k < n_nodes; ++k)
-        ordered[k + std::size_t(c) * n_nodes] = rhs(hmat_to_node[k], c);
+      for (unsigned int k = 0; k < n_rows; ++k)
+        ordered[k + std::size_t(c) * n_rows] = rhs(hmat_to_row[k], c);
     const SingleThreadedBlas single_threaded_blas;
     check_hmat(hmat().solve_dense(factor, ordered.data(), n_rhs),
                "the solve with the H-Cholesky factor");
@@ -407,15 +518,16 @@ namespace PlateOnHalfspace
                            "the H-Cholesky factor is not finite." +
                            tolerance_advice));
     for (unsigned int c = 0; c < n_rhs; ++c)
-      for (unsigned int k = 0; k < n_nodes; ++k)
-        rhs(hmat_to_node[k], c) = ordered[k + std::size_t(c) * n_nodes];
+      for (unsigned int k = 0; k < n_rows; ++k)
+        rhs(hmat_to_row[k], c) = ordered[k + std::size_t(c) * n_rows];
   }
 
 
   std::size_t
   HierarchicalFlexibility::memory_consumption() const
   {
-    std::size_t bytes = hmat_to_node.capacity() * sizeof(unsigned int);
+    std::size_t bytes = (hmat_to_row.capacity() + hmat_to_column.capacity()) *
+                        sizeof(unsigned int);
     if (matrix != nullptr)
       bytes += HmatGlue::info_of(matrix).compressed_size * sizeof(double);
     if (factor != nullptr)
@@ -429,7 +541,7 @@ namespace PlateOnHalfspace
     if (matrix == nullptr)
       return 0;
     return double(HmatGlue::info_of(matrix).compressed_size) /
-           (double(n_nodes) * double(n_nodes));
+           (double(hmat_to_row.size()) * double(hmat_to_column.size()));
   }
 
   std::size_t

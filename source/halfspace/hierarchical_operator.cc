@@ -1,5 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
+#include <plate_on_halfspace/base/sum_over_ranks.h>
+#include <plate_on_halfspace/halfspace/cell_pair_summation.h>
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
 #include <plate_on_halfspace/halfspace/surface_settlement.h>
 
@@ -50,7 +52,14 @@ namespace PlateOnHalfspace
     : alpha(alpha)
     , singular_order(singular_order)
     , flexibility(settings_with(tolerance))
+    , off_diagonal(settings_with(tolerance))
   {}
+
+  bool
+  HierarchicalGalerkinOperator::rows_are_split() const
+  {
+    return Utilities::MPI::n_mpi_processes(communicator) > 1;
+  }
 
   void
   HierarchicalGalerkinOperator::build(
@@ -65,8 +74,34 @@ namespace PlateOnHalfspace
                            "(use active set)."));
     build_mass_matrix(space, cell_in_foundation);
     set_pressure_basis(space, true);
-    flexibility.build(space, alpha, singular_order);
+    communicator = space.communicator;
+    if (!rows_are_split())
+      {
+        flexibility.build(space, alpha, singular_order);
+        times.compression = flexibility.build_times().compression;
+        return;
+      }
+    // This rank's rows: the block on its own nodes and the block against
+    // the rest, from one summation (its singular pairs integrated once).
+    std::vector<unsigned int> own, others;
+    for (unsigned int i = 0; i < space.n_nodes(); ++i)
+      (space.owned_nodes.is_element(i) ? own : others).push_back(i);
+    // Decided by all ranks together, so that all stop or none.
+    AssertThrow(Utilities::MPI::min(static_cast<unsigned int>(own.size()),
+                                    communicator) > 0,
+                ExcMessage("More MPI processes than the mesh can share: a "
+                           "rank owns no foundation node. Run on fewer "
+                           "processes or refine the mesh (Discretization/"
+                           "Subdivisions x and y)."));
+    const std::vector<FoundationSpace::Cell> cells =
+      CellPairSummation::cells_with_images(space);
+    const CellPairSummation summation(
+      cells, space.symmetry.n_copies(), space.n_nodes(), alpha, singular_order);
+    flexibility.build(cells, summation, space.node_locations, own, own);
     times.compression = flexibility.build_times().compression;
+    // every rank owns nodes, so every rank has others
+    off_diagonal.build(cells, summation, space.node_locations, own, others);
+    times.compression += off_diagonal.build_times().compression;
   }
 
   std::unique_ptr<ApproximateInverse>
@@ -84,6 +119,13 @@ namespace PlateOnHalfspace
     Vector<double> values, settlement(q.size());
     nodal_pressure(q, values);
     flexibility.vmult(settlement, values);
+    if (rows_are_split())
+      {
+        Vector<double> rest;
+        off_diagonal.vmult(rest, values);
+        settlement += rest;
+        sum_over_ranks(settlement, communicator);
+      }
     s.reinit(q.size());
     if (positive_basis)
       transform.Tvmult(s, settlement);
@@ -140,6 +182,7 @@ namespace PlateOnHalfspace
     else
       tested = s;
     flexibility.solve(values, tested);
+    sum_over_ranks(values, communicator);
     q.reinit(s.size());
     if (positive_basis)
       coefficients_from_values(values, q);
@@ -150,7 +193,8 @@ namespace PlateOnHalfspace
   std::size_t
   HierarchicalGalerkinOperator::memory_consumption() const
   {
-    return flexibility.memory_consumption() + coupling_memory_consumption();
+    return flexibility.memory_consumption() +
+           off_diagonal.memory_consumption() + coupling_memory_consumption();
   }
 
   std::vector<double>

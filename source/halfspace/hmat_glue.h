@@ -71,16 +71,43 @@ namespace PlateOnHalfspace
     };
 
     /**
-     * Assemble the empty lower-symmetric H-matrix @p matrix (hmat-oss's
-     * numbering) with ACA+ at @p tolerance, every entry from @p summation
-     * (doc/formulation.md, "Hierarchical storage"). Shows the progress in
-     * blocks (ProgressReport). Returns the wall time spent integrating
-     * entries inside the callbacks; throws with the callbacks' first error
-     * or hmat-oss's failure.
+     * The foundation nodes of a cluster tree: its k-th unknown is node
+     * natural[k] (natural numbering); local[i] is the unknown of node i,
+     * -1 for nodes not in the tree. Empty vectors: every node, in order.
+     */
+    struct TreeNodes
+    {
+      const std::vector<unsigned int> &natural;
+      const std::vector<int>          &local;
+
+      unsigned int
+      node(const int k) const
+      {
+        return natural.empty() ? k : natural[k];
+      }
+
+      int
+      unknown(const unsigned int i) const
+      {
+        return local.empty() ? static_cast<int>(i) : local[i];
+      }
+    };
+
+    /**
+     * Assemble the empty H-matrix @p matrix (hmat-oss's numbering, rows on
+     * the tree of @p rows, columns on that of @p columns; lower-symmetric
+     * storage if @p lower_symmetric) with ACA+ at @p tolerance, every
+     * entry from @p summation (doc/formulation.md, "Hierarchical
+     * storage"). Shows the progress in blocks (ProgressReport). Returns the
+     * wall time spent integrating entries inside the callbacks; throws
+     * with the callbacks' first error or hmat-oss's failure.
      */
     double
     assemble_flexibility(hmat_matrix_t           *matrix,
                          const CellPairSummation &summation,
+                         const TreeNodes         &rows,
+                         const TreeNodes         &columns,
+                         const bool               lower_symmetric,
                          const double             tolerance);
 
     /** Row @p i of A (natural numbering, @p n_nodes entries), exactly

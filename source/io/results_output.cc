@@ -86,11 +86,16 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
-  ResultsOutput::ResultsOutput(const std::string &directory)
+  ResultsOutput::ResultsOutput(const std::string &directory,
+                               const MPI_Comm     communicator)
     : directory(directory)
     , previous_run((std::filesystem::path(directory) / "previous-run").string())
     , failed_run((std::filesystem::path(directory) / "failed-run").string())
+    , writes(Utilities::MPI::this_mpi_process(communicator) == 0)
+    , n_processes(Utilities::MPI::n_mpi_processes(communicator))
   {
+    if (!writes)
+      return;
     std::error_code error;
     std::filesystem::create_directories(directory, error);
     AssertThrow(!error && std::filesystem::is_directory(directory),
@@ -152,6 +157,8 @@ namespace PlateOnHalfspace
   ResultsOutput::commit()
   {
     finished = true;
+    if (!writes)
+      return;
     std::filesystem::remove_all(previous_run);
     std::filesystem::remove_all(failed_run);
   }
@@ -160,6 +167,8 @@ namespace PlateOnHalfspace
   ResultsOutput::abandon()
   {
     finished = true;
+    if (!writes)
+      return "";
     std::filesystem::remove_all(failed_run);
     const unsigned int written = move_result_files(directory, failed_run);
     move_result_files(previous_run, directory);
@@ -174,6 +183,8 @@ namespace PlateOnHalfspace
   ResultsOutput::write_file(const std::string &name,
                             const std::string &text) const
   {
+    if (!writes)
+      return;
     const std::filesystem::path target =
       std::filesystem::path(directory) / name;
     const std::filesystem::path temporary =
@@ -325,9 +336,13 @@ namespace PlateOnHalfspace
                                const std::vector<SweepRow>     &sweep) const
   {
     nlohmann::ordered_json summary;
-    summary["converged"] = converged;
-    summary["symmetry"]  = symmetry;
-    summary["cycles"]    = nlohmann::ordered_json::array();
+    summary["converged"]     = converged;
+    summary["symmetry"]      = symmetry;
+    summary["mpi_processes"] = n_processes;
+    // The shared mesh's cells are split among the ranks by METIS
+    // (plate_on_halfspace_problem.cc); one rank holds them all.
+    summary["partitioner"] = n_processes > 1 ? "metis" : "none";
+    summary["cycles"]      = nlohmann::ordered_json::array();
     for (const CycleSummary &c : cycles)
       {
         nlohmann::ordered_json j;
@@ -374,14 +389,15 @@ namespace PlateOnHalfspace
         j["foundation_compression_time_s"] = c.foundation_compression_time_s;
         j["foundation_factorization_time_s"] =
           c.foundation_factorization_time_s;
-        j["solve_time_s"]            = c.solve_time_s;
-        j["output_time_s"]           = c.output_time_s;
-        j["foundation_storage"]      = c.foundation_storage;
-        j["foundation_memory_bytes"] = c.foundation_memory_bytes;
-        j["converged"]               = c.converged;
-        j["coupled_matrix_rcond"]    = c.coupled_matrix_rcond;
-        j["foundation_block_rcond"]  = c.foundation_block_rcond;
-        j["probes"]                  = nlohmann::ordered_json::array();
+        j["solve_time_s"]              = c.solve_time_s;
+        j["output_time_s"]             = c.output_time_s;
+        j["foundation_storage"]        = c.foundation_storage;
+        j["foundation_memory_bytes"]   = c.foundation_memory_bytes;
+        j["foundation_nodes_per_rank"] = c.foundation_nodes_per_rank;
+        j["converged"]                 = c.converged;
+        j["coupled_matrix_rcond"]      = c.coupled_matrix_rcond;
+        j["foundation_block_rcond"]    = c.foundation_block_rcond;
+        j["probes"]                    = nlohmann::ordered_json::array();
         for (const PointValues &p : c.probes)
           j["probes"].push_back({{"x", p.location[0]},
                                  {"y", p.location[1]},
@@ -703,6 +719,9 @@ namespace PlateOnHalfspace
                            const Vector<double> &solution,
                            const ContactState   &contact)
   {
+    // Every rank holds the whole solution (doc/parallel.md): rank 0 writes.
+    if (!writes)
+      return;
     // q, gap and the contact indicator share the Q2 space of w: pack them
     // into the three components of one vector on the plate's FESystem.
     const auto    &fe = plate.get_fe();

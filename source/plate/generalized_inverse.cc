@@ -7,6 +7,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include <plate_on_halfspace/base/distributed_sparse_direct.h>
 #include <plate_on_halfspace/plate/generalized_inverse.h>
 
 #include <algorithm>
@@ -194,9 +195,22 @@ namespace PlateOnHalfspace
     for (types::global_dof_index i = 0; i < n_dofs; ++i)
       if (!constraints.is_constrained(i) && !pinned[i])
         solved_dofs.push_back(i);
+    const MPI_Comm communicator = plate.get_communicator();
     try
       {
-        factor.factorize(stiffness, solved_dofs);
+        if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+          {
+            std::vector<bool> solved(n_dofs, false);
+            for (const auto i : solved_dofs)
+              solved[i] = true;
+            distributed = std::make_unique<DistributedSparseDirect>();
+            distributed->factorize(stiffness,
+                                   solved,
+                                   plate.locally_owned_dofs(),
+                                   communicator);
+          }
+        else
+          factor.factorize(stiffness, solved_dofs);
       }
     catch (...)
       {
@@ -207,10 +221,17 @@ namespace PlateOnHalfspace
       }
   }
 
+  PlateGeneralizedInverse::~PlateGeneralizedInverse() = default;
+
   void
   PlateGeneralizedInverse::solve(const Vector<double> &f,
                                  Vector<double>       &u) const
   {
+    if (distributed)
+      {
+        distributed->solve(f, u);
+        return;
+      }
     std::vector<double> block(solved_dofs.size());
     for (unsigned int c = 0; c < solved_dofs.size(); ++c)
       block[c] = f[solved_dofs[c]];

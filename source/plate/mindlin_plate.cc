@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/quadrature_lib.h>
 
+#include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe_q.h>
@@ -58,6 +59,17 @@ namespace PlateOnHalfspace
       dof_handler.reinit(triangulation);
     attached_triangulation = &triangulation;
     dof_handler.distribute_dofs(fe);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    if (n_ranks > 1)
+      {
+        // Each rank's DoFs contiguous, in the order of its cells' subdomain
+        // ids; a DoF on the border of two ranks' cells goes to the first.
+        DoFRenumbering::subdomain_wise(dof_handler);
+        owned_dofs = DoFTools::locally_owned_dofs_per_subdomain(
+          dof_handler)[Utilities::MPI::this_mpi_process(communicator)];
+      }
+    else
+      owned_dofs = complete_index_set(dof_handler.n_dofs());
 
     if (slab_grid)
       joint_coupling.reinit(*slab_grid, dof_handler, symmetry);
@@ -188,15 +200,24 @@ namespace PlateOnHalfspace
 
     foundation_dofs.clear();
     foundation_index.assign(dof_handler.n_dofs(), -1);
-    foundation_space          = FoundationSpace();
-    foundation_space.symmetry = symmetry;
+    foundation_space              = FoundationSpace();
+    foundation_space.symmetry     = symmetry;
+    foundation_space.communicator = communicator;
+    std::vector<bool> owned;
     for (const auto dof : w_dofs)
       if (!constraints.is_constrained(dof))
         {
           foundation_index[dof] = foundation_dofs.size();
           foundation_dofs.push_back(dof);
           foundation_space.node_locations.push_back(support_points[dof]);
+          owned.push_back(owned_dofs.is_element(dof));
         }
+    // A node belongs to the rank that owns its w-DoF (doc/parallel.md).
+    foundation_space.owned_nodes.set_size(foundation_dofs.size());
+    for (unsigned int i = 0; i < owned.size(); ++i)
+      if (owned[i])
+        foundation_space.owned_nodes.add_index(i);
+    foundation_space.owned_nodes.compress();
 
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())

@@ -1,5 +1,6 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
 #include <plate_on_halfspace/plate/plate_mesh.h>
@@ -124,5 +125,16 @@ namespace PlateOnHalfspace
             break;
           }
       }
+  }
+
+  void
+  partition_plate_mesh(Triangulation<2> &triangulation,
+                       const MPI_Comm    communicator)
+  {
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    if (n_ranks > 1)
+      GridTools::partition_triangulation(n_ranks,
+                                         triangulation,
+                                         SparsityTools::Partitioner::metis);
   }
 } // namespace PlateOnHalfspace

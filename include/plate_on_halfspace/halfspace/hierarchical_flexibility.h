@@ -6,7 +6,9 @@
  * clusters whose supports are well separated replaced by low-rank
  * approximations (ACA+) to a relative tolerance, so that storage, assembly
  * and the product grow like n log n instead of n², and an H-Cholesky
- * factorisation replaces the n³ dense one.
+ * factorisation replaces the n³ dense one. It holds the whole of A, or one
+ * block A(rows, columns) of it: a rank's share of a run on several
+ * processes (doc/parallel.md, "The half-space").
  */
 #ifndef plate_on_halfspace_halfspace_hierarchical_flexibility_h
 #define plate_on_halfspace_halfspace_hierarchical_flexibility_h
@@ -26,6 +28,8 @@ struct hmat_cluster_tree_struct;
 namespace PlateOnHalfspace
 {
   using namespace dealii;
+
+  class CellPairSummation;
 
   /**
    * The Galerkin flexibility A as an H-matrix.
@@ -124,7 +128,25 @@ namespace PlateOnHalfspace
           const double           alpha,
           const unsigned int     singular_order);
 
-    /** dst = A src, natural numbering (units of A: length^3/force). */
+    /**
+     * Build the block A(@p rows, @p columns) (natural node numbers; empty:
+     * all nodes) from the entries of @p summation, which was made on
+     * @p cells. Equal rows and columns give a symmetric block in
+     * lower-symmetric storage, which factorize() can factorise; other
+     * blocks are stored whole.
+     */
+    void
+    build(const std::vector<FoundationSpace::Cell> &cells,
+          const CellPairSummation                  &summation,
+          const std::vector<Point<2>>              &node_locations,
+          const std::vector<unsigned int>          &rows,
+          const std::vector<unsigned int>          &columns);
+
+    /**
+     * dst = A src, natural numbering (units of A: length^3/force): for a
+     * block, the rows of dst from the columns of src, all other entries of
+     * dst zero. Both vectors have every node's entry.
+     */
     void
     vmult(Vector<double> &dst, const Vector<double> &src) const;
 
@@ -139,15 +161,17 @@ namespace PlateOnHalfspace
     void
     factorize();
 
-    /** dst = (L L^T)^{-1} src, natural numbering; needs factorize(). */
+    /** dst = (L L^T)^{-1} src, natural numbering, on the block's rows
+     *  (other entries of dst zero); needs factorize(). */
     void
     solve(Vector<double> &dst, const Vector<double> &src) const;
 
-    /** The same for the columns of @p rhs (overwritten by the solutions). */
+    /** The same for the columns of @p rhs (overwritten by the solutions on
+     *  the block's rows, the other rows left as they are). */
     void
     solve(FullMatrix<double> &rhs) const;
 
-    /** Number of foundation nodes n (A is n x n). */
+    /** Number of foundation nodes n (A is n x n; a block is part of it). */
     unsigned int
     size() const
     {
@@ -166,9 +190,10 @@ namespace PlateOnHalfspace
     memory_consumption() const;
 
     /**
-     * Stored entries of A's H-matrix over n². The storage is lower
-     * symmetric (diagonal blocks and the blocks below them), so a matrix
-     * without low-rank blocks gives about 0.5.
+     * Stored entries of A's H-matrix over its rows times its columns. The
+     * storage of a symmetric block is lower symmetric (diagonal blocks and
+     * the blocks below them), so a matrix without low-rank blocks gives
+     * about 0.5.
      */
     double
     compression_ratio() const;
@@ -229,11 +254,19 @@ namespace PlateOnHalfspace
   private:
     Settings     settings;
     unsigned int n_nodes = 0;
-    /** hmat position k holds node hmat_to_node[k]. */
-    std::vector<unsigned int> hmat_to_node;
-    /** The cluster tree of the nodes (rows and columns). */
-    hmat_cluster_tree_struct *tree = nullptr;
-    /** A, lower-symmetric storage. */
+    /** The block's nodes (empty: all) and each node's place among them
+     *  (-1: not in the block), for rows and columns. */
+    std::vector<unsigned int> row_nodes, column_nodes;
+    std::vector<int>          row_unknowns, column_unknowns;
+    /** Whether rows and columns are the same nodes (lower storage). */
+    bool symmetric = true;
+    /** hmat position k of the rows (columns) holds node
+     *  hmat_to_row[k] (hmat_to_column[k]). */
+    std::vector<unsigned int> hmat_to_row, hmat_to_column;
+    /** The cluster trees of the rows and of the columns (the same tree for
+     *  a symmetric block). */
+    hmat_cluster_tree_struct *row_tree = nullptr, *column_tree = nullptr;
+    /** A or its block; lower-symmetric storage if symmetric. */
     hmat_matrix_struct *matrix = nullptr;
     /** The H-Cholesky factor of a copy of A (nullptr before factorize()). */
     hmat_matrix_struct *factor         = nullptr;
@@ -244,11 +277,9 @@ namespace PlateOnHalfspace
     void
     release();
 
-    /** hmat-ordered buffer from a natural vector and back. */
-    void
-    to_hmat_order(const double *natural, double *ordered) const;
-    void
-    to_natural_order(const double *ordered, double *natural) const;
+    /** Row @p i of the block (its columns' entries, zero elsewhere). */
+    Vector<double>
+    block_row(const unsigned int i) const;
   };
 } // namespace PlateOnHalfspace
 

@@ -12,6 +12,14 @@
  * explicit inverse of T (a mid-side row of T holds 1 - 2 alpha and alpha
  * for its two ends, a vertex row is the identity row).
  *
+ * On several processes (doc/parallel.md, "The half-space") each rank holds
+ * the rows of A of the nodes it owns (FoundationSpace::owned_nodes): the
+ * block on its own nodes, symmetric, and the block against all other
+ * nodes, each compressed by hmat-oss on its own. A product computes each
+ * rank's rows from the whole input and sums the rows over the ranks; the
+ * approximate inverse is block-Jacobi, the H-Cholesky factor of each
+ * rank's diagonal block. One process holds the whole A as before.
+ *
  * copy_block() is the interface's (products with unit vectors): a contact
  * solver that needs dense blocks should use the dense storage, and the
  * scene checks (SceneParameters) keep the direct solver off this storage.
@@ -88,9 +96,19 @@ namespace PlateOnHalfspace
     apply_inverse_transpose_transform(const Vector<double> &x,
                                       Vector<double>       &y) const;
 
-    const double            alpha;
-    const unsigned int      singular_order;
+    const double       alpha;
+    const unsigned int singular_order;
+    /** The whole A on one process, else this rank's diagonal block. */
     HierarchicalFlexibility flexibility;
+    /** This rank's rows against the other ranks' nodes (several
+     *  processes only). */
+    HierarchicalFlexibility off_diagonal;
+    /** The ranks the rows are split over (MPI_COMM_SELF: not split). */
+    MPI_Comm communicator = MPI_COMM_SELF;
+
+    /** Whether the rows are split over several processes. */
+    bool
+    rows_are_split() const;
   };
 } // namespace PlateOnHalfspace
 

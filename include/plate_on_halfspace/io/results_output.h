@@ -7,6 +7,7 @@
 #define plate_on_halfspace_io_results_output_h
 
 #include <deal.II/base/convergence_table.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 
 #include <deal.II/lac/vector.h>
@@ -64,8 +65,10 @@ namespace PlateOnHalfspace
     double      foundation_compression_time_s   = 0;
     double      foundation_factorization_time_s = 0;
     std::string foundation_storage;
-    std::size_t foundation_memory_bytes = 0;
-    bool        converged               = true;
+    /** The foundation nodes each rank owns (one entry per process). */
+    std::vector<unsigned int> foundation_nodes_per_rank;
+    std::size_t               foundation_memory_bytes = 0;
+    bool                      converged               = true;
     /** 1/κ₁ estimates of the coupled matrix and of the half-space block. */
     double coupled_matrix_rcond = 1, foundation_block_rcond = 1;
     std::vector<PointValues> probes;
@@ -143,8 +146,14 @@ namespace PlateOnHalfspace
   class ResultsOutput
   {
   public:
-    /** Creates @p directory and sets the earlier run's results aside. */
-    explicit ResultsOutput(const std::string &directory);
+    /**
+     * Creates @p directory and sets the earlier run's results aside. Under
+     * MPI every rank holds the whole solution on its shared mesh, and only
+     * rank 0 of @p communicator touches the directory (doc/parallel.md);
+     * summary.json records the number of ranks and the partitioner.
+     */
+    explicit ResultsOutput(const std::string &directory,
+                           const MPI_Comm     communicator = MPI_COMM_SELF);
 
     /** A run that neither committed nor abandoned is abandoned. */
     ~ResultsOutput();
@@ -246,9 +255,12 @@ namespace PlateOnHalfspace
     static unsigned int
     move_result_files(const std::string &from, const std::string &to);
 
-    std::string                                 directory;
-    std::string                                 previous_run, failed_run;
-    bool                                        finished = false;
+    std::string directory;
+    std::string previous_run, failed_run;
+    /** Rank 0 writes; the number of ranks goes into summary.json. */
+    bool                                        writes      = true;
+    unsigned int                                n_processes = 1;
+    bool                                        finished    = false;
     std::vector<std::pair<double, std::string>> pvd_records;
   };
 } // namespace PlateOnHalfspace

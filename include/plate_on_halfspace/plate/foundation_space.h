@@ -11,6 +11,8 @@
 #ifndef plate_on_halfspace_plate_foundation_space_h
 #define plate_on_halfspace_plate_foundation_space_h
 
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 
 #include <deal.II/lac/sparse_matrix.h>
@@ -65,6 +67,15 @@ namespace PlateOnHalfspace
      * pressure (mirror_symmetry.h).
      */
     MirrorSymmetry symmetry;
+
+    /**
+     * The ranks the plate's mesh is shared by (MPI_COMM_SELF for one
+     * process), and the nodes this rank owns: those whose w-DoF it owns
+     * (doc/parallel.md). A foundation operator that splits its rows
+     * computes these; every other vector stays whole on every rank.
+     */
+    MPI_Comm communicator = MPI_COMM_SELF;
+    IndexSet owned_nodes;
 
     /**
      * The plate's rigid-body motions (generalized_inverse.h) at the

@@ -11,11 +11,14 @@
 #include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
+#include <memory>
 #include <vector>
 
 namespace PlateOnHalfspace
 {
   using namespace dealii;
+
+  class DistributedSparseDirect;
 
   /**
    * The rigid-body motions in the kernel of the plate's stiffness K (full
@@ -30,15 +33,18 @@ namespace PlateOnHalfspace
 
   /**
    * K^+, a generalised inverse of the sparse stiffness on the unconstrained
-   * DoFs, from one CHOLMOD factorisation with one foundation deflection per
+   * DoFs, from one factorisation with one foundation deflection per
    * rigid-body motion pinned (chosen by pivoting so that the motions are
-   * well conditioned at the pinned nodes).
+   * well conditioned at the pinned nodes): CHOLMOD on one process, MUMPS
+   * on the plate's DoFs split over the ranks of a shared mesh
+   * (distributed_sparse_direct.h, doc/parallel.md).
    */
   class PlateGeneralizedInverse
   {
   public:
     /** Throws ExcMessage if the plate has a mechanism of its own. */
     explicit PlateGeneralizedInverse(const MindlinPlate &plate);
+    ~PlateGeneralizedInverse();
 
     /** u = K^+ f (full DoF vectors; zero at constrained and pinned DoFs). */
     void
@@ -62,6 +68,8 @@ namespace PlateOnHalfspace
     std::vector<Vector<double>>                 motions;
     std::vector<types::global_dof_index>        solved_dofs;
     SparseCholesky                              factor;
+    /** The factorisation on several processes (factor is then unused). */
+    std::unique_ptr<DistributedSparseDirect> distributed;
   };
 } // namespace PlateOnHalfspace
 

@@ -9,6 +9,9 @@
 #ifndef plate_on_halfspace_plate_mindlin_plate_h
 #define plate_on_halfspace_plate_mindlin_plate_h
 
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/fe_system.h>
@@ -113,6 +116,33 @@ namespace PlateOnHalfspace
     set_mirror_symmetry(const MirrorSymmetry &mirror_symmetry)
     {
       symmetry = mirror_symmetry;
+    }
+
+    /**
+     * Share the plate among the ranks of @p communicator (doc/parallel.md):
+     * the mesh given to setup() carries each cell's rank as its subdomain
+     * id (partition_plate_mesh()), each rank's DoFs are numbered
+     * contiguously, and the rank owns the DoFs of its cells
+     * (locally_owned_dofs()). Every rank still holds every cell and DoF.
+     * Call before setup(); without it the plate is on one process.
+     */
+    void
+    set_communicator(const MPI_Comm mpi_communicator)
+    {
+      communicator = mpi_communicator;
+    }
+
+    MPI_Comm
+    get_communicator() const
+    {
+      return communicator;
+    }
+
+    /** The DoFs this rank owns (all of them on one process). */
+    const IndexSet &
+    locally_owned_dofs() const
+    {
+      return owned_dofs;
     }
 
     /**
@@ -340,6 +370,8 @@ namespace PlateOnHalfspace
     const Parameters::Plate          plate;
     const Parameters::Discretization discretization;
     MirrorSymmetry                   symmetry;
+    MPI_Comm                         communicator = MPI_COMM_SELF;
+    IndexSet                         owned_dofs;
     std::optional<SlabGrid>          slab_grid;
     JointCoupling                    joint_coupling;
 

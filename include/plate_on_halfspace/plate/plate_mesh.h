@@ -5,6 +5,8 @@
 #ifndef plate_on_halfspace_plate_plate_mesh_h
 #define plate_on_halfspace_plate_plate_mesh_h
 
+#include <deal.II/base/mpi.h>
+
 #include <deal.II/grid/tria.h>
 
 #include <plate_on_halfspace/scene/parameters.h>
@@ -30,6 +32,16 @@ namespace PlateOnHalfspace
   make_coarse_plate_mesh(const Parameters::Plate          &plate,
                          const Parameters::Discretization &discretization,
                          Triangulation<2>                 &triangulation);
+
+  /**
+   * Split the cells of @p triangulation among the ranks of
+   * @p communicator with METIS (GridTools::partition_triangulation): each
+   * cell's subdomain id is its rank (doc/parallel.md). Nothing on one
+   * process. Every rank computes the same partition of the same mesh.
+   */
+  void
+  partition_plate_mesh(Triangulation<2> &triangulation,
+                       const MPI_Comm    communicator);
 } // namespace PlateOnHalfspace
 
 #endif
