@@ -3,6 +3,7 @@
 #include <deal.II/numerics/solution_transfer.h>
 
 #include <plate_on_halfspace/base/progress.h>
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/plate/field_extrema.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
@@ -34,7 +35,7 @@ namespace PlateOnHalfspace
   {
     // Long phases report their progress on a terminal (base/progress.h).
     ProgressReport::enable(parameters.output.verbosity > 0 &&
-                           Utilities::MPI::this_mpi_process(communicator) == 0);
+                           rank_in(communicator) == 0);
     output = std::make_unique<ResultsOutput>(parameters.output_directory,
                                              communicator);
     // A run that fails keeps the earlier run's results (results_output.h).
@@ -231,10 +232,12 @@ namespace PlateOnHalfspace
     summary.n_dofs            = mindlin_plate->n_unconstrained_dofs();
     summary.n_foundation_dofs = mindlin_plate->get_foundation_dofs().size();
     summary.applied_load = symmetry.n_copies() * mindlin_plate->applied_load();
-    summary.foundation_nodes_per_rank = Utilities::MPI::all_gather(
-      communicator,
-      static_cast<unsigned int>(
-        mindlin_plate->get_foundation_space().owned_nodes.n_elements()));
+    const unsigned int owned_nodes = static_cast<unsigned int>(
+      mindlin_plate->get_foundation_space().owned_nodes.n_elements());
+    summary.foundation_nodes_per_rank =
+      n_ranks(communicator) > 1 ?
+        Utilities::MPI::all_gather(communicator, owned_nodes) :
+        std::vector<unsigned int>{owned_nodes};
     summary.assembly_time_s = setup_time_s + phase.wall_time();
     if (parameters.output.verbosity > 0)
       log << "cycle " << cycle << ": " << summary.n_cells << " cells, "

@@ -58,7 +58,7 @@ namespace PlateOnHalfspace
   bool
   HierarchicalGalerkinOperator::rows_are_split() const
   {
-    return Utilities::MPI::n_mpi_processes(communicator) > 1;
+    return n_ranks(communicator) > 1;
   }
 
   void

@@ -6,6 +6,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/io/results_output.h>
 #include <plate_on_halfspace/plate/field_extrema.h>
 
@@ -91,8 +92,8 @@ namespace PlateOnHalfspace
     : directory(directory)
     , previous_run((std::filesystem::path(directory) / "previous-run").string())
     , failed_run((std::filesystem::path(directory) / "failed-run").string())
-    , writes(Utilities::MPI::this_mpi_process(communicator) == 0)
-    , n_processes(Utilities::MPI::n_mpi_processes(communicator))
+    , writes(rank_in(communicator) == 0)
+    , n_processes(n_ranks(communicator))
   {
     if (!writes)
       return;

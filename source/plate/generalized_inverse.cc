@@ -8,6 +8,7 @@
 #include <deal.II/lac/lapack_full_matrix.h>
 
 #include <plate_on_halfspace/base/distributed_sparse_direct.h>
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate/generalized_inverse.h>
 
 #include <algorithm>
@@ -198,7 +199,7 @@ namespace PlateOnHalfspace
     const MPI_Comm communicator = plate.get_communicator();
     try
       {
-        if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        if (n_ranks(communicator) > 1)
           {
             std::vector<bool> solved(n_dofs, false);
             for (const auto i : solved_dofs)

@@ -9,6 +9,7 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate/generalized_inverse.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
@@ -59,14 +60,13 @@ namespace PlateOnHalfspace
       dof_handler.reinit(triangulation);
     attached_triangulation = &triangulation;
     dof_handler.distribute_dofs(fe);
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
-    if (n_ranks > 1)
+    if (n_ranks(communicator) > 1)
       {
         // Each rank's DoFs contiguous, in the order of its cells' subdomain
         // ids; a DoF on the border of two ranks' cells goes to the first.
         DoFRenumbering::subdomain_wise(dof_handler);
         owned_dofs = DoFTools::locally_owned_dofs_per_subdomain(
-          dof_handler)[Utilities::MPI::this_mpi_process(communicator)];
+          dof_handler)[rank_in(communicator)];
       }
     else
       owned_dofs = complete_index_set(dof_handler.n_dofs());

@@ -3,6 +3,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 
 #include <filesystem>
@@ -131,9 +132,9 @@ namespace PlateOnHalfspace
   partition_plate_mesh(Triangulation<2> &triangulation,
                        const MPI_Comm    communicator)
   {
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
-    if (n_ranks > 1)
-      GridTools::partition_triangulation(n_ranks,
+    const unsigned int n_parts = n_ranks(communicator);
+    if (n_parts > 1)
+      GridTools::partition_triangulation(n_parts,
                                          triangulation,
                                          SparsityTools::Partitioner::metis);
   }

@@ -15,11 +15,30 @@
 
 namespace PlateOnHalfspace
 {
+  /** The number of ranks of @p communicator; 1 where MPI is not
+   *  initialised (the unit tests, the library without mpirun). */
+  inline unsigned int
+  n_ranks(const MPI_Comm communicator)
+  {
+    return dealii::Utilities::MPI::job_supports_mpi() ?
+             dealii::Utilities::MPI::n_mpi_processes(communicator) :
+             1;
+  }
+
+  /** This process's rank in @p communicator; 0 without MPI. */
+  inline unsigned int
+  rank_in(const MPI_Comm communicator)
+  {
+    return dealii::Utilities::MPI::job_supports_mpi() ?
+             dealii::Utilities::MPI::this_mpi_process(communicator) :
+             0;
+  }
+
   /** @p v summed over the ranks of @p communicator, in place. */
   inline void
   sum_over_ranks(dealii::Vector<double> &v, const MPI_Comm communicator)
   {
-    if (dealii::Utilities::MPI::n_mpi_processes(communicator) == 1)
+    if (n_ranks(communicator) == 1)
       return;
     const dealii::ArrayView<double> view = dealii::make_array_view(v);
     dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(view.data(),
