@@ -340,8 +340,8 @@ namespace PlateOnHalfspace
     summary["converged"]     = converged;
     summary["symmetry"]      = symmetry;
     summary["mpi_processes"] = n_processes;
-    // The shared mesh's cells are split among the ranks by METIS
-    // (plate_on_halfspace_problem.cc); one rank holds them all.
+    // The mesh's cells are split among the ranks by METIS
+    // (partition_plate_mesh()); one rank holds them all.
     summary["partitioner"] = n_processes > 1 ? "metis" : "none";
     summary["cycles"]      = nlohmann::ordered_json::array();
     for (const CycleSummary &c : cycles)

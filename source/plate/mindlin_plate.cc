@@ -203,21 +203,20 @@ namespace PlateOnHalfspace
     foundation_space              = FoundationSpace();
     foundation_space.symmetry     = symmetry;
     foundation_space.communicator = communicator;
-    std::vector<bool> owned;
+    // A node belongs to the rank that owns its w-DoF (doc/parallel.md).
+    std::vector<types::global_dof_index> owned_nodes;
     for (const auto dof : w_dofs)
       if (!constraints.is_constrained(dof))
         {
+          if (owned_dofs.is_element(dof))
+            owned_nodes.push_back(foundation_dofs.size());
           foundation_index[dof] = foundation_dofs.size();
           foundation_dofs.push_back(dof);
           foundation_space.node_locations.push_back(support_points[dof]);
-          owned.push_back(owned_dofs.is_element(dof));
         }
-    // A node belongs to the rank that owns its w-DoF (doc/parallel.md).
     foundation_space.owned_nodes.set_size(foundation_dofs.size());
-    for (unsigned int i = 0; i < owned.size(); ++i)
-      if (owned[i])
-        foundation_space.owned_nodes.add_index(i);
-    foundation_space.owned_nodes.compress();
+    foundation_space.owned_nodes.add_indices(owned_nodes.begin(),
+                                             owned_nodes.end());
 
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())

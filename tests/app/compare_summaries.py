@@ -4,17 +4,19 @@
 usage: compare_summaries.py A.json B.json TOLERANCE
 
 Every number must agree to TOLERANCE relative to the largest magnitude of
-its kind in A (the column's scale: a peak's location is compared with the
-plate's size, a moment with the largest moment, min_q with max_q), give
-or take 1e-12 for
-quantities at rounding level, and every string, flag and count exactly.
-The solvers' relative residuals (penetration, complementarity) are
-compared absolutely, and a peak's location (`at`, `..._at`, against the largest coordinate
-of any location) and an error estimate to the square root
-of TOLERANCE: near a smooth extremum the place moves like the square root
-of the value. Iteration counts describe the run, not the answer. Timings, memory, iteration counts and the number of processes are
-skipped: they describe the run, not the answer. Prints the largest difference and
-exits non-zero on the first mismatch.
+its kind in A (the column's scale: a moment against the largest moment,
+min_q against max_q), give or take 1e-12 for quantities at rounding
+level; every string, flag and count must agree exactly. Three kinds are
+judged otherwise:
+ - the solvers' relative residuals (penetration, complementarity) are
+   compared absolutely;
+ - a peak's location (`at`, `..._at`, against the largest coordinate of
+   any location) to the square root of TOLERANCE: near a smooth extremum
+   the place moves like the square root of the value;
+ - an error estimate or a change between cycles to the same square root.
+Timings, memory, iteration counts and the number of processes are
+skipped: they describe the run, not the answer. Prints the largest
+difference and exits non-zero on the first mismatch.
 """
 import json
 import sys
