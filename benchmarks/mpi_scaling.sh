@@ -1,24 +1,39 @@
 #!/usr/bin/env bash
-# A run on 1 and on 2 MPI processes of the same tensionless scene
-# (doc/parallel.md, doc/performance.md "Distributed runs"): the paper's
-# example 2 made Galerkin + active set on the quarter plate of a uniform
-# mesh with N x N cells (n = 3 N^2 + 4 N + 1 foundation nodes; N = 182:
-# n = 100101), hierarchical storage and the iterative solver. Prints per
-# run the wall time and its split (summary.json), the active-set steps and
-# conjugate gradient iterations, the foundation nodes of each rank, and the
-# peak memory of each rank (GNU time around each rank), then the ratios
-# P = 2 over P = 1.
-# usage: bash benchmarks/mpi_scaling.sh [build/plate-on-halfspace] [N]
+# A tensionless scene on one and on several MPI processes (doc/parallel.md,
+# doc/performance.md "Distributed runs"): the paper's example 2 made
+# Galerkin + active set on the quarter plate of a uniform mesh with N x N
+# cells (n = 3 N^2 + 4 N + 1 foundation nodes; N = 182: n = 100101),
+# hierarchical storage and the iterative solver.
+#
+# Without PARTS, three runs:
+#   serial  the program alone, as one process with deal.II's threads on
+#           every core;
+#   P = 1   mpirun -np 1: Open MPI binds the process to one core, the
+#           per-core reference for scaling out;
+#   P = 2   mpirun -np 2: one rank per core.
+# It prints per run the wall time and its split (summary.json), the
+# active-set steps and conjugate gradient iterations, the foundation nodes
+# of each rank, and the peak memory of each rank (GNU time around each
+# rank), then the ratios.
+#
+# With PARTS (numbers of processes, e.g. 1 2 4 8), one run per number, the
+# processes sharing the cores (--oversubscribe): how the block-Jacobi
+# preconditioner's conjugate gradient iterations grow with the number of
+# METIS parts, and each rank's memory with it. Its wall times mean nothing.
+# usage: bash benchmarks/mpi_scaling.sh [build/plate-on-halfspace] [N] [PARTS...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 program=$(realpath "${1:-build/plate-on-halfspace}")
 cells=${2:-182}
+shift $(($# < 2 ? $# : 2))
+runs=("$@")
+[ ${#runs[@]} = 0 ] && runs=(serial 1 2)
 if [ "$(id -u)" = 0 ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for p in 1 2; do
+for p in "${runs[@]}"; do
   cat >"$work/scene-$p.prm" <<PRM
 include $PWD/parameters/example2.prm
 set Output directory = $work/out-$p
@@ -45,17 +60,24 @@ subsection Output
   set Verbosity = 1
 end
 PRM
+  if [ "$p" = serial ]; then
+    launch=()
+  elif [ $# = 0 ]; then
+    launch=(mpirun -np "$p")
+  else
+    launch=(mpirun --oversubscribe -np "$p")
+  fi
   start=$(date +%s.%N)
-  mpirun -np $p /usr/bin/time -f "peak %M kB" "$program" "$work/scene-$p.prm" \
+  "${launch[@]}" /usr/bin/time -f "peak %M kB" "$program" "$work/scene-$p.prm" \
     >"$work/log-$p" 2>"$work/err-$p"
   end=$(date +%s.%N)
   echo "$start $end" >"$work/wall-$p"
 done
-python3 - "$work" <<'PY'
+python3 - "$work" "${runs[@]}" <<'PY'
 import json, re, sys
-work = sys.argv[1]
+work, runs = sys.argv[1], sys.argv[2:]
 rows = {}
-for p in (1, 2):
+for p in runs:
     c = json.load(open(f"{work}/out-{p}/summary.json"))["cycles"][-1]
     log = open(f"{work}/log-{p}").read()
     cg = [int(x) for x in re.findall(r"conjugate gradients (\d+) iterations", log)]
@@ -66,22 +88,34 @@ for p in (1, 2):
                    compression=c["foundation_compression_time_s"],
                    factorization=c["foundation_factorization_time_s"],
                    solve=c["solve_time_s"], steps=c["contact_iterations"],
-                   cg=sum(cg), last_cg=cg[-1] if cg else 0,
-                   split=c["foundation_nodes_per_rank"], peaks=peaks,
+                   cg=cg, split=c["foundation_nodes_per_rank"], peaks=peaks,
                    contact=c["contact_nodes"])
-print("| P | n | nodes per rank | wall [s] | integration [s] | compression [s] "
-      "| H-Cholesky [s] | contact solve [s] | active-set steps | CG its (last set) "
+if runs[0] != "serial":
+    first = rows[runs[0]]
+    print("| P | n | nodes per rank | active-set steps | CG its per step "
+          "| CG its in all | last step | in all against P = %s "
+          "| largest rank's peak memory [MB] |" % runs[0])
+    print("|---|---|---|---|---|---|---|---|---|")
+    for p, r in rows.items():
+        print(f"| {p} | {r['n']} | {min(r['split'])}–{max(r['split'])} "
+              f"| {r['steps']} | {', '.join(map(str, r['cg']))} | {sum(r['cg'])} "
+              f"| {r['cg'][-1]} | {sum(r['cg']) / sum(first['cg']):.2f} "
+              f"| {max(r['peaks']):.0f} |")
+    sys.exit(0)
+print("| run | n | nodes per rank | wall [s] | integration [s] | compression [s] "
+      "| H-Cholesky [s] | contact solve [s] | active-set steps | CG its (last step) "
       "| peak memory per rank [MB] |")
 print("|---|---|---|---|---|---|---|---|---|---|---|")
 for p, r in rows.items():
     print(f"| {p} | {r['n']} | {' + '.join(map(str, r['split']))} | {r['wall']:.1f} "
           f"| {r['integration']:.1f} | {r['compression']:.1f} | {r['factorization']:.1f} "
-          f"| {r['solve']:.1f} | {r['steps']} | {r['cg']} ({r['last_cg']}) "
+          f"| {r['solve']:.1f} | {r['steps']} | {sum(r['cg'])} ({r['cg'][-1]}) "
           f"| {' / '.join('%.0f' % m for m in r['peaks'])} |")
-a, b = rows[1], rows[2]
 print()
-print(f"P = 2 over P = 1: wall time {b['wall'] / a['wall']:.2f}, "
-      f"largest rank's memory {max(b['peaks']) / max(a['peaks']):.2f}, "
-      f"CG iterations {b['cg'] / max(a['cg'], 1):.2f}, "
-      f"same contact nodes: {a['contact'] == b['contact']}")
+for name, a in (("serial", rows["serial"]), ("P = 1", rows["1"])):
+    b = rows["2"]
+    print(f"P = 2 over {name}: wall time {b['wall'] / a['wall']:.2f}, "
+          f"largest rank's memory {max(b['peaks']) / max(a['peaks']):.2f}, "
+          f"CG iterations {sum(b['cg']) / max(sum(a['cg']), 1):.2f}, "
+          f"same contact nodes: {a['contact'] == b['contact']}")
 PY

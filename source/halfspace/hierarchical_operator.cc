@@ -5,6 +5,8 @@
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
 #include <plate_on_halfspace/halfspace/surface_settlement.h>
 
+#include <algorithm>
+
 namespace PlateOnHalfspace
 {
   namespace
@@ -51,8 +53,8 @@ namespace PlateOnHalfspace
     const double       tolerance)
     : alpha(alpha)
     , singular_order(singular_order)
+    , tolerance(tolerance)
     , flexibility(settings_with(tolerance))
-    , off_diagonal(settings_with(tolerance))
   {}
 
   bool
@@ -75,20 +77,26 @@ namespace PlateOnHalfspace
     build_mass_matrix(space, cell_in_foundation);
     set_pressure_basis(space, true);
     communicator = space.communicator;
+    off_diagonal.clear();
     if (!rows_are_split())
       {
         flexibility.build(space, alpha, singular_order);
         times.compression = flexibility.build_times().compression;
         return;
       }
-    // This rank's rows: the block on its own nodes and the block against
-    // the rest, from one summation (its singular pairs integrated once).
-    std::vector<unsigned int> own, others;
+    // This rank's rows: the block on its own nodes and one block against
+    // each other rank's nodes, from one summation (its singular pairs
+    // integrated once).
+    std::vector<unsigned int> own;
     for (unsigned int i = 0; i < space.n_nodes(); ++i)
-      (space.owned_nodes.is_element(i) ? own : others).push_back(i);
+      if (space.owned_nodes.is_element(i))
+        own.push_back(i);
+    const std::vector<std::vector<unsigned int>> nodes_of_rank =
+      Utilities::MPI::all_gather(communicator, own);
     // Decided by all ranks together, so that all stop or none.
-    AssertThrow(Utilities::MPI::min(static_cast<unsigned int>(own.size()),
-                                    communicator) > 0,
+    AssertThrow(std::none_of(nodes_of_rank.begin(),
+                             nodes_of_rank.end(),
+                             [](const auto &nodes) { return nodes.empty(); }),
                 ExcMessage("More MPI processes than the mesh can share: a "
                            "rank owns no foundation node. Run on fewer "
                            "processes or refine the mesh (Discretization/"
@@ -99,9 +107,15 @@ namespace PlateOnHalfspace
       cells, space.symmetry.n_copies(), space.n_nodes(), alpha, singular_order);
     flexibility.build(cells, summation, space.node_locations, own, own);
     times.compression = flexibility.build_times().compression;
-    // every rank owns nodes, so every rank has others
-    off_diagonal.build(cells, summation, space.node_locations, own, others);
-    times.compression += off_diagonal.build_times().compression;
+    for (unsigned int rank = 0; rank < nodes_of_rank.size(); ++rank)
+      if (rank != rank_in(communicator))
+        {
+          off_diagonal.push_back(std::make_unique<HierarchicalFlexibility>(
+            settings_with(tolerance)));
+          off_diagonal.back()->build(
+            cells, summation, space.node_locations, own, nodes_of_rank[rank]);
+          times.compression += off_diagonal.back()->build_times().compression;
+        }
   }
 
   std::unique_ptr<ApproximateInverse>
@@ -122,8 +136,11 @@ namespace PlateOnHalfspace
     if (rows_are_split())
       {
         Vector<double> rest;
-        off_diagonal.vmult(rest, values);
-        settlement += rest;
+        for (const auto &block : off_diagonal)
+          {
+            block->vmult(rest, values);
+            settlement += rest;
+          }
         sum_over_ranks(settlement, communicator);
       }
     s.reinit(q.size());
@@ -193,8 +210,11 @@ namespace PlateOnHalfspace
   std::size_t
   HierarchicalGalerkinOperator::memory_consumption() const
   {
-    return flexibility.memory_consumption() +
-           off_diagonal.memory_consumption() + coupling_memory_consumption();
+    std::size_t bytes =
+      flexibility.memory_consumption() + coupling_memory_consumption();
+    for (const auto &block : off_diagonal)
+      bytes += block->memory_consumption();
+    return bytes;
   }
 
   std::vector<double>

@@ -92,6 +92,7 @@ namespace PlateOnHalfspace
     : directory(directory)
     , previous_run((std::filesystem::path(directory) / "previous-run").string())
     , failed_run((std::filesystem::path(directory) / "failed-run").string())
+    , communicator(communicator)
     , writes(rank_in(communicator) == 0)
     , n_processes(n_ranks(communicator))
   {
@@ -720,9 +721,6 @@ namespace PlateOnHalfspace
                            const Vector<double> &solution,
                            const ContactState   &contact)
   {
-    // Every rank holds the whole solution (doc/parallel.md): rank 0 writes.
-    if (!writes)
-      return;
     // q, gap and the contact indicator share the Q2 space of w: pack them
     // into the three components of one vector on the plate's FESystem.
     const auto    &fe = plate.get_fe();
@@ -765,12 +763,35 @@ namespace PlateOnHalfspace
     for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
       slab[cell->active_cell_index()] = cell->material_id();
     data_out.add_data_vector(slab, "slab", DataOut<2>::type_cell_data);
-    data_out.build_patches(2);
-
-    const std::string  name = "solution-" + two_digits(cycle) + ".vtu";
-    std::ostringstream vtu;
-    data_out.write_vtu(vtu);
-    write_file(name, vtu.str());
+    const std::string name = "solution-" + two_digits(cycle) + ".vtu";
+    if (n_processes == 1)
+      {
+        data_out.build_patches(2);
+        std::ostringstream vtu;
+        data_out.write_vtu(vtu);
+        write_file(name, vtu.str());
+      }
+    else
+      {
+        // Every rank holds the whole solution on the whole mesh; each
+        // builds the patches of its own cells (partition_plate_mesh()) and
+        // MPI-IO writes them into one file, renamed by rank 0 once complete.
+        const types::subdomain_id rank = rank_in(communicator);
+        data_out.set_cell_selection(
+          [rank](const Triangulation<2>::cell_iterator &cell) {
+            return cell->is_active() && cell->subdomain_id() == rank;
+          });
+        data_out.build_patches(2);
+        const std::filesystem::path target =
+          std::filesystem::path(directory) / name;
+        const std::filesystem::path temporary =
+          std::filesystem::path(directory) / ("." + name + ".tmp");
+        data_out.write_vtu_in_parallel(temporary.string(), communicator);
+        if (writes)
+          std::filesystem::rename(temporary, target);
+      }
+    if (!writes)
+      return;
 
     pvd_records.erase(std::remove_if(pvd_records.begin(),
                                      pvd_records.end(),

@@ -31,6 +31,9 @@
 #include <plate_on_halfspace/halfspace/hierarchical_flexibility.h>
 #include <plate_on_halfspace/halfspace/interface.h>
 
+#include <memory>
+#include <vector>
+
 namespace PlateOnHalfspace
 {
   /** See the file documentation. */
@@ -98,11 +101,15 @@ namespace PlateOnHalfspace
 
     const double       alpha;
     const unsigned int singular_order;
+    const double       tolerance;
     /** The whole A on one process, else this rank's diagonal block. */
     HierarchicalFlexibility flexibility;
-    /** This rank's rows against the other ranks' nodes (several
-     *  processes only). */
-    HierarchicalFlexibility off_diagonal;
+    /**
+     * This rank's rows against each other rank's nodes, one block per
+     * rank (several processes only): a METIS part is compact, the union of
+     * several is not, and ACA+ samples a compact cluster reliably.
+     */
+    std::vector<std::unique_ptr<HierarchicalFlexibility>> off_diagonal;
     /** The ranks the rows are split over (MPI_COMM_SELF: not split). */
     MPI_Comm communicator = MPI_COMM_SELF;
 

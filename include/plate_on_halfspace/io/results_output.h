@@ -235,7 +235,11 @@ namespace PlateOnHalfspace
                                   const Point<2>       &start,
                                   const Point<2>       &end) const;
 
-    /** solution-NN.vtu and solution.pvd. */
+    /**
+     * solution-NN.vtu and solution.pvd. On several ranks every rank builds
+     * the patches of the cells METIS gave it and all write the one VTU
+     * together (doc/parallel.md); collective.
+     */
     void
     write_vtu(const unsigned int    cycle,
               const MindlinPlate   &plate,
@@ -258,6 +262,7 @@ namespace PlateOnHalfspace
     std::string directory;
     std::string previous_run, failed_run;
     /** Rank 0 writes; the number of ranks goes into summary.json. */
+    MPI_Comm                                    communicator;
     bool                                        writes      = true;
     unsigned int                                n_processes = 1;
     bool                                        finished    = false;
