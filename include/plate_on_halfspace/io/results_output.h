@@ -261,7 +261,8 @@ namespace PlateOnHalfspace
 
     std::string directory;
     std::string previous_run, failed_run;
-    /** Rank 0 writes; the number of ranks goes into summary.json. */
+    /** The run's ranks: all write the VTU, rank 0 the other files; their
+     *  number goes into summary.json. */
     MPI_Comm                                    communicator;
     bool                                        writes      = true;
     unsigned int                                n_processes = 1;
