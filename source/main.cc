@@ -11,6 +11,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/scene/input_checks.h>
 #include <plate_on_halfspace/scene/parameters.h>
@@ -27,8 +28,7 @@ main(int argc, char **argv)
   // Each rank takes its share of the cores for deal.II's threads.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   dealii::deal_II_exceptions::disable_abort_on_exception();
-  const bool is_root =
-    dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  const bool is_root = rank_in(MPI_COMM_WORLD) == 0;
   // The other ranks compute the same scene; only rank 0 speaks.
   std::ostream  silent(nullptr);
   std::ostream &out = is_root ? std::cout : silent;
@@ -82,14 +82,11 @@ main(int argc, char **argv)
           // why and stops them all (doc/parallel.md). Its earlier results
           // are already restored (ResultsOutput).
           out.flush();
-          const unsigned int n_ranks =
-            dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-          if (n_ranks == 1)
+          if (n_ranks(MPI_COMM_WORLD) == 1)
             throw;
-          std::cerr << "Error (rank "
-                    << dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)
-                    << " of " << n_ranks << "): " << short_error_message(e)
-                    << std::endl;
+          std::cerr << "Error (rank " << rank_in(MPI_COMM_WORLD) << " of "
+                    << n_ranks(MPI_COMM_WORLD)
+                    << "): " << short_error_message(e) << std::endl;
           MPI_Abort(MPI_COMM_WORLD, 1);
         }
     }

@@ -85,6 +85,14 @@ namespace PlateOnHalfspace
       s << std::setw(2) << std::setfill('0') << cycle;
       return s.str();
     }
+
+    /** Where @p name is written before it is renamed into place, so that
+     *  a run never leaves a half-written result file. */
+    std::filesystem::path
+    temporary_path(const std::string &directory, const std::string &name)
+    {
+      return std::filesystem::path(directory) / ("." + name + ".tmp");
+    }
   } // namespace
 
   ResultsOutput::ResultsOutput(const std::string &directory,
@@ -93,10 +101,8 @@ namespace PlateOnHalfspace
     , previous_run((std::filesystem::path(directory) / "previous-run").string())
     , failed_run((std::filesystem::path(directory) / "failed-run").string())
     , communicator(communicator)
-    , writes(rank_in(communicator) == 0)
-    , n_processes(n_ranks(communicator))
   {
-    if (!writes)
+    if (!writes_files())
       return;
     std::error_code error;
     std::filesystem::create_directories(directory, error);
@@ -155,11 +161,17 @@ namespace PlateOnHalfspace
     return files.size();
   }
 
+  bool
+  ResultsOutput::writes_files() const
+  {
+    return rank_in(communicator) == 0;
+  }
+
   void
   ResultsOutput::commit()
   {
     finished = true;
-    if (!writes)
+    if (!writes_files())
       return;
     std::filesystem::remove_all(previous_run);
     std::filesystem::remove_all(failed_run);
@@ -169,7 +181,7 @@ namespace PlateOnHalfspace
   ResultsOutput::abandon()
   {
     finished = true;
-    if (!writes)
+    if (!writes_files())
       return "";
     std::filesystem::remove_all(failed_run);
     const unsigned int written = move_result_files(directory, failed_run);
@@ -185,12 +197,11 @@ namespace PlateOnHalfspace
   ResultsOutput::write_file(const std::string &name,
                             const std::string &text) const
   {
-    if (!writes)
+    if (!writes_files())
       return;
     const std::filesystem::path target =
       std::filesystem::path(directory) / name;
-    const std::filesystem::path temporary =
-      std::filesystem::path(directory) / ("." + name + ".tmp");
+    const std::filesystem::path temporary = temporary_path(directory, name);
     {
       std::ofstream file(temporary);
       file << text;
@@ -338,9 +349,10 @@ namespace PlateOnHalfspace
                                const std::vector<SweepRow>     &sweep) const
   {
     nlohmann::ordered_json summary;
-    summary["converged"]     = converged;
-    summary["symmetry"]      = symmetry;
-    summary["mpi_processes"] = n_processes;
+    summary["converged"]           = converged;
+    summary["symmetry"]            = symmetry;
+    const unsigned int n_processes = n_ranks(communicator);
+    summary["mpi_processes"]       = n_processes;
     // The mesh's cells are split among the ranks by METIS
     // (partition_plate_mesh()); one rank holds them all.
     summary["partitioner"] = n_processes > 1 ? "metis" : "none";
@@ -764,7 +776,7 @@ namespace PlateOnHalfspace
       slab[cell->active_cell_index()] = cell->material_id();
     data_out.add_data_vector(slab, "slab", DataOut<2>::type_cell_data);
     const std::string name = "solution-" + two_digits(cycle) + ".vtu";
-    if (n_processes == 1)
+    if (n_ranks(communicator) == 1)
       {
         data_out.build_patches(2);
         std::ostringstream vtu;
@@ -782,15 +794,13 @@ namespace PlateOnHalfspace
             return cell->is_active() && cell->subdomain_id() == rank;
           });
         data_out.build_patches(2);
-        const std::filesystem::path target =
-          std::filesystem::path(directory) / name;
-        const std::filesystem::path temporary =
-          std::filesystem::path(directory) / ("." + name + ".tmp");
+        const std::filesystem::path temporary = temporary_path(directory, name);
         data_out.write_vtu_in_parallel(temporary.string(), communicator);
-        if (writes)
-          std::filesystem::rename(temporary, target);
+        if (writes_files())
+          std::filesystem::rename(temporary,
+                                  std::filesystem::path(directory) / name);
       }
-    if (!writes)
+    if (!writes_files())
       return;
 
     pvd_records.erase(std::remove_if(pvd_records.begin(),

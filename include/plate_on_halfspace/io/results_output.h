@@ -259,14 +259,16 @@ namespace PlateOnHalfspace
     static unsigned int
     move_result_files(const std::string &from, const std::string &to);
 
+    /** Whether this rank touches the directory: rank 0 only. */
+    bool
+    writes_files() const;
+
     std::string directory;
     std::string previous_run, failed_run;
     /** The run's ranks: all write the VTU, rank 0 the other files; their
      *  number goes into summary.json. */
     MPI_Comm                                    communicator;
-    bool                                        writes      = true;
-    unsigned int                                n_processes = 1;
-    bool                                        finished    = false;
+    bool                                        finished = false;
     std::vector<std::pair<double, std::string>> pvd_records;
   };
 } // namespace PlateOnHalfspace
