@@ -163,8 +163,10 @@ main()
       bool warned = false;
       for (const std::string &w : scene_warnings(p))
         warned = warned || (w.find("locks in shear") != std::string::npos);
+      // 4 digits for the record: the thin plates' solves change later
+      // digits with the CPU (the checks are the assertions below)
       deallog << "a/t = " << int(a_over_t)
-              << ": w / w_Mindlin = " << std::setprecision(6) << ratio
+              << ": w / w_Mindlin = " << std::setprecision(4) << ratio
               << std::setprecision(10) << (warned ? " (warning: locks)" : "")
               << std::endl;
       AssertThrow(std::abs(ratio - 1) <= 1e-2,

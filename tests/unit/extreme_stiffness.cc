@@ -34,9 +34,12 @@ main()
         const auto   problem = solve_scene("rigid-disk.prm", extra.str());
         const auto  &s       = problem->summaries().back();
         const double w       = problem->values_at(Point<2>(0, 0.5)).w;
+        // w for the record, 4 digits: the near-singular solves at large E
+        // change later digits with the CPU (the checks follow)
         deallog << std::setprecision(6) << contact << ", E = " << E
-                << ": w(0,0.5) = " << w << std::setprecision(10)
-                << ", nodes in contact " << s.contact_nodes << std::endl;
+                << ": w(0,0.5) = " << std::setprecision(4) << w
+                << std::setprecision(10) << ", nodes in contact "
+                << s.contact_nodes << std::endl;
         AssertThrow(std::isfinite(w), ExcMessage("not finite"));
         check("  contact force", s.contact_force, s.applied_load, 1e-10);
         if (E >= 1e9 && contact == "bonded")

@@ -100,8 +100,9 @@ namespace
   std::string
   numbers(const double x, const double y)
   {
+    // 6 digits: the values are checked to 1e-12 (rounded() of tests.h)
     std::ostringstream s;
-    s << std::setprecision(10) << x << " vs " << y;
+    s << std::setprecision(6) << x << " vs " << y;
     return s.str();
   }
 
@@ -109,7 +110,8 @@ namespace
   void
   polynomial_fields(const double shear)
   {
-    deallog << "mesh sheared by " << shear << std::endl;
+    // inputs and exact positions: 6 digits are all there is to see
+    deallog << std::setprecision(6) << "mesh sheared by " << shear << std::endl;
     SceneParameters parameters;
     parameters.read_from_string(
       "include " SOURCE_DIR "/../../parameters/example2-bonded.prm\n"
@@ -250,7 +252,7 @@ namespace
                         std::isfinite(peaks.maximum.value) &&
                         std::isfinite(peaks.minimum.value);
         std::ostringstream detail;
-        detail << std::setprecision(8) << "max " << peaks.maximum.value
+        detail << std::setprecision(6) << "max " << peaks.maximum.value
                << " >= sampled " << sample_max << ", min "
                << peaks.minimum.value << " <= sampled " << sample_min;
         report(std::string(name(q)) + " peaks bound a 41 x 41 sampling",
@@ -266,7 +268,10 @@ namespace
                                      "subsection Adaptivity\n set Cycles = 1\n"
                                               "end\n");
     const CycleSummary &s       = problem->summaries().back();
-    deallog << std::setprecision(7) << "example2-bonded, whole plate, "
+    // The solved scene's values for the record, 4 digits: the solve
+    // changes later digits with the CPU's BLAS kernel; the checks below
+    // count points and compare with 1e-12 margins.
+    deallog << std::setprecision(4) << "example2-bonded, whole plate, "
             << s.n_cells << " cells: max_w " << s.max_w << " max_q " << s.max_q
             << " max_Mx " << s.max_mx << " max_My " << s.max_my
             << " max_principal_moment " << s.max_principal_moment << std::endl;
@@ -318,7 +323,7 @@ namespace
                           const double       peak,
                           const double       at_centre) {
       std::ostringstream detail;
-      detail << std::setprecision(7) << "(" << bad << " of " << points.size()
+      detail << std::setprecision(4) << "(" << bad << " of " << points.size()
              << " points beyond; peak " << peak << ", centre " << at_centre
              << ")";
       report(what + " bounds the values at the points", bad == 0, detail.str());
@@ -370,7 +375,7 @@ namespace
           }
       }
     std::ostringstream gauss;
-    gauss << std::setprecision(7) << "(Gauss points: Mx in [" << gauss_min_mx
+    gauss << std::setprecision(4) << "(Gauss points: Mx in [" << gauss_min_mx
           << ", " << gauss_max_mx << "])";
     report("peaks of Mx bound the 2x2 Gauss points",
            s.max_mx >= gauss_max_mx && s.min_mx <= gauss_min_mx,

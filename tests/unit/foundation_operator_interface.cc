@@ -47,8 +47,10 @@ namespace
   void
   report(const std::string &name, const double value, const double bound)
   {
-    const bool passed = std::isfinite(value) && value <= bound;
-    deallog << name << " <= " << bound << ": " << (passed ? "ok" : "FAILED")
+    const bool         passed = std::isfinite(value) && value <= bound;
+    std::ostringstream b; // the bound as written, 1e-14 not 1.000000000e-14
+    b << bound;
+    deallog << name << " <= " << b.str() << ": " << (passed ? "ok" : "FAILED")
             << std::endl;
     AssertThrow(passed, ExcMessage(name + ": " + std::to_string(value)));
   }

@@ -271,12 +271,20 @@ main()
       }
     catch (const ExceptionBase &error)
       {
+        // Rounding decides which of the two refusals comes first on a
+        // scene this ill-conditioned (it differs between OpenBLAS kernels
+        // and thread counts): either is the loud failure asked for.
         const std::string message = short_error_message(error);
-        const std::string expected =
-          "The conjugate gradients on the contact pressures did not converge";
-        const bool clear = message.find(expected) == 0;
-        deallog << name << ": error '" << expected
-                << "': " << (clear ? "ok" : "FAILED") << std::endl;
+        const std::string solver =
+          "The conjugate gradients on the contact pressures ";
+        const bool clear =
+          message.find(solver + "did not converge") == 0 ||
+          message.find(solver + "met a direction of non-positive curvature") ==
+            0;
+        deallog << name << ": error '" << solver
+                << "did not converge' or '... met a direction of "
+                   "non-positive curvature': "
+                << (clear ? "ok" : "FAILED") << std::endl;
         AssertThrow(clear, ExcMessage(message));
       }
   };

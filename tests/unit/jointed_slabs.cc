@@ -101,7 +101,8 @@ main()
           1587.6,
           1e-4);
     deallog << "bars on the 3.6 m joint: " << grid.get_joints()[0].dowels.size()
-            << ", first at y = " << grid.get_joints()[0].dowels[0][1]
+            << ", first at y = " << std::setprecision(6)
+            << grid.get_joints()[0].dowels[0][1] << std::setprecision(10)
             << std::endl;
   }
 
@@ -124,8 +125,11 @@ main()
         for (const double y : {-1.8, 0., 1.8})
           largest =
             std::max(largest, std::abs(problem->values_at(Point<2>(x, y)).w));
+      // the verdicts, not the round-off sized values
       deallog << contact << ": largest |w| of the unloaded slab / max w "
-              << largest / summary.max_w << ", LTE " << summary.joints[0].lte
+              << (largest <= 1e-12 * summary.max_w ? "below 1e-12" :
+                                                     "ABOVE 1e-12")
+              << ", LTE " << (summary.joints[0].lte == 0. ? "0" : "NOT 0")
               << std::endl;
       AssertThrow(largest <= 1e-12 * summary.max_w &&
                     summary.joints[0].lte == 0. &&
@@ -145,8 +149,10 @@ main()
         const auto problem = TestTools::run_scene_text(
           slabs("4, 4", "3.6", dense_liquid_bonded, joints.str(), tyre, 8, 1));
         const double lte = problem->summaries().back().joints[0].lte;
-        deallog << "shear stiffness " << stiffness << ": LTE "
-                << std::setprecision(8) << lte << std::endl;
+        // 4 digits for the record (the check is the rise to 1)
+        deallog << "shear stiffness " << std::setprecision(3) << stiffness
+                << ": LTE " << std::setprecision(4) << lte
+                << std::setprecision(10) << std::endl;
         AssertThrow(lte > previous && lte <= 1.,
                     ExcMessage("LTE does not rise with the stiffness"));
         previous = lte;
@@ -189,10 +195,14 @@ main()
               b.max_principal_stress_bottom,
               a.max_principal_stress_bottom,
               1e-10);
-        check(name + "w at (1.5, -1)",
-              tied->values_at(Point<2>(1.5, -1)).w,
-              one->values_at(Point<2>(1.5, -1)).w,
-              1e-10);
+        // w there is a sixth of the peak: compared on the scale of the
+        // peak, as the factorisation's rounding is (1e-10 of w itself
+        // fails on one OpenBLAS kernel at 1.05e-10).
+        const double w_tied = tied->values_at(Point<2>(1.5, -1)).w;
+        const double w_one  = one->values_at(Point<2>(1.5, -1)).w;
+        check_below(name + "|w - w_one slab| at (1.5, -1) / max w",
+                    std::abs(w_tied - w_one) / a.max_w,
+                    1e-10);
         check(name + "unknowns after the ties",
               b.n_foundation_dofs,
               a.n_foundation_dofs,
@@ -216,15 +226,20 @@ main()
                 refinements,
                 "subsection Discretization\n set Symmetry = none\nend\n"));
         lte.push_back(problem->summaries().back().joints[0].lte);
+        // 4 digits for the record (the checks are on the changes below)
         deallog << "half-space, free joint, " << refinements
-                << " refinements: LTE " << lte.back() << std::endl;
+                << " refinements: LTE " << std::setprecision(4) << lte.back()
+                << std::setprecision(10) << std::endl;
       }
     AssertThrow(lte[0] > 0.1 && lte[2] > 0.1,
                 ExcMessage("the soil carries no load across"));
-    deallog << "LTE changes per refinement: " << std::abs(lte[1] - lte[0])
-            << ", " << std::abs(lte[2] - lte[1]) << std::endl;
+    deallog << "LTE changes per refinement: " << std::setprecision(3)
+            << std::abs(lte[1] - lte[0]) << ", " << std::abs(lte[2] - lte[1])
+            << std::endl;
     const double ratio = (lte[2] - lte[1]) / (lte[1] - lte[0]);
-    deallog << "ratio of the changes " << ratio << std::endl;
+    deallog << "ratio of the changes " << ratio
+            << (ratio > 0.6 && ratio < 0.9 ? " in (0.6, 0.9)" : " OUTSIDE")
+            << std::setprecision(10) << std::endl;
     AssertThrow(lte[1] > lte[0] && lte[2] > lte[1] && ratio > 0.6 &&
                   ratio < 0.9 && lte[2] - lte[1] < 0.06 * lte[2],
                 ExcMessage("the LTE does not converge like h^1/2"));

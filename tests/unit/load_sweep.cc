@@ -103,9 +103,11 @@ namespace
                     std::abs(rows[step][12] - c.contact_area_fraction),
                     std::abs(rows[step][13] - c.joints[0].lte)});
       }
+    std::ostringstream bound;
+    bound << tolerance;
     deallog << name << ": sweep against single runs: "
             << (largest_difference <= tolerance ? "within " : "BEYOND ")
-            << tolerance << std::endl;
+            << bound.str() << std::endl;
     AssertThrow(largest_difference <= tolerance,
                 ExcMessage(name + ": the sweep differs from single runs"));
 
@@ -125,8 +127,12 @@ namespace
         envelope["max_principal_stress_bottom"]["position"][0].get<double>() ==
           rows[step][1],
       ExcMessage("the envelope is not the column's largest"));
-    deallog << name << ": largest bottom stress " << rows[best][6]
-            << " with the axle at x = " << std::abs(rows[best][1]) << std::endl;
+    // the stress for the record, 4 digits (the solve changes later digits
+    // with the CPU); the checks are the assertions above
+    deallog << name << ": largest bottom stress " << std::setprecision(4)
+            << rows[best][6]
+            << " with the axle at x = " << std::abs(rows[best][1])
+            << std::setprecision(10) << std::endl;
   }
 } // namespace
 

@@ -62,8 +62,17 @@ namespace
     const bool ok = std::abs(computed - reference) <= absolute_tolerance;
     std::ostringstream tolerance;
     tolerance << absolute_tolerance;
-    deallog << name << ": computed " << computed << " reference " << reference
-            << " (abs. tol. " << tolerance.str() << ") "
+    // the digits the tolerance resolves relative to the reference
+    // (rounded()), all of them on failure, to show the difference
+    const double relative =
+      (reference != 0 ? absolute_tolerance / std::abs(reference) : 0.);
+    const auto shown = [&](const double v) {
+      std::ostringstream s;
+      s << std::setprecision(17) << v;
+      return ok ? rounded(v, relative) : s.str();
+    };
+    deallog << name << ": computed " << shown(computed) << " reference "
+            << shown(reference) << " (abs. tol. " << tolerance.str() << ") "
             << (ok ? "ok" : "FAILED") << std::endl;
     AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
   }

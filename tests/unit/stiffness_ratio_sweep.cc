@@ -88,8 +88,10 @@ namespace
     AssertThrow(std::abs(s.contact_force - s.applied_load) <=
                   1e-12 * s.applied_load,
                 ExcMessage("equilibrium lost at R = " + std::to_string(ratio)));
+    // For the record, at the digits that hold on any CPU (the checks below
+    // look at the deviations): w to 6 digits, the condition estimates to 2.
     deallog << std::scientific << std::setprecision(1) << "R = " << ratio
-            << ": w = " << std::setprecision(10) << result.w
+            << ": w = " << std::setprecision(5) << result.w
             << ", rcond(K+S) = " << std::setprecision(1) << result.rcond
             << ", rcond(F_CC) = " << s.foundation_block_rcond
             << std::defaultfloat << std::setprecision(10) << std::endl;

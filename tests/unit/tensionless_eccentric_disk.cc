@@ -44,8 +44,9 @@ main()
       for (unsigned int i = 0; i < c.in_contact.size(); ++i)
         if (!c.in_contact[i])
           (nodes.node_locations[i][0] > 0 ? lifted_near : lifted_far) += 1;
-      deallog << "e = " << e << " a: nodes in contact " << s.contact_nodes
-              << " of " << s.n_foundation_dofs << " (lifted on the load side "
+      deallog << "e = " << std::setprecision(2) << e << std::setprecision(10)
+              << " a: nodes in contact " << s.contact_nodes << " of "
+              << s.n_foundation_dofs << " (lifted on the load side "
               << lifted_near << ", on the far side " << lifted_far
               << "), iterations " << s.contact_iterations << std::endl;
       const double equilibrium =
