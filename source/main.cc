@@ -11,6 +11,9 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <plate_on_halfspace/base/error_on_every_rank.h>
+#include <plate_on_halfspace/base/interruption.h>
+#include <plate_on_halfspace/base/mpi_singleton.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/scene/input_checks.h>
@@ -25,9 +28,15 @@ int
 main(int argc, char **argv)
 {
   using namespace PlateOnHalfspace;
+  // Before MPI_Init, and destroyed after MPI_Finalize: a run without
+  // mpirun gets a private Open MPI session (doc/parallel.md, "Serial runs").
+  const MpiSingletonEnvironment singleton;
   // Each rank takes its share of the cores for deal.II's threads.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   dealii::deal_II_exceptions::disable_abort_on_exception();
+  // SIGINT and SIGTERM stop the run at a safe point with its earlier
+  // results restored (base/interruption.h, doc/outputs.md).
+  Interruption::catch_signals();
   const bool is_root = rank_in(MPI_COMM_WORLD) == 0;
   // The other ranks compute the same scene; only rank 0 speaks.
   std::ostream  silent(nullptr);
@@ -64,7 +73,7 @@ main(int argc, char **argv)
       SceneParameters parameters;
       parameters.read(argument);
       for (const std::string &warning : scene_warnings(parameters))
-        err << "Warning: " << warning << std::endl;
+        err << "Warning: " << printable(warning) << std::endl;
       try
         {
           PlateOnHalfspaceProblem problem(parameters, out);
@@ -75,6 +84,17 @@ main(int argc, char **argv)
               return 1;
             }
         }
+      catch (const Interrupted &e)
+        {
+          // Every rank stopped at the same safe point (check() agrees over
+          // the ranks) and the earlier results are back: the conventional
+          // status of a death by the signal, 128 + its number.
+          out.flush();
+          err << "Error: " << e.what() << "; the earlier results in <"
+              << printable(parameters.output_directory)
+              << "> are kept (doc/outputs.md)." << std::endl;
+          return 128 + e.signal_number();
+        }
       catch (const std::exception &e)
         {
           // During the run a rank may fail while the others wait for it in
@@ -82,7 +102,10 @@ main(int argc, char **argv)
           // why and stops them all (doc/parallel.md). Its earlier results
           // are already restored (ResultsOutput).
           out.flush();
-          if (n_ranks(MPI_COMM_WORLD) == 1)
+          // An error all ranks meet alike (too many ranks for the mesh)
+          // is reported once, like a bad scene.
+          if (n_ranks(MPI_COMM_WORLD) == 1 ||
+              dynamic_cast<const ErrorOnEveryRank *>(&e) != nullptr)
             throw;
           std::cerr << "Error (rank " << rank_in(MPI_COMM_WORLD) << " of "
                     << n_ranks(MPI_COMM_WORLD)

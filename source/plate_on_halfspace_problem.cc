@@ -2,17 +2,22 @@
 
 #include <deal.II/numerics/solution_transfer.h>
 
+#include <plate_on_halfspace/base/error_on_every_rank.h>
+#include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/plate/field_extrema.h>
+#include <plate_on_halfspace/plate/load_checks.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/refinement/interface.h>
 #include <plate_on_halfspace/scene/input_checks.h>
 
+#include <cfloat>
 #include <cmath>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -36,9 +41,24 @@ namespace PlateOnHalfspace
     // Long phases report their progress on a terminal (base/progress.h).
     ProgressReport::enable(parameters.output.verbosity > 0 &&
                            rank_in(communicator) == 0);
+    // SIGINT and SIGTERM end the run at the next safe point, agreed over
+    // the ranks (base/interruption.h); a signal that came before touches
+    // nothing.
+    Interruption::set_communicator(communicator);
+    struct Unregister
+    {
+      ~Unregister()
+      {
+        Interruption::set_communicator(MPI_COMM_NULL);
+      }
+    } unregister;
+    Interruption::check();
     output = std::make_unique<ResultsOutput>(parameters.output_directory,
                                              communicator);
-    // A run that fails keeps the earlier run's results (results_output.h).
+    if (!output->recovery_note().empty() && parameters.output.verbosity > 0)
+      log << output->recovery_note() << std::endl;
+    // A run that fails or is interrupted keeps the earlier run's results
+    // (results_output.h).
     try
       {
         make_mesh();
@@ -47,13 +67,17 @@ namespace PlateOnHalfspace
         for (unsigned int cycle = 0; cycle < parameters.adaptivity.cycles;
              ++cycle)
           {
+            Interruption::check();
             if (cycle > 0 && !refine_mesh())
               break;
             assemble_loads(cycle);
             build_foundation_operator();
+            Interruption::check();
             solve_contact();
+            Interruption::check();
             if (contact.converged)
               estimate_goal_error();
+            Interruption::check();
             postprocess();
             write_output();
             AssertThrow(contact.converged,
@@ -74,10 +98,23 @@ namespace PlateOnHalfspace
           }
         if (parameters.loads.sweep_steps > 0)
           run_sweep();
+        // the last moment to give up: after it the results are committed
+        Interruption::check();
       }
     catch (...)
       {
-        const std::string note = output->abandon();
+        std::string note;
+        try
+          {
+            note = output->abandon();
+          }
+        catch (const std::exception &e)
+          {
+            note =
+              "Restoring the earlier results failed: " + one_line_message(e) +
+              " They are in <" + parameters.output_directory +
+              "/previous-run>.";
+          }
         if (!note.empty())
           log << note << std::endl;
         throw;
@@ -130,6 +167,18 @@ namespace PlateOnHalfspace
     Timer              setup_timer;
     partition_plate_mesh(triangulation, communicator);
     mindlin_plate->setup(triangulation);
+    if (n_ranks(communicator) > 1)
+      {
+        // A rank with cells may still own no foundation node (the nodes
+        // on its cells' edges may all belong to its neighbours); decided
+        // by all ranks together, so that all stop alike (doc/parallel.md).
+        const unsigned int own_nodes =
+          mindlin_plate->get_foundation_space().owned_nodes.n_elements();
+        if (Utilities::MPI::min(own_nodes, communicator) == 0)
+          throw ErrorOnEveryRank(
+            too_many_ranks_message(n_ranks(communicator),
+                                   triangulation.n_active_cells()));
+      }
     setup_time_s = setup_timer.wall_time();
   }
 
@@ -155,7 +204,181 @@ namespace PlateOnHalfspace
                   << offset[0] << ", " << offset[1] << "): ";
             AssertThrow(false, ExcMessage(where.str() + one_line_message(e)));
           }
+        std::ostringstream where;
+        where << "Loads/Sweep: at position " << step << " (offset " << offset[0]
+              << ", " << offset[1] << "): ";
+        check_loads_on_plate(parameters.loads.with_axles_moved(offset),
+                             where.str(),
+                             true,
+                             false);
       }
+  }
+
+  void
+  PlateOnHalfspaceProblem::check_loads_on_plate(const Parameters::Loads &loads,
+                                                const std::string       &where,
+                                                const bool warn_off_plate,
+                                                const bool warn_resultant)
+  {
+    // Every patch and tyre on the whole plate's mesh, so that every
+    // Plate/Shape (a Gmsh mesh too) warns alike (doc/errors-and-limits.md).
+    if (warn_off_plate)
+      for (const std::string &w : partly_off_plate_warnings(
+             loads_on_plate(mindlin_plate->get_foundation_space(), loads),
+             where))
+        warn(w);
+    if (!parameters.foundation.tensionless)
+      return;
+    const ResultantVerdict verdict =
+      check_load_resultant(*mindlin_plate,
+                           loads,
+                           parameters.plate.unit_weight > 0);
+    AssertThrow(verdict.error.empty(), ExcMessage(where + verdict.error));
+    if (warn_resultant && !verdict.warning.empty())
+      warn(where + verdict.warning);
+  }
+
+  void
+  PlateOnHalfspaceProblem::warn(const std::string &text)
+  {
+    run_warnings.push_back(text);
+    if (rank_in(communicator) == 0)
+      std::cerr << "Warning: " << text << std::endl;
+  }
+
+  void
+  PlateOnHalfspaceProblem::check_result_magnitudes() const
+  {
+    // Rough scales of the results the loads give, from the assembled
+    // load's total magnitude F over the plate's area A: pressures F/A,
+    // moments F, fibre stresses 6 F/t^2, and deflections F L^2/D (the
+    // plate's own bending over its size L) or the soil's settlement.
+    // Peaks under point loads and at edges exceed them many times, so the
+    // limit keeps eight decades below the largest 32-bit float (3.4e38)
+    // that the VTU files hold; the double arithmetic of the solvers (whose
+    // norms square the values) is safe there as well.
+    const FoundationSpace &space  = mindlin_plate->get_foundation_space();
+    const double           copies = symmetry.n_copies();
+    double                 force  = 0;
+    for (const auto dof : mindlin_plate->get_foundation_dofs())
+      force += copies * std::abs(mindlin_plate->get_load_vector()[dof]);
+    std::vector<bool> everywhere(space.n_nodes(), true);
+    const double      area  = copies * space.area_in_contact(everywhere).first;
+    const double      size  = std::sqrt(area);
+    const auto       &plate = parameters.plate;
+    const auto       &soil  = parameters.foundation;
+    double            patches = std::abs(parameters.loads.uniform_pressure);
+    for (const auto &p : parameters.loads.rectangular_patches)
+      patches = std::max(patches, std::abs(p.pressure));
+    for (const auto &p : parameters.loads.circular_patches)
+      patches = std::max(patches, std::abs(p.pressure));
+    const double thermal = std::abs(mindlin_plate->get_thermal_load().moment);
+    const double settlement =
+      soil.model == Parameters::Foundation::Model::dense_liquid ?
+        force / area / soil.subgrade_modulus :
+        force / size * (1 - soil.poissons_ratio * soil.poissons_ratio) /
+          soil.youngs_modulus;
+    const std::vector<std::pair<std::string, double>> scales = {
+      {"the total load", force},
+      {"the pressure (a load's pressure, or the total load over the "
+       "plate's area)",
+       std::max(patches, force / area)},
+      {"the moment (the total load, or the thermal moment)",
+       std::max(force, thermal)},
+      {"the fibre stress 6 M/t^2",
+       6 * std::max(force, thermal) / (plate.thickness * plate.thickness)},
+      {"the deflection (F L^2/D of the plate, or the soil's settlement)",
+       std::max(force * area / plate.flexural_rigidity(), settlement)}};
+    const double limit = 1e30;
+    for (const auto &[name, value] : scales)
+      if (!std::isfinite(value))
+        {
+          AssertThrow(false,
+                      ExcMessage(
+                        "Loads: " + name +
+                        " of this scene overflows the arithmetic (it is not "
+                        "a finite number): the plate's size, thickness, "
+                        "moduli or loads lie beyond what double precision "
+                        "holds. Express the scene in other units (e.g. MN "
+                        "and MPa instead of kN and kPa) or check these "
+                        "entries (doc/errors-and-limits.md, \"Finite "
+                        "results\")."));
+        }
+      else if (!(value <= limit))
+        {
+          std::ostringstream message;
+          message << "Loads: the results of this scene would reach about "
+                  << std::setprecision(3) << value << " (" << name
+                  << "), beyond the " << limit
+                  << " the program accepts: the VTU files hold 32-bit "
+                     "floats (up to 3.4e38), and the peaks under point "
+                     "loads and at edges exceed these scales many times. "
+                     "Express the scene in larger units (e.g. MN and MPa "
+                     "instead of kN and kPa) or check the loads and moduli "
+                     "(doc/errors-and-limits.md, \"Finite results\").";
+          AssertThrow(false, ExcMessage(message.str()));
+        }
+  }
+
+  void
+  PlateOnHalfspaceProblem::check_results_are_finite() const
+  {
+    // A last guard: whatever the scene, no NaN, infinity or value the VTU
+    // files cannot hold reaches a result file (doc/errors-and-limits.md,
+    // "Finite results"). The same bound without VTU files: no physical
+    // scene in consistent units comes near it, so a value beyond it is
+    // round-off grown out of bounds (an absurd stiffness ratio, say).
+    const double limit = 0.1 * FLT_MAX;
+    const auto   check = [&](const std::string &name, const double value) {
+      if (std::isfinite(value) && std::abs(value) <= limit)
+        return;
+      std::ostringstream message;
+      message << "The " << name << " of cycle " << summary.cycle << " is "
+              << (std::isfinite(value) ? "" : "not a finite number, ") << value;
+      if (std::isfinite(value))
+        message << ", beyond the 3.4e37 the results may reach (the VTU files "
+                     "hold 32-bit floats, up to 3.4e38): express the scene in "
+                     "larger units (e.g. MN and MPa instead of kN and kPa), "
+                     "or check the loads and moduli (doc/errors-and-limits.md, "
+                     "\"Finite results\").";
+      else
+        message << ": the scene has no finite answer on this mesh; check the "
+                     "loads, moduli and mesh (doc/errors-and-limits.md, "
+                     "\"Finite results\").";
+      AssertThrow(false, ExcMessage(message.str()));
+    };
+    const auto check_vector = [&](const std::string    &name,
+                                  const Vector<double> &v) {
+      for (const double value : v)
+        check(name, value);
+    };
+    check_vector("plate solution (deflection and rotations)",
+                 contact.plate_solution);
+    check_vector("contact pressure", contact.q);
+    check_vector("gap", contact.gap);
+    check("applied load", summary.applied_load);
+    check("contact force", summary.contact_force);
+    for (const auto &[name, value] :
+         std::vector<std::pair<std::string, double>>{
+           {"largest deflection", summary.max_w},
+           {"smallest deflection", summary.min_w},
+           {"largest pressure", summary.max_q},
+           {"smallest pressure", summary.min_q},
+           {"largest moment Mx", summary.max_mx},
+           {"smallest moment Mx", summary.min_mx},
+           {"largest moment My", summary.max_my},
+           {"smallest moment My", summary.min_my},
+           {"largest principal moment", summary.max_principal_moment},
+           {"largest principal stress at the bottom",
+            summary.max_principal_stress_bottom},
+           {"largest principal stress at the top",
+            summary.max_principal_stress_top}})
+      check(name, value);
+    for (const PointValues &p : summary.probes)
+      for (const double value : {p.w, p.q, p.mx, p.my})
+        check("value at the probe point (" + std::to_string(p.location[0]) +
+                ", " + std::to_string(p.location[1]) + ")",
+              value);
   }
 
   bool
@@ -232,6 +455,11 @@ namespace PlateOnHalfspace
     summary.n_dofs            = mindlin_plate->n_unconstrained_dofs();
     summary.n_foundation_dofs = mindlin_plate->get_foundation_dofs().size();
     summary.applied_load = symmetry.n_copies() * mindlin_plate->applied_load();
+    // before anything is computed on these loads: what they put on the
+    // plate, whether it has an answer, and whether that fits the files
+    check_loads_on_plate(parameters.loads, "", cycle == 0, cycle == 0);
+    if (cycle == 0)
+      check_result_magnitudes();
     const unsigned int owned_nodes = static_cast<unsigned int>(
       mindlin_plate->get_foundation_space().owned_nodes.n_elements());
     summary.foundation_nodes_per_rank =
@@ -458,6 +686,7 @@ namespace PlateOnHalfspace
     const Vector<double>  scene_load = mindlin_plate->get_load_vector();
     for (unsigned int step = 0; step < loads.sweep_steps; ++step)
       {
+        Interruption::check();
         Timer          phase;
         const Point<2> offset = loads.sweep_position(step);
         mindlin_plate->assemble_loads(computed_loads.with_axles_moved(offset),
@@ -482,7 +711,8 @@ namespace PlateOnHalfspace
             state.in_contact = contact.in_contact;
           }
         SweepRow row;
-        row.position = offset;
+        row.position     = offset;
+        row.applied_load = symmetry.n_copies() * mindlin_plate->applied_load();
         const FieldExtremum w =
           field_maximum(*mindlin_plate, state.plate_solution, PlateQuantity::w);
         const FieldExtremum bottom =
@@ -528,6 +758,19 @@ namespace PlateOnHalfspace
               << " contact iterations" << std::endl;
       }
     mindlin_plate->set_load_vector(scene_load);
+    // no NaN or infinity reaches sweep.csv (doc/errors-and-limits.md)
+    for (unsigned int k = 0; k < rows.size(); ++k)
+      for (const double value : {rows[k].applied_load,
+                                 rows[k].max_w,
+                                 rows[k].max_stress_bottom,
+                                 rows[k].max_stress_top,
+                                 rows[k].contact_area_fraction})
+        AssertThrow(std::isfinite(value) && std::abs(value) <= 0.1 * FLT_MAX,
+                    ExcMessage("Loads/Sweep: a result at position " +
+                               std::to_string(k) +
+                               " is not a finite number or beyond 3.4e37; "
+                               "the sweep is not written (doc/"
+                               "errors-and-limits.md, \"Finite results\")."));
     output->write_sweep(rows);
     bool all_converged = true;
     for (const auto &s : cycle_summaries)
@@ -539,6 +782,7 @@ namespace PlateOnHalfspace
   void
   PlateOnHalfspaceProblem::write_output()
   {
+    check_results_are_finite();
     TimerOutput::Scope  scope(timer_output, "output");
     Timer               phase;
     const MindlinPlate &plate = *mindlin_plate;
@@ -747,7 +991,15 @@ namespace PlateOnHalfspace
   std::string
   short_error_message(const std::exception &error)
   {
-    const std::string text   = error.what();
+    // A deal.II exception's own text, not what(): what() is a C string,
+    // cut short at a NUL that a quoted value may hold.
+    std::string text = error.what();
+    if (const auto *deal_error = dynamic_cast<const ExceptionBase *>(&error))
+      {
+        std::ostringstream info;
+        deal_error->print_info(info);
+        text = info.str();
+      }
     const std::string marker = "Additional information:";
     const auto        at     = text.find(marker);
     std::string       message =
@@ -766,6 +1018,8 @@ namespace PlateOnHalfspace
     while (!collapsed.empty() &&
            (collapsed.back() == ' ' || collapsed.back() == '-'))
       collapsed.pop_back();
-    return collapsed;
+    // A value or file name quoted in the message may hold control
+    // characters: they are printed escaped, never raw.
+    return printable(collapsed);
   }
 } // namespace PlateOnHalfspace

@@ -28,6 +28,7 @@
 
 #include <memory>
 #include <ostream>
+#include <string>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -90,6 +91,15 @@ namespace PlateOnHalfspace
     /** w, q, Mx, My at a point of the plate (last cycle). */
     PointValues
     values_at(const Point<2> &x) const;
+
+    /** The warnings of the run so far, each also printed on stderr as
+     *  "Warning: ..." (by rank 0): loads partly off the plate, a load
+     *  resultant near the outline (plate/load_checks.h). */
+    const std::vector<std::string> &
+    warnings() const
+    {
+      return run_warnings;
+    }
 
   private:
     /**
@@ -157,6 +167,39 @@ namespace PlateOnHalfspace
     void
     check_sweep_positions();
 
+    /**
+     * The checks of the assembled loads of @p loads on this mesh
+     * (plate/load_checks.h): a warning for each patch and tyre partly off
+     * the plate (if @p warn_off_plate), and on a tensionless foundation
+     * the refusal of a resultant on the outline, or a warning when the
+     * plate is carried on a region smaller than the cells (if
+     * @p warn_resultant). @p where starts every message.
+     */
+    void
+    check_loads_on_plate(const Parameters::Loads &loads,
+                         const std::string       &where,
+                         const bool               warn_off_plate,
+                         const bool               warn_resultant);
+
+    /**
+     * Refuse a scene whose results would not fit the output files, before
+     * anything is computed: the scales of the results that the assembled
+     * loads give (doc/errors-and-limits.md, "Finite results").
+     */
+    void
+    check_result_magnitudes() const;
+
+    /**
+     * Refuse to write a cycle whose results hold a NaN or an infinity, or
+     * a value beyond what the VTU files hold, naming the quantity.
+     */
+    void
+    check_results_are_finite() const;
+
+    /** Print "Warning: @p text" on stderr (rank 0) and keep it. */
+    void
+    warn(const std::string &text);
+
     /** Loads/Sweep: move the axles along the path on the last mesh and
      *  write the envelope (sweep.csv, summary.json "sweep"). */
     void
@@ -205,12 +248,15 @@ namespace PlateOnHalfspace
     Timer  cycle_timer;
     /** Wall times per phase, printed with Output/Verbosity = 2. */
     TimerOutput timer_output;
+    /** warnings() */
+    std::vector<std::string> run_warnings;
   };
 
   /**
    * The message of an error for the user: the "Additional information" of
    * a deal.II exception (the text of ExcMessage, naming the parameter or
-   * the physical reason), else what(), on one line.
+   * the physical reason), else what(), on one line, its control
+   * characters escaped (printable(), scene/input_checks.h).
    */
   std::string
   short_error_message(const std::exception &error);

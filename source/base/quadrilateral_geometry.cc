@@ -31,17 +31,19 @@ namespace PlateOnHalfspace
 
 
 
-    /** Signed area of a polygon (shoelace formula), positive if CCW. */
+    /**
+     * Signed area of a polygon (shoelace formula), positive if CCW. Taken
+     * about its first vertex, not the origin: a polygon much smaller than
+     * its distance from the origin (a 1e-9 patch at x = 1.8) would
+     * otherwise lose its area to the round-off of the coordinates'
+     * products.
+     */
     double
     signed_polygon_area(const std::vector<Point<2>> &polygon)
     {
       double area = 0.;
-      for (unsigned int i = 0; i < polygon.size(); ++i)
-        {
-          const Point<2> &a = polygon[i];
-          const Point<2> &b = polygon[(i + 1) % polygon.size()];
-          area += a[0] * b[1] - a[1] * b[0];
-        }
+      for (unsigned int i = 1; i + 1 < polygon.size(); ++i)
+        area += cross(polygon[i] - polygon[0], polygon[i + 1] - polygon[0]);
       return 0.5 * area;
     }
 
@@ -302,16 +304,31 @@ namespace PlateOnHalfspace
                                const Point<2>              &upper,
                                const unsigned int           n_points_1d)
   {
-    std::vector<Point<2>> polygon   = ccw_polygon(cell);
-    const double          cell_area = signed_polygon_area(polygon);
+    std::vector<Point<2>> polygon = ccw_polygon(cell);
 
     polygon = clip_polygon(polygon, 0, lower[0], true);
     polygon = clip_polygon(polygon, 0, upper[0], false);
     polygon = clip_polygon(polygon, 1, lower[1], true);
     polygon = clip_polygon(polygon, 1, upper[1], false);
 
-    if (polygon.size() < 3 || signed_polygon_area(polygon) <= 1e-14 * cell_area)
+    // Only a polygon of no area (the rectangle touching the cell along an
+    // edge or at a point) is no overlap. The test is relative to the
+    // clipped polygon's own bounding box, not to the cell: a patch much
+    // smaller than the cell is on the plate and carries its whole load.
+    if (polygon.size() < 3)
       return Quadrature<2>();
+    {
+      Point<2> lowest = polygon[0], highest = polygon[0];
+      for (const Point<2> &p : polygon)
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            lowest[d]  = std::min(lowest[d], p[d]);
+            highest[d] = std::max(highest[d], p[d]);
+          }
+      if (!(signed_polygon_area(polygon) >
+            1e-12 * (highest[0] - lowest[0]) * (highest[1] - lowest[1])))
+        return Quadrature<2>();
+    }
 
     // The clipped polygon is convex (intersection of convex sets), so a fan
     // from its first vertex triangulates it. Each triangle gets the
@@ -327,7 +344,7 @@ namespace PlateOnHalfspace
         const Tensor<1, 2> e1         = polygon[i] - polygon[0];
         const Tensor<1, 2> e2         = polygon[i + 1] - polygon[0];
         const double       twice_area = cross(e1, e2);
-        if (twice_area <= 1e-16 * cell_area)
+        if (!(twice_area > 0.))
           continue; // degenerate sliver from coincident clip points
         for (unsigned int q = 0; q < triangle_rule.size(); ++q)
           {
@@ -367,10 +384,14 @@ namespace PlateOnHalfspace
     if (!(radius > 0.))
       return Quadrature<2>();
 
-    const std::vector<Point<2>> polygon   = ccw_polygon(cell);
-    const double                cell_area = signed_polygon_area(polygon);
-    const double                scale     = cell.diameter();
-    const double                tolerance = 1e-13 * std::max(scale, radius);
+    const std::vector<Point<2>> polygon = ccw_polygon(cell);
+    const double                scale   = cell.diameter();
+    // Lengths below this count as zero (tangency, a vertex on the circle,
+    // coincident corners). Relative to the smaller of the cell and the
+    // disk, never to the larger: a disk of radius 1e13 over a cell of 1 m
+    // must not make the cell's own edges negligible (tests/unit/
+    // huge_and_tiny_patches), nor a 1e-9 disk vanish in a 1 m cell.
+    const double tolerance = 1e-13 * std::min(scale, radius);
 
     // Quick rejection by the bounding box.
     const auto box = cell.bounding_box();
@@ -378,6 +399,42 @@ namespace PlateOnHalfspace
       if (centre[d] + radius <= box.first[d] ||
           centre[d] - radius >= box.second[d])
         return Quadrature<2>();
+
+    const Quadrature<2>   triangle_rule = reference_triangle_rule(n_points_1d);
+    std::vector<Point<2>> points;
+    std::vector<double>   weights;
+    // Exact Gauss rules on a fan of triangles of the convex polygon.
+    const auto add_polygon = [&](const std::vector<Point<2>> &corners) {
+      for (unsigned int i = 1; i + 1 < corners.size(); ++i)
+        {
+          const Tensor<1, 2> e1         = corners[i] - corners[0];
+          const Tensor<1, 2> e2         = corners[i + 1] - corners[0];
+          const double       twice_area = cross(e1, e2);
+          if (!(twice_area > 0.))
+            continue;
+          for (unsigned int q = 0; q < triangle_rule.size(); ++q)
+            {
+              const Point<2> &xi = triangle_rule.point(q);
+              points.push_back(
+                cell.inverse_map(corners[0] + xi[0] * e1 + xi[1] * e2));
+              weights.push_back(triangle_rule.weight(q) * twice_area);
+            }
+        }
+    };
+
+    // Every vertex in the disk: K is the whole (convex) cell, integrated
+    // exactly. This also keeps a disk far larger than the cell away from
+    // the arcs below, whose R^2-sized terms would swamp the cell.
+    {
+      bool inside = true;
+      for (const Point<2> &v : polygon)
+        inside = inside && (v - centre).norm() <= radius;
+      if (inside)
+        {
+          add_polygon(polygon);
+          return Quadrature<2>(points, weights);
+        }
+    }
 
     // The part of each edge p + t (q - p), t in [0,1], inside the disk, in
     // counterclockwise order; pieces of zero length (tangency, a vertex on the
@@ -391,16 +448,19 @@ namespace PlateOnHalfspace
         const double       a = e * e;
         if (a == 0.)
           continue;
-        const double b            = f * e; // half the linear coefficient
-        const double c            = f * f - radius * radius;
-        const double discriminant = b * b - a * c;
-        if (discriminant <= 0.)
+        // The foot of the perpendicular from the centre and the half
+        // chord about it, rather than the roots of a t^2 + 2 b t + c:
+        // b^2 - a c cancels to nothing for a disk much smaller than its
+        // distance from the edge's end points (tests/unit/
+        // huge_and_tiny_patches).
+        const double       t0       = -(f * e) / a;
+        const Tensor<1, 2> foot     = f + t0 * e;
+        const double       distance = foot.norm();
+        if (!(distance < radius))
           continue;
-        // Numerically stable roots of a t^2 + 2 b t + c = 0.
-        const double q  = -(b + std::copysign(std::sqrt(discriminant), b));
-        double       t1 = q / a, t2 = (q != 0. ? c / q : -t1);
-        if (t1 > t2)
-          std::swap(t1, t2);
+        const double half =
+          std::sqrt((radius - distance) * (radius + distance) / a);
+        double t1 = t0 - half, t2 = t0 + half;
         t1 = std::max(t1, 0.);
         t2 = std::min(t2, 1.);
         if ((t2 - t1) * std::sqrt(a) <= tolerance)
@@ -409,34 +469,67 @@ namespace PlateOnHalfspace
       }
 
     // Corners of the boundary of K in counterclockwise order, and the arcs
-    // (start angle, opening angle) between them.
-    std::vector<Point<2>>                  corners;
-    std::vector<std::pair<double, double>> arcs;
-    const double                           quarter     = 0.5 * numbers::PI;
-    const double                           max_opening = 0.25 * numbers::PI;
-    const auto add_arc = [&](const double start, const double opening) {
+    // between them, each at most an eighth of the circle: its end points
+    // and its opening angle.
+    struct Arc
+    {
+      Point<2> start, end;
+      double   opening;
+    };
+    std::vector<Point<2>> corners;
+    std::vector<Arc>      arcs;
+    const double          max_opening = 0.25 * numbers::PI;
+    const auto            on_circle   = [&](const double angle) {
+      return Point<2>(centre + radius * unit_vector(angle));
+    };
+    // by value: corners grows while an arc is added
+    const auto add_arc = [&](const Point<2> start,
+                             const Point<2> end,
+                             const double   opening) {
       const unsigned int n_parts =
         std::max(1, static_cast<int>(std::ceil(opening / max_opening - 1e-10)));
       const double part = opening / n_parts;
+      const double first =
+        std::atan2(start[1] - centre[1], start[0] - centre[0]);
+      Point<2> from = start;
       for (unsigned int k = 0; k < n_parts; ++k)
         {
-          arcs.emplace_back(start + k * part, part);
-          if (k > 0)
-            corners.push_back(centre + radius * unit_vector(start + k * part));
+          const Point<2> to =
+            (k + 1 == n_parts ? end : on_circle(first + (k + 1) * part));
+          arcs.push_back({from, to, part});
+          if (k + 1 < n_parts)
+            corners.push_back(to);
+          from = to;
         }
-    };
-    const auto angle_of = [&](const Point<2> &x) {
-      return std::atan2(x[1] - centre[1], x[0] - centre[0]);
     };
 
     if (pieces.empty())
       {
         // The circle does not cross the boundary: K is the whole disk if the
-        // centre is in the cell, and empty otherwise.
-        if (!cell.contains(centre))
-          return Quadrature<2>();
-        corners.push_back(centre + radius * unit_vector(0.));
-        add_arc(0., 2. * numbers::PI); // adds the other three corners
+        // centre is in the cell, and empty otherwise. Without a tolerance:
+        // a tiny disk just beside the edge must not count in both cells.
+        for (unsigned int i = 0; i < polygon.size(); ++i)
+          if (cross(polygon[(i + 1) % polygon.size()] - polygon[i],
+                    centre - polygon[i]) < 0.)
+            return Quadrature<2>();
+        // The whole disk in polar coordinates about its centre: weights
+        // exact whatever the disk's size against its distance from the
+        // origin. For a polynomial of degree 2 n - 1 in x and y, r dr is
+        // integrated exactly by n + 1 Gauss points and the trigonometric
+        // polynomial in theta by 2 n + 2 equally spaced angles.
+        const unsigned int n_r     = std::max(n_points_1d, 1u) + 1;
+        const unsigned int n_theta = 2 * std::max(n_points_1d, 1u) + 2;
+        const QGauss<1>    gauss_r(n_r);
+        for (unsigned int i = 0; i < gauss_r.size(); ++i)
+          for (unsigned int k = 0; k < n_theta; ++k)
+            {
+              const double r = radius * gauss_r.point(i)[0];
+              points.push_back(cell.inverse_map(
+                centre + r * unit_vector(2. * numbers::PI * k / n_theta)));
+              weights.push_back(gauss_r.weight(i) * radius * r * 2. *
+                                numbers::PI / n_theta);
+            }
+        return Quadrature<2>(points, weights);
       }
     else
       for (unsigned int j = 0; j < pieces.size(); ++j)
@@ -449,12 +542,17 @@ namespace PlateOnHalfspace
           if (end.distance(next) > tolerance)
             {
               // The boundary leaves the edge at a point on the circle and
-              // follows the circle counterclockwise to the next piece.
-              const double start_angle = angle_of(end);
-              double       opening     = angle_of(next) - start_angle;
-              while (opening <= 0.)
-                opening += 2. * numbers::PI;
-              add_arc(start_angle, opening);
+              // follows the circle counterclockwise to the next piece. The
+              // opening from the chord, not from a difference of angles
+              // (which loses every digit for a large disk): the minor arc
+              // if the centre lies left of the chord end -> next.
+              const double half_chord =
+                std::min(1., end.distance(next) / (2. * radius));
+              const double minor       = 2. * std::asin(half_chord);
+              const bool   centre_left = cross(next - end, centre - end) > 0.;
+              add_arc(end,
+                      next,
+                      centre_left ? minor : 2. * numbers::PI - minor);
             }
         }
 
@@ -470,65 +568,51 @@ namespace PlateOnHalfspace
       corners.swap(distinct);
     }
 
-    std::vector<Point<2>> points;
-    std::vector<double>   weights;
-
     // The convex polygon Q: fan of triangles, exact for polynomials.
     if (corners.size() >= 3)
-      {
-        const Quadrature<2> triangle_rule =
-          reference_triangle_rule(n_points_1d);
-        for (unsigned int i = 1; i + 1 < corners.size(); ++i)
-          {
-            const Tensor<1, 2> e1         = corners[i] - corners[0];
-            const Tensor<1, 2> e2         = corners[i + 1] - corners[0];
-            const double       twice_area = cross(e1, e2);
-            if (twice_area <= 1e-16 * cell_area)
-              continue;
-            for (unsigned int q = 0; q < triangle_rule.size(); ++q)
-              {
-                const Point<2> &xi = triangle_rule.point(q);
-                points.push_back(
-                  cell.inverse_map(corners[0] + xi[0] * e1 + xi[1] * e2));
-                weights.push_back(triangle_rule.weight(q) * twice_area);
-              }
-          }
-      }
+      add_polygon(corners);
 
-    // The circular segments. With the chord's midpoint normal n (towards the
-    // arc), the tangent tau, the chord's distance h = R cos(opening/2) from
-    // the centre and s = R sin(psi), the segment is
-    //   x = centre + (h + t) n + s tau,  |psi| <= opening/2,
-    //   0 <= t <= R cos(psi) - h,        dx dy = R cos(psi) dpsi dt,
+    // The circular segments, each in the frame of its chord: with the
+    // chord's midpoint m, its direction tau and the normal n towards the
+    // arc, the half opening a and s = R sin(psi), the segment is
+    //   x = m + t n + s tau,  |psi| <= a,
+    //   0 <= t <= R (cos(psi) - cos(a)),   dx dy = R cos(psi) dpsi dt,
     // so for polynomial integrands the t integral is a polynomial and the psi
     // integrand a trigonometric polynomial: n Gauss points are exact in t,
     // and in psi Gauss rules converge very fast on |psi| <= pi/8. The arc is
     // the only inexact part, so it gets 4 extra points in psi: with them the
     // area of any disk part is exact to ~1e-13 relative already for n = 2
     // (with n points in psi and quarter-circle arcs: 6e-2 for n = 2, 1e-3
-    // for n = 3, 2e-5 for n = 4).
+    // for n = 3, 2e-5 for n = 4). The chord's frame and the height as a
+    // product of sines keep a segment of a huge disk (R = 1e13, a = 1e-13)
+    // free of cancellation.
     const QGauss<1> gauss_t(std::max(n_points_1d, 1u));
     const QGauss<1> gauss_psi(std::max(n_points_1d, 1u) + 4);
-    for (const auto &arc : arcs)
+    for (const Arc &arc : arcs)
       {
-        const double       half_opening = 0.5 * arc.second;
-        const double       h            = radius * std::cos(half_opening);
-        const Tensor<1, 2> n            = unit_vector(arc.first + half_opening);
-        const Tensor<1, 2> tau =
-          unit_vector(arc.first + half_opening + quarter);
+        const Tensor<1, 2> chord  = arc.end - arc.start;
+        const double       length = chord.norm();
+        if (!(length > 0.))
+          continue;
+        const double       a   = 0.5 * arc.opening;
+        const Tensor<1, 2> tau = chord / length;
+        Tensor<1, 2>       n;
+        n[0]             = tau[1];
+        n[1]             = -tau[0];
+        const Point<2> m = arc.start + 0.5 * chord;
         for (unsigned int i = 0; i < gauss_psi.size(); ++i)
           {
-            const double psi = (2. * gauss_psi.point(i)[0] - 1.) * half_opening;
-            const double height = radius * std::cos(psi) - h;
+            const double psi    = (2. * gauss_psi.point(i)[0] - 1.) * a;
+            const double height = 2. * radius * std::sin(0.5 * (a + psi)) *
+                                  std::sin(0.5 * (a - psi));
             if (!(height > 0.))
               continue;
             const double s = radius * std::sin(psi);
             for (unsigned int j = 0; j < gauss_t.size(); ++j)
               {
                 const double t = gauss_t.point(j)[0] * height;
-                points.push_back(
-                  cell.inverse_map(centre + (h + t) * n + s * tau));
-                weights.push_back(gauss_psi.weight(i) * 2. * half_opening *
+                points.push_back(cell.inverse_map(m + t * n + s * tau));
+                weights.push_back(gauss_psi.weight(i) * 2. * a *
                                   gauss_t.weight(j) * height * radius *
                                   std::cos(psi));
               }
@@ -538,7 +622,7 @@ namespace PlateOnHalfspace
     double total = 0.;
     for (const double w : weights)
       total += w;
-    if (total <= 1e-14 * cell_area)
+    if (!(total > 0.))
       return Quadrature<2>();
     return Quadrature<2>(points, weights);
   }

@@ -20,14 +20,36 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
+  namespace
+  {
+    bool plate_weightless = true;
+  } // namespace
+
+  void
+  set_plate_weightless(const bool weightless)
+  {
+    plate_weightless = weightless;
+  }
+
   std::string
   plate_is_mechanism_message()
   {
-    return "The plate is a mechanism: the nodes left in contact cannot carry "
-           "it (fewer than three non-collinear supporting nodes). A load on "
-           "or very near the edge of a weightless plate tilts it about that "
-           "edge: move the load inward, refine the mesh there or give the "
-           "plate its weight (Plate/Unit weight).";
+    const std::string what =
+      "The plate is a mechanism: the nodes left in contact cannot carry it "
+      "(fewer than three non-collinear supporting nodes). ";
+    if (plate_weightless)
+      return what +
+             "A load on or very near the edge of a weightless plate tilts it "
+             "about that edge: move the load inward, refine the mesh there "
+             "or give the plate its weight (Plate/Unit weight).";
+    // A plate with weight: its weight is already there, so the loads
+    // outweigh it near an edge or a joint (doc/errors-and-limits.md).
+    return what +
+           "The loads press the plate down so near an edge or a joint that "
+           "they tilt it about that line in spite of its weight: move them "
+           "inward, refine the mesh there (Discretization/Initial "
+           "refinements or Adaptivity/Refinement = adaptive) or spread a "
+           "point load over a patch (Loads/Circular patches).";
   }
 
   bool

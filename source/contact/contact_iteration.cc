@@ -1,5 +1,6 @@
 #include <deal.II/base/exceptions.h>
 
+#include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/contact_iteration.h>
 #include <plate_on_halfspace/halfspace/interface.h>
@@ -139,6 +140,9 @@ namespace PlateOnHalfspace
     for (state.iterations = 1; state.iterations <= contact.max_iterations;
          ++state.iterations)
       {
+        // a safe point: SIGINT/SIGTERM end the run here
+        // (base/interruption.h)
+        Interruption::check();
         if (state.iterations > 1)
           foundation->build(space, state.cell_in_foundation);
         AssertThrow(contact_set_supports_plate(space,
@@ -211,6 +215,9 @@ namespace PlateOnHalfspace
     for (state.iterations = 1; state.iterations <= contact.max_iterations;
          ++state.iterations)
       {
+        // a safe point: SIGINT/SIGTERM end the run here
+        // (base/interruption.h)
+        Interruption::check();
         AssertThrow(contact_set_supports_plate(space, active_set.contact_set()),
                     ExcMessage(plate_is_mechanism_message()));
         final_contact_set = active_set.contact_set();

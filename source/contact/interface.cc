@@ -1,3 +1,4 @@
+#include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/direct_solver.h>
 #include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/contact/iterative_solver.h>
@@ -10,6 +11,8 @@ namespace PlateOnHalfspace
                         const unsigned int                verbosity,
                         std::ostream                     &log)
   {
+    // The mechanism message suggests the weight only to a weightless plate.
+    set_plate_weightless(!(parameters.plate.unit_weight > 0));
     if (solver == Parameters::Contact::Solver::iterative)
       return std::make_unique<IterativeContactSolver>(
         parameters.contact,

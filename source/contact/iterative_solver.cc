@@ -3,6 +3,7 @@
 
 #include <deal.II/lac/full_matrix.h>
 
+#include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/iterative_solver.h>
 #include <plate_on_halfspace/halfspace/interface.h>
@@ -305,14 +306,24 @@ namespace PlateOnHalfspace
           double rz = r * z;
           while (result.iterations < control.max_iterations)
             {
+              // a safe point, reached by every rank alike
+              // (base/interruption.h)
+              Interruption::check();
               problem.vmult(hp, p, soil_p);
               const double curvature = p * hp;
-              AssertThrow(curvature > 0 && rz > 0,
-                          ExcMessage("The conjugate gradients on the contact "
-                                     "pressures met a direction of "
-                                     "non-positive curvature: the "
-                                     "preconditioner or the contact problem "
-                                     "is not positive definite."));
+              AssertThrow(
+                curvature > 0 && rz > 0,
+                ExcMessage(
+                  "The conjugate gradients on the contact pressures met a "
+                  "direction of non-positive curvature: in floating point "
+                  "the contact problem is not positive definite. The "
+                  "stiffnesses of the scene differ by too many orders of "
+                  "magnitude: compare Foundation/Modulus of subgrade "
+                  "reaction (dense liquid) or Foundation/Young's modulus "
+                  "with Plate/Young's modulus and Plate/Thickness, and "
+                  "Joints/Shear stiffness, Dowel modulus and Dowel support "
+                  "modulus with the slabs; for a joint far stiffer than the "
+                  "slabs use Joints/Load transfer = tied."));
               const double step = rz / curvature;
               q.add(step, p);
               soil.add(step, soil_p);
@@ -448,9 +459,21 @@ namespace PlateOnHalfspace
                 << std::scientific << std::setprecision(2)
                 << cg.relative_residual << " after " << cg.iterations
                 << " iterations (tolerance " << tolerance
-                << "). A plate far more flexible than the soil "
-                   "(characteristic length well below the element size) "
-                   "needs Contact/Solver = direct.";
+                << "). The plate is far more flexible than the soil: its "
+                   "characteristic length is well below the element size. ";
+        // The dense liquid always takes this solver (its Contact/Solver =
+        // direct is refused), so only a finer mesh or another k helps.
+        if (std::string(foundation->storage_name()) == "sparse")
+          message << "Refine the mesh until the cells are smaller than the "
+                     "radius of relative stiffness (D/k)^(1/4) "
+                     "(Discretization/Subdivisions x and y, "
+                     "Discretization/Initial refinements), or check "
+                     "Foundation/Modulus of subgrade reaction.";
+        else
+          message << "Use Contact/Solver = direct (with Foundation "
+                     "operator/Storage = auto or dense), or refine the mesh "
+                     "(Discretization/Subdivisions x and y, "
+                     "Discretization/Initial refinements).";
         AssertThrow(false, ExcMessage(message.str()));
       }
 

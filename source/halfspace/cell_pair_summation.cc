@@ -2,6 +2,7 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/thread_management.h>
 
+#include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
@@ -387,6 +388,10 @@ namespace PlateOnHalfspace
       if (progress != nullptr)
         progress->add(n_enumerated);
       n_enumerated = 0;
+      // Between batches no task runs: a long assembly of a serial run
+      // stops here on SIGINT/SIGTERM (base/interruption.h; the ranks of
+      // a parallel run agree at the next collective check instead).
+      Interruption::check_if_alone();
     };
     for (unsigned int first = 0; first < n_computed; ++first)
       for (unsigned int other = first; other < n_computed; ++other)

@@ -12,9 +12,14 @@ namespace PlateOnHalfspace
   {
     using namespace dealii;
 
+    // Lowering the tolerance helps only while it is coarse; it cannot go
+    // below 1e-14 (Parameters::FoundationOperator), so the advice says
+    // what else to do (doc/errors-and-limits.md).
     const std::string tolerance_advice =
-      " Lower Foundation operator/Tolerance (e.g. to 1e-6 or 1e-8), or use "
-      "Foundation operator/Storage = dense if the mesh is small.";
+      " If Foundation operator/Tolerance is coarser than 1e-8, lower it (it "
+      "is the compression's accuracy); otherwise, or if the mesh is small, "
+      "use Foundation operator/Storage = dense (exactly integrated; its "
+      "memory grows with the square of the foundation nodes).";
 
     hmat_interface_t &
     hmat()

@@ -3,15 +3,82 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
+#include <plate_on_halfspace/base/error_on_every_rank.h>
+#include <plate_on_halfspace/base/quadrilateral_geometry.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
 
 namespace PlateOnHalfspace
 {
+  namespace
+  {
+    /**
+     * Refuse a cell whose bilinear map is not one-to-one: a zero-area cell,
+     * a collapsed edge, a non-convex or self-intersecting (bow-tie) or
+     * inverted quadrilateral. Its Jacobian vanishes or changes sign inside
+     * the cell, so the plate's integrals divide by zero and the results
+     * hold NaN (doc/errors-and-limits.md). The Jacobian determinant of a
+     * bilinear map is linear in each reference coordinate, so it is
+     * positive on the whole cell iff it is positive at the four vertices;
+     * the bound is relative to the cell's size, as a determinant is an area.
+     */
+    void
+    check_cells_are_valid(const Triangulation<2> &triangulation,
+                          const std::string      &file_name)
+    {
+      const Point<2> corners[4] = {Point<2>(0, 0),
+                                   Point<2>(1, 0),
+                                   Point<2>(0, 1),
+                                   Point<2>(1, 1)};
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          std::array<Point<2>, 4> vertices;
+          for (unsigned int v = 0; v < 4; ++v)
+            vertices[v] = cell->vertex(v);
+          const BilinearQuadrilateral geometry(vertices);
+          const double                size = geometry.diameter();
+          double smallest = std::numeric_limits<double>::infinity();
+          double largest  = -smallest;
+          for (const Point<2> &corner : corners)
+            {
+              const double j = geometry.jacobian_determinant(corner);
+              smallest       = std::min(smallest, j);
+              largest        = std::max(largest, j);
+            }
+          if (smallest > 1e-12 * size * size)
+            continue;
+          std::ostringstream message;
+          message << "Plate/Mesh file: cell " << cell->active_cell_index() + 1
+                  << " of <" << file_name << "> with the vertices";
+          for (const unsigned int v : {0u, 1u, 3u, 2u})
+            message << (v == 0 ? " (" : ", (") << vertices[v][0] << ", "
+                    << vertices[v][1] << ")";
+          message << " is degenerate ("
+                  << (!(size > 0) || largest <= 1e-12 * size * size ?
+                        "zero or negative area, or inverted" :
+                        "not convex, self-intersecting or with a collapsed "
+                        "edge")
+                  << ": the Jacobian of its map ranges from " << smallest
+                  << " to " << largest
+                  << " over its vertices, and must be positive). Mend the "
+                     "cell in the mesh generator; every cell must be a "
+                     "convex quadrilateral with its vertices in order "
+                     "around it.";
+          AssertThrow(false, ExcMessage(message.str()));
+        }
+    }
+  } // namespace
+
   void
   make_plate_mesh(const Parameters::Plate          &plate,
                   const Parameters::Discretization &discretization,
@@ -123,6 +190,7 @@ namespace PlateOnHalfspace
                                    "> contains triangles; only "
                                    "quadrilaterals are allowed (in Gmsh: "
                                    "Mesh.RecombineAll = 1)."));
+            check_cells_are_valid(triangulation, plate.mesh_file);
             break;
           }
       }
@@ -133,9 +201,36 @@ namespace PlateOnHalfspace
                        const MPI_Comm    communicator)
   {
     const unsigned int n_parts = n_ranks(communicator);
-    if (n_parts > 1)
+    if (n_parts <= 1)
+      return;
+    // METIS cannot give every rank a cell of a mesh with fewer cells than
+    // ranks (it fails inside with std::bad_array_new_length), and it may
+    // leave a part empty even with more. Every rank computes the same
+    // partition, so every rank stops here alike (doc/parallel.md).
+    const unsigned int n_cells = triangulation.n_active_cells();
+    if (n_cells >= n_parts)
       GridTools::partition_triangulation(n_parts,
                                          triangulation,
                                          SparsityTools::Partitioner::metis);
+    std::vector<unsigned int> cells_of_rank(n_parts, 0);
+    if (n_cells >= n_parts)
+      for (const auto &cell : triangulation.active_cell_iterators())
+        ++cells_of_rank[std::min(cell->subdomain_id(), n_parts - 1)];
+    if (std::count(cells_of_rank.begin(), cells_of_rank.end(), 0u) > 0)
+      throw ErrorOnEveryRank(too_many_ranks_message(n_parts, n_cells));
+  }
+
+  std::string
+  too_many_ranks_message(const unsigned int n_processes,
+                         const unsigned int n_cells)
+  {
+    return "More MPI processes than the mesh can share: " +
+           std::to_string(n_processes) + " processes for " +
+           std::to_string(n_cells) + (n_cells == 1 ? " cell" : " cells") +
+           " (of the part computed: Discretization/Symmetry cuts a "
+           "symmetric scene to a half or a quarter), and each process needs "
+           "cells with a foundation node of its own. Run on fewer processes "
+           "or refine the mesh (Discretization/Subdivisions x and y, "
+           "Discretization/Initial refinements).";
   }
 } // namespace PlateOnHalfspace

@@ -215,6 +215,128 @@ namespace PlateOnHalfspace
     return trimmed(flat);
   }
 
+  namespace
+  {
+    /**
+     * The length of the valid UTF-8 sequence at @p i of @p text (1 to 4),
+     * or 0 if the bytes there are not one (overlong forms, surrogates and
+     * code points above U+10FFFF included).
+     */
+    unsigned int
+    utf8_sequence_length(const std::string &text, const std::size_t i)
+    {
+      const auto byte = [&](const std::size_t k) {
+        return static_cast<unsigned char>(text[k]);
+      };
+      const unsigned char first = byte(i);
+      if (first < 0x80)
+        return 1;
+      unsigned int length = 0;
+      unsigned int lowest = 0;
+      if (first >= 0xC2 && first <= 0xDF)
+        length = 2, lowest = 0x80;
+      else if (first >= 0xE0 && first <= 0xEF)
+        length = 3, lowest = 0x800;
+      else if (first >= 0xF0 && first <= 0xF4)
+        length = 4, lowest = 0x10000;
+      else
+        return 0;
+      if (i + length > text.size())
+        return 0;
+      unsigned int code = first & (0x7F >> length);
+      for (unsigned int k = 1; k < length; ++k)
+        {
+          if ((byte(i + k) & 0xC0) != 0x80)
+            return 0;
+          code = (code << 6) | (byte(i + k) & 0x3F);
+        }
+      if (code < lowest || code > 0x10FFFF ||
+          (code >= 0xD800 && code <= 0xDFFF))
+        return 0;
+      return length;
+    }
+
+    /** The code point of the valid sequence of @p length bytes at @p i. */
+    unsigned int
+    code_point(const std::string &text,
+               const std::size_t  i,
+               const unsigned int length)
+    {
+      unsigned int code = static_cast<unsigned char>(text[i]);
+      if (length == 1)
+        return code;
+      code &= (0x7F >> length);
+      for (unsigned int k = 1; k < length; ++k)
+        code = (code << 6) | (static_cast<unsigned char>(text[i + k]) & 0x3F);
+      return code;
+    }
+
+    bool
+    is_control(const unsigned int code)
+    {
+      return code < 0x20 || code == 0x7F || (code >= 0x80 && code <= 0x9F);
+    }
+  } // namespace
+
+  std::string
+  printable(const std::string &text)
+  {
+    std::string        result;
+    std::ostringstream escaped;
+    escaped << std::hex << std::setfill('0');
+    for (std::size_t i = 0; i < text.size();)
+      {
+        const unsigned int length = utf8_sequence_length(text, i);
+        if (length == 0)
+          {
+            escaped.str("");
+            escaped << "\\x" << std::setw(2)
+                    << static_cast<unsigned int>(
+                         static_cast<unsigned char>(text[i]));
+            result += escaped.str();
+            ++i;
+            continue;
+          }
+        const unsigned int code = code_point(text, i, length);
+        if (is_control(code))
+          {
+            escaped.str("");
+            escaped << (code < 0x80 ? "\\x" : "\\u")
+                    << std::setw(code < 0x80 ? 2 : 4) << code;
+            result += escaped.str();
+          }
+        else
+          result += text.substr(i, length);
+        i += length;
+      }
+    return result;
+  }
+
+  std::string
+  control_character_in_path(const std::string &entry, const std::string &value)
+  {
+    for (std::size_t i = 0; i < value.size();)
+      {
+        const unsigned int length = utf8_sequence_length(value, i);
+        // a byte outside UTF-8 is a legal (Latin-1, say) file name byte
+        const unsigned int code =
+          length == 0 ? 0x100 : code_point(value, i, length);
+        if (is_control(code))
+          {
+            std::ostringstream message;
+            message << entry << ": the value contains a control character ("
+                    << (code < 0x80 ? "0x" : "U+") << std::hex << std::uppercase
+                    << std::setfill('0') << std::setw(code < 0x80 ? 2 : 4)
+                    << code << std::dec << " at position " << i + 1
+                    << "); file and directory names must not contain "
+                       "control characters: retype the name.";
+            return message.str();
+          }
+        i += std::max(length, 1u);
+      }
+    return "";
+  }
+
   std::string
   explain_parameter_file_error(const std::exception &error,
                                const std::string    &text,
@@ -357,50 +479,9 @@ namespace PlateOnHalfspace
         "foundation restrains (tests/unit/plate_zero_energy_modes); prefer "
         "Element = heterosis with Shear integration = selective.");
 
-    // A load patch partly off the plate: the load assembly integrates the
-    // part on the plate exactly (quadrilateral_geometry.h) and ignores the
-    // rest; a patch wholly off the plate is an error there. Checked here
-    // for the rectangle and the disk (a mesh file's outline is not known
-    // before it is read).
-    const auto on_plate = [&](const Point<2> &x) {
-      const double slack = 1e-12 * std::max({p.length_x, p.length_y, p.radius});
-      if (p.shape == Parameters::Plate::Shape::rectangle ||
-          p.shape == Parameters::Plate::Shape::slabs)
-        return std::abs(x[0]) <= p.length_x / 2 + slack &&
-               std::abs(x[1]) <= p.length_y / 2 + slack;
-      return x.norm() <= p.radius + slack;
-    };
-    if (p.shape != Parameters::Plate::Shape::mesh_file)
-      {
-        const auto &loads = parameters.loads;
-        for (unsigned int k = 0; k < loads.rectangular_patches.size(); ++k)
-          {
-            const auto &r = loads.rectangular_patches[k];
-            if (!on_plate(r.lower) || !on_plate(r.upper) ||
-                !on_plate(Point<2>(r.lower[0], r.upper[1])) ||
-                !on_plate(Point<2>(r.upper[0], r.lower[1])))
-              warnings.push_back("Loads/Rectangular patches: patch " +
-                                 std::to_string(k + 1) +
-                                 " extends beyond the plate; only the part "
-                                 "on the plate is applied (applied_load in "
-                                 "summary.json).");
-          }
-        for (unsigned int k = 0; k < loads.circular_patches.size(); ++k)
-          {
-            const auto  &c = loads.circular_patches[k];
-            const double r = c.radius;
-            const bool   inside =
-              (p.shape == Parameters::Plate::Shape::disk ?
-                 c.centre.norm() + r <= p.radius * (1 + 1e-12) :
-                 on_plate(Point<2>(c.centre[0] + r, c.centre[1] + r)) &&
-                   on_plate(Point<2>(c.centre[0] - r, c.centre[1] - r)));
-            if (!inside)
-              warnings.push_back(c.label +
-                                 " extends beyond the plate; only the part "
-                                 "on the plate is applied (applied_load in "
-                                 "summary.json).");
-          }
-      }
+    // A load patch or tyre partly off the plate is warned about by the
+    // driver, on the mesh (plate/load_checks.h): only the mesh knows the
+    // outline of every Plate/Shape.
     return warnings;
   }
 } // namespace PlateOnHalfspace

@@ -177,8 +177,13 @@ namespace PlateOnHalfspace
       };
       slab_lengths_x = lengths("Slab lengths x");
       slab_lengths_y = lengths("Slab lengths y");
-      // The grid's outline is a rectangle: what the checks of the
-      // rectangle (loads on the plate, cell size) read.
+      length_x       = prm.get_double("Length x");
+      length_y       = prm.get_double("Length y");
+      // The grid's outline is a rectangle: what every check of the
+      // rectangle (loads on the plate, cell size, probes, goals, sweep,
+      // symmetry) reads. It replaces Length x/y, which a grid of slabs
+      // ignores (doc/parameters.md), after they are read, so that their
+      // defaults never stand for the grid.
       if (shape == Shape::slabs)
         {
           length_x =
@@ -186,8 +191,6 @@ namespace PlateOnHalfspace
           length_y =
             std::accumulate(slab_lengths_y.begin(), slab_lengths_y.end(), 0.);
         }
-      length_x       = prm.get_double("Length x");
-      length_y       = prm.get_double("Length y");
       radius         = prm.get_double("Radius");
       mesh_file      = prm.get("Mesh file");
       thickness      = prm.get_double("Thickness");
@@ -533,9 +536,15 @@ namespace PlateOnHalfspace
       tolerance              = prm.get_double("Tolerance");
       hierarchical_from      = prm.get_integer("Hierarchical from");
       prm.leave_subsection();
-      require(tolerance > 0,
-              "Foundation operator/Tolerance must lie in (0, 1]" +
-                got(tolerance) + ".");
+      // The compressed blocks are checked against the exactly integrated
+      // ones in double precision, which resolves about 1e-16: a finer
+      // tolerance can never pass that check (doc/errors-and-limits.md).
+      require(tolerance >= 1e-14,
+              "Foundation operator/Tolerance must lie in [1e-14, 1]" +
+                got(tolerance) +
+                ": double precision resolves no finer. For the exactly "
+                "integrated flexibility use Foundation operator/Storage = "
+                "dense.");
     }
 
     void

@@ -4,10 +4,18 @@
 #include <plate_on_halfspace/scene/input_checks.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace PlateOnHalfspace
 {
@@ -75,6 +83,20 @@ namespace PlateOnHalfspace
   {
     output_directory = prm.get("Output directory");
     require(!output_directory.empty(), "Output directory must not be empty.");
+    // Every entry that names a file or directory, before anything uses it:
+    // a NUL would end the name early in the system calls
+    // (doc/errors-and-limits.md).
+    {
+      const std::string problem =
+        control_character_in_path("Output directory", output_directory);
+      require(problem.empty(), problem);
+      prm.enter_subsection("Plate");
+      const std::string mesh_file = prm.get("Mesh file");
+      prm.leave_subsection();
+      const std::string mesh_problem =
+        control_character_in_path("Plate/Mesh file", mesh_file);
+      require(mesh_problem.empty(), mesh_problem);
+    }
     plate.parse_parameters(prm);
     joints.parse_parameters(prm);
     foundation.parse_parameters(prm);
@@ -115,6 +137,19 @@ namespace PlateOnHalfspace
                 "Foundation/Modulus of subgrade reaction must be at least "
                 "1e-15 E/t = " +
                   limit.str() + ": a softer soil does not hold the plate.");
+        // Above the mirror bound the plate's stiffness is lost in the
+        // soil's in every digit (k = 1e300 overflowed the conjugate
+        // gradients into "non-positive curvature", naming no entry).
+        const double largest = 1e15 * plate.youngs_modulus / plate.thickness;
+        std::ostringstream upper;
+        upper << largest << " for this plate (got "
+              << foundation.subgrade_modulus << ")";
+        require(foundation.subgrade_modulus <= largest,
+                "Foundation/Modulus of subgrade reaction must be at most "
+                "1e15 E/t = " +
+                  upper.str() +
+                  ": a stiffer soil is rigid in every digit the plate's "
+                  "stiffness can carry; a smaller k gives the same answer.");
         // The dense liquid is a sparse operator: nothing may densify it,
         // and the paper's element exclusion and collocation belong to the
         // half-space (doc/formulation.md, "Dense-liquid foundation").
@@ -208,6 +243,253 @@ namespace PlateOnHalfspace
              20000;
   }
 
+  namespace
+  {
+    /** The largest parameter file read (the shipped scenes are < 10 KiB). */
+    constexpr std::uintmax_t largest_parameter_file = 64u << 20;
+    /** How deep includes may nest, and how many one scene may follow. */
+    constexpr unsigned int deepest_include = 32;
+    constexpr unsigned int most_includes   = 1000;
+
+    std::string
+    trimmed(const std::string &text)
+    {
+      const auto not_space = [](const char c) {
+        return !std::isspace(static_cast<unsigned char>(c));
+      };
+      const auto begin = std::find_if(text.begin(), text.end(), not_space);
+      const auto end   = std::find_if(text.rbegin(), text.rend(), not_space);
+      return begin < end.base() ? std::string(begin, end.base()) : "";
+    }
+
+    /**
+     * "" if @p text is a text parameter file, else the reason it is not:
+     * a byte-order mark of UTF-16 or UTF-32, the NUL bytes of UTF-16 or
+     * UTF-32 text without a mark (in every second or every three of four
+     * bytes of its first 4 KiB), or a quarter or more of those bytes
+     * control characters other than white space (a binary file). deal.II
+     * would read such a file line by line and quote the NULs in its
+     * message, cut short on the terminal.
+     */
+    std::string
+    encoding_problem(const std::string &text)
+    {
+      const auto starts_with = [&](const std::string &mark) {
+        return text.compare(0, mark.size(), mark) == 0;
+      };
+      using namespace std::string_literals;
+      if (starts_with("\x00\x00\xFE\xFF"s) || starts_with("\xFF\xFE\x00\x00"s))
+        return "UTF-32 encoded";
+      if (starts_with("\xFE\xFF"s) || starts_with("\xFF\xFE"s))
+        return "UTF-16 encoded";
+      const std::size_t sample = std::min<std::size_t>(text.size(), 4096);
+      // NULs at each position modulo 4, and all control bytes
+      std::array<std::size_t, 4> nuls{};
+      std::size_t                controls = 0;
+      for (std::size_t i = 0; i < sample; ++i)
+        {
+          const unsigned char c = text[i];
+          nuls[i % 4] += (c == 0);
+          controls += ((c < 0x20 && !std::isspace(c)) || c == 0x7F);
+        }
+      if (sample < 8)
+        return "";
+      const std::size_t slots = sample / 4; // per position, about
+      const auto        most  = [&](const std::size_t n) {
+        return 10 * n >= 9 * slots;
+      };
+      const auto few = [&](const std::size_t n) { return 10 * n <= slots; };
+      // ASCII text as UTF-32 (LE or BE): three NULs in every four bytes
+      if ((few(nuls[0]) && most(nuls[1]) && most(nuls[2]) && most(nuls[3])) ||
+          (most(nuls[0]) && most(nuls[1]) && most(nuls[2]) && few(nuls[3])))
+        return "UTF-32 encoded";
+      // UTF-16 (LE or BE): NULs in the high bytes of most characters
+      const std::size_t even = nuls[0] + nuls[2], odd = nuls[1] + nuls[3];
+      if ((5 * odd >= 2 * 2 * slots && 20 * even <= 2 * slots) ||
+          (5 * even >= 2 * 2 * slots && 20 * odd <= 2 * slots))
+        return "UTF-16 encoded";
+      if (4 * controls >= sample)
+        return "binary: " + std::to_string(controls) + " of its first " +
+               std::to_string(sample) + " bytes are control characters";
+      return "";
+    }
+
+    /**
+     * A ParameterHandler that reads every file, the scene and each file it
+     * includes, with checks deal.II does not make (doc/errors-and-limits.md,
+     * "Include files, encodings and control characters"). deal.II 9.4 follows
+     * "include NAME" by opening NAME as written (relative to the working
+     * directory) and calling the virtual parse_input(stream, NAME) on it, so
+     * this override sees every file deal.II reads, exactly as it resolves it:
+     * - a file that includes itself, directly or through others, would
+     *   recurse until the stack overflows: refused, naming the chain
+     *   (files are compared by device and inode, so links and other
+     *   spellings of a name count as the same file);
+     * - includes nested deeper than 32 or more than 1000 in all (a
+     *   "diamond" of includes grows exponentially) are refused;
+     * - an include that names no regular file (a directory, a FIFO, a
+     *   device, which opening could block on or never end) or holds a
+     *   control character is refused before deal.II opens it;
+     * - a UTF-16, UTF-32 or binary file is refused in one line; a UTF-8
+     *   byte-order mark is dropped (it is text).
+     */
+    class SceneFileReader : public ParameterHandler
+    {
+    public:
+      explicit SceneFileReader(const bool first_is_a_file)
+        : first_is_a_file(first_is_a_file)
+      {}
+
+      using ParameterHandler::parse_input;
+
+      void
+      parse_input(std::istream      &input,
+                  const std::string &filename,
+                  const std::string &last_line,
+                  const bool         skip_undefined) override
+      {
+        const bool is_include = !open_files.empty();
+        if (is_include)
+          {
+            ++n_includes;
+            require(n_includes <= most_includes,
+                    "include: the scene follows more than " +
+                      std::to_string(most_includes) + " include statements (" +
+                      open_files.front().name +
+                      " includes files that include the same files again); "
+                      "include each file once.");
+            require(open_files.size() < deepest_include,
+                    "include: the includes nest more than " +
+                      std::to_string(deepest_include) +
+                      " deep: " + chain(filename) + ".");
+          }
+        OpenFile file{filename, {}};
+        if (is_include || first_is_a_file)
+          {
+            struct stat status;
+            if (::stat(filename.c_str(), &status) == 0)
+              file.identity = std::make_pair(status.st_dev, status.st_ino);
+          }
+        if (file.identity)
+          for (const OpenFile &open : open_files)
+            require(open.identity != file.identity,
+                    "include cycle: " + chain(filename) +
+                      " (a file must not include itself, directly or "
+                      "through other files).");
+
+        std::string text;
+        char        buffer[1 << 16];
+        while (text.size() <= largest_parameter_file &&
+               input.read(buffer, sizeof(buffer)).gcount() > 0)
+          text.append(buffer, input.gcount());
+        require(text.size() <= largest_parameter_file,
+                filename + " is larger than 64 MiB: not a parameter file.");
+        const std::string encoding = encoding_problem(text);
+        require(encoding.empty(),
+                filename + " is not a text parameter file (it looks " +
+                  encoding + "); save it as UTF-8 or ASCII.");
+        if (text.compare(0, 3, "\xEF\xBB\xBF") == 0)
+          text.erase(0, 3); // the UTF-8 byte-order mark
+        check_include_statements(text, filename);
+
+        open_files.push_back(file);
+        try
+          {
+            std::istringstream stream(text);
+            ParameterHandler::parse_input(stream,
+                                          filename,
+                                          last_line,
+                                          skip_undefined);
+          }
+        catch (...)
+          {
+            open_files.pop_back();
+            throw;
+          }
+        open_files.pop_back();
+      }
+
+    private:
+      struct OpenFile
+      {
+        std::string                            name;
+        std::optional<std::pair<dev_t, ino_t>> identity;
+      };
+
+      /** "a.prm includes b.prm includes NEXT". */
+      std::string
+      chain(const std::string &next) const
+      {
+        std::string names;
+        for (const OpenFile &open : open_files)
+          names += open.name + " includes ";
+        return names + next;
+      }
+
+      /**
+       * Refuses an "include NAME" line of @p text (the file @p filename)
+       * whose NAME holds a control character or exists but is no regular
+       * file. The lines are read as deal.II's parse_input() and scan_line()
+       * read them: trimmed, joined at a trailing backslash, the comment
+       * cut at '#', tabs made spaces.
+       */
+      void
+      check_include_statements(const std::string &text,
+                               const std::string &filename) const
+      {
+        std::istringstream lines(text);
+        std::string        line, joined;
+        unsigned int       number = 0, first_of_joined = 0;
+        bool               continued = false;
+        const auto         check     = [&](const std::string &logical_line) {
+          std::string statement =
+            logical_line.substr(0, logical_line.find('#'));
+          std::replace(statement.begin(), statement.end(), '\t', ' ');
+          statement = trimmed(statement);
+          if (statement.rfind("include ", 0) != 0 &&
+              statement.rfind("INCLUDE ", 0) != 0)
+            return;
+          const std::string name  = trimmed(statement.substr(7));
+          const std::string where = filename + ", line " +
+                                    std::to_string(first_of_joined) +
+                                    ": include " + name;
+          const std::string problem = control_character_in_path(where, name);
+          require(problem.empty(), problem);
+          std::error_code error;
+          const auto      status = std::filesystem::status(name, error);
+          require(!std::filesystem::exists(status) ||
+                    std::filesystem::is_regular_file(status),
+                  where +
+                    ": not a regular file (a parameter file is expected).");
+        };
+        while (std::getline(lines, line))
+          {
+            ++number;
+            if (!continued)
+              first_of_joined = number;
+            line = trimmed(line);
+            if (!line.empty() && line.back() == '\\')
+              {
+                line.pop_back();
+                joined += line;
+                continued = true;
+                continue;
+              }
+            joined += line;
+            continued = false;
+            check(joined);
+            joined.clear();
+          }
+        if (continued)
+          check(joined);
+      }
+
+      const bool            first_is_a_file;
+      std::vector<OpenFile> open_files;
+      unsigned int          n_includes = 0;
+    };
+  } // namespace
+
   void
   SceneParameters::read(const std::string &filename)
   {
@@ -215,9 +497,14 @@ namespace PlateOnHalfspace
                   std::ifstream(filename).good(),
                 ExcMessage("Cannot open the parameter file <" + filename +
                            ">."));
+    std::error_code      error;
+    const std::uintmax_t size = std::filesystem::file_size(filename, error);
+    AssertThrow(error || size <= largest_parameter_file,
+                ExcMessage(filename +
+                           " is larger than 64 MiB: not a parameter file."));
     std::ostringstream text;
     text << std::ifstream(filename).rdbuf();
-    ParameterHandler prm;
+    SceneFileReader prm(true);
     declare_parameters(prm);
     // parse_input() also follows "include other.prm" lines, so tests can
     // derive from the shipped scenes. Its messages name the line, not the
@@ -239,7 +526,7 @@ namespace PlateOnHalfspace
   void
   SceneParameters::read_from_string(const std::string &text)
   {
-    ParameterHandler prm;
+    SceneFileReader prm(false);
     declare_parameters(prm);
     try
       {

@@ -4,7 +4,12 @@
 # exit with status 1 (no signal, no time-out) and one "Error: ..." line on
 # stderr that contains every "# expect: TEXT" line of the file (the
 # section/entry and the allowed values); an "# env: VAR=VALUE" line sets an
-# environment variable for the run. A valid run in the same directory comes
+# environment variable for the run; a "# setup: COMMAND" line runs COMMAND
+# (bash) in the working directory first (the files an include cycle, a
+# link or a FIFO needs); a "# filter: COMMAND" line writes the scene through
+# COMMAND, for bytes a text file cannot hold (UTF-16, NUL and other control
+# characters: tr '@' '\000'). No message may hold a raw control character
+# (doc/errors-and-limits.md). A valid run in the same directory comes
 # first, and no failed run may change its results or leave a temporary file;
 # a "# failed-run: CYCLES" line says the run fails after writing CYCLES
 # cycles, whose results must then be in results/failed-run/.
@@ -17,7 +22,7 @@ here=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp "$here/bad_input_base.prm" "$work/base.prm"
-cp "$here/triangles.msh" "$work/"
+cp "$here"/*.msh "$work/"
 cd "$work"
 passed=0
 failed=0
@@ -39,7 +44,10 @@ run_bad() { # name, then the command
   fi
   if [ "$(printf '%s\n' "$errors" | wc -l)" -ne 1 ] ||
      [[ "$errors" != "Error: "* ]]; then
-    fail "$name: stderr is not one 'Error: ...' line"; cat stderr; return 1
+    fail "$name: stderr is not one 'Error: ...' line"; cat -v stderr; return 1
+  fi
+  if [ "$(LC_ALL=C tr -d '\n\040-\176\200-\377' <stderr | wc -c)" -ne 0 ]; then
+    fail "$name: stderr holds a raw control character"; cat -v stderr; return 1
   fi
   if ! snapshot | cmp -s - before.md5 ||
      [ -n "$(find . -name '*.tmp')" ] || [ -e results/previous-run ]; then
@@ -53,22 +61,29 @@ echo "| scene | message |"
 echo "|---|---|"
 for scene in "$here"/bad_input/*.prm; do
   name=$(basename "$scene" .prm)
-  cp "$scene" "$name.prm"
+  setup=$(sed -n 's/^# setup: //p' "$scene")
+  [ -z "$setup" ] || bash -c "$setup" || fail "$name: its setup failed"
+  filter=$(sed -n 's/^# filter: //p' "$scene")
+  if [ -n "$filter" ]; then
+    bash -c "$filter" <"$scene" >"$name.prm" || fail "$name: its filter failed"
+  else
+    cp "$scene" "$name.prm"
+  fi
   environment=()
   while IFS= read -r line; do
     environment+=("$line")
-  done < <(sed -n 's/^# env: //p' "$name.prm")
+  done < <(sed -n 's/^# env: //p' "$scene")
   if run_bad "$name" env "${environment[@]}" "$program" "$name.prm"; then
     ok=1
     while IFS= read -r expected; do
       if ! grep -qF -- "$expected" stderr; then
         fail "$name: the message lacks <$expected>"; cat stderr; ok=0
       fi
-    done < <(sed -n 's/^# expect: //p' "$name.prm")
-    if [ -z "$(sed -n 's/^# expect: //p' "$name.prm")" ]; then
+    done < <(sed -n 's/^# expect: //p' "$scene")
+    if [ -z "$(sed -n 's/^# expect: //p' "$scene")" ]; then
       fail "$name: no '# expect:' line"; ok=0
     fi
-    cycles=$(sed -n 's/^# failed-run: //p' "$name.prm")
+    cycles=$(sed -n 's/^# failed-run: //p' "$scene")
     if [ -n "$cycles" ]; then
       if [ "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(len(d["cycles"]))' results/failed-run/summary.json 2>/dev/null)" != "$cycles" ]; then
         fail "$name: results/failed-run/summary.json with $cycles cycle(s) expected"; ok=0
@@ -91,6 +106,21 @@ run_bad "a directory as parameter file" "$program" . && grep -q "<.>" stderr &&
 "$program" >stdout 2>stderr
 [ $? -eq 2 ] && grep -q "usage" stderr && passed=$((passed + 1)) ||
   fail "no argument: usage and status 2 expected"
+
+# A UTF-8 byte-order mark is text: a scene and an included file that begin
+# with one run (doc/errors-and-limits.md, "Include files, encodings and
+# control characters").
+{ printf '\357\273\277'; sed 's/^set Output directory = .*/set Output directory = bom-results/' base.prm; } >bom.prm
+{ printf '\357\273\277include bom.prm\n'; } >bom-includer.prm
+for scene in bom.prm bom-includer.prm; do
+  rm -rf bom-results
+  if "$program" $scene >stdout 2>stderr && [ -s bom-results/summary.json ] &&
+     [ ! -s stderr ]; then
+    passed=$((passed + 1))
+  else
+    fail "$scene: a UTF-8 byte-order mark must be accepted"; cat -v stderr
+  fi
+done
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -30,6 +30,14 @@ expect() { # description, expected status (0 or nonzero), command...
 expect "--print-parameters" 0 "$program" --print-parameters
 printf 'set Output directory = run\ninclude %s/flexible-square.prm\nset Output directory = run\n' "$scenes" >good.prm
 expect "shipped scene" 0 "$program" good.prm
+# a finished run says so: "finished": true, then the flag file written last
+# (doc/outputs.md, "complete"), and no lock or folder left behind
+if grep -q '"finished": true' run/summary.json && [ -f run/complete ] &&
+   [ ! -e run/.plate-on-halfspace.lock ] && [ ! -e run/previous-run ]; then
+  echo "ok: a finished run is marked complete"; passed=$((passed + 1))
+else
+  echo "FAILED: no complete flag or \"finished\": true, or a lock left"; failed=$((failed + 1))
+fi
 cp run/summary.json before.json
 expect "missing file" nonzero "$program" no-such.prm
 printf 'subsection Plate\n  set Thickness = -1\nend\n' >bad.prm
@@ -39,8 +47,9 @@ grep -q "Thickness" stderr && echo "ok: message names the entry" && passed=$((pa
 cat good.prm >offplate.prm
 printf 'subsection Loads\n  set Point loads = 100,0,1\nend\n' >>offplate.prm
 expect "point load off the plate, same output directory" nonzero "$program" offplate.prm
-if cmp -s before.json run/summary.json && ! ls run/.*.tmp >/dev/null 2>&1; then
-  echo "ok: earlier summary.json intact, no temporary file left"
+if cmp -s before.json run/summary.json && ! ls run/.*.tmp >/dev/null 2>&1 &&
+   [ -f run/complete ]; then
+  echo "ok: earlier summary.json and complete flag intact, no temporary file left"
   passed=$((passed + 1))
 else
   echo "FAILED: earlier results changed"; failed=$((failed + 1))

@@ -23,10 +23,19 @@ namespace PlateOnHalfspace
 
   /**
    * The message of every refusal of a contact set that cannot carry the
-   * plate, with what the user can change.
+   * plate, with what the user can change: giving the plate its weight
+   * only for a weightless plate (set_plate_weightless()).
    */
   std::string
   plate_is_mechanism_message();
+
+  /**
+   * Whether the scene's plate has no weight (Plate/Unit weight = 0), for
+   * plate_is_mechanism_message(); create_contact_solver() sets it from the
+   * scene. Until then the message assumes a weightless plate.
+   */
+  void
+  set_plate_weightless(const bool weightless);
 
   /**
    * Whether the nodes flagged in @p in_contact can carry a plate: at least

@@ -125,6 +125,9 @@ namespace PlateOnHalfspace
   {
     /** The offset of every axle group at this position. */
     Point<2> position;
+    /** The load the plate carries at this position (what is off the
+     *  plate is not applied; doc/outputs.md, sweep.csv). */
+    double   applied_load = 0;
     double   max_w = 0, max_stress_bottom = 0, max_stress_top = 0;
     Point<2> max_w_at, max_stress_bottom_at, max_stress_top_at;
     double   contact_area_fraction = 0;
@@ -138,34 +141,62 @@ namespace PlateOnHalfspace
 
   /**
    * Evaluates a solved cycle (fields, extremes, points) and writes the result
-   * files. Every file is written to a temporary name and renamed, so no file
-   * is ever half written. A run keeps the results of the run before it until
-   * it succeeds: the constructor moves them to previous-run/, commit() drops
-   * them, abandon() moves this run's files to failed-run/ and restores them.
+   * files (doc/outputs.md, "Safety of the output directory"):
+   * - every file is written to a temporary name created afresh and never
+   *   through a link, and renamed into place, so no file is ever half
+   *   written and a planted link is never followed;
+   * - the constructor locks the directory against a second run, checks that
+   *   it takes new files, mends what a killed run left, and moves the
+   *   earlier run's results to previous-run/; commit() writes the flag file
+   *   `complete` last and drops them, abandon() moves this run's files to
+   *   failed-run/ and brings them back;
+   * - nothing is removed but this program's own result files (by name), and
+   *   previous-run/ and failed-run/ when they are then empty.
+   * Only rank 0 touches the directory; the other ranks send it their part
+   * of the VTU.
    */
   class ResultsOutput
   {
   public:
     /**
-     * Creates @p directory and sets the earlier run's results aside. Under
-     * MPI every rank holds the whole solution on its shared mesh, and only
-     * rank 0 of @p communicator touches the directory (doc/parallel.md);
-     * summary.json records the number of ranks and the partitioner.
+     * Creates, locks and prepares @p directory (above). Under MPI every rank
+     * holds the whole solution on its shared mesh, and only rank 0 of
+     * @p communicator touches the directory (doc/parallel.md); summary.json
+     * records the number of ranks and the partitioner.
      */
     explicit ResultsOutput(const std::string &directory,
                            const MPI_Comm     communicator = MPI_COMM_SELF);
 
-    /** A run that neither committed nor abandoned is abandoned. */
+    /** A run that neither committed nor abandoned is abandoned; the lock
+     *  is released. */
     ~ResultsOutput();
 
-    /** The run succeeded: its results replace the earlier run's. */
+    ResultsOutput(const ResultsOutput &) = delete;
+    ResultsOutput &
+    operator=(const ResultsOutput &) = delete;
+
+    /**
+     * What the constructor found of a killed earlier run and did about it
+     * (one line), or empty.
+     */
+    const std::string &
+    recovery_note() const
+    {
+      return recovery;
+    }
+
+    /**
+     * The run succeeded: summary.json is rewritten with "finished": true,
+     * the flag file `complete` is written last, and the earlier run's
+     * results are dropped; the lock is released.
+     */
     void
     commit();
 
     /**
      * The run failed: its files go to failed-run/ (for diagnosis) and the
-     * earlier run's results come back. Returns a one-line note saying so,
-     * empty if the run had written nothing.
+     * earlier run's results come back; the lock is released. Returns a
+     * one-line note saying so, empty if the run had written nothing.
      */
     std::string
     abandon();
@@ -200,13 +231,14 @@ namespace PlateOnHalfspace
 
     /** summary.json over all cycles so far; @p slab_grid names the slabs
      *  and joints of the cycles' per-slab and per-joint results; a
-     *  non-empty @p sweep adds its envelope. */
+     *  non-empty @p sweep adds its envelope. Until commit() it says
+     *  "finished": false and "converged": false; commit() sets both. */
     void
     write_summary(const std::vector<CycleSummary> &cycles,
                   const std::string               &symmetry,
                   const bool                       converged,
                   const SlabGrid                  &slab_grid,
-                  const std::vector<SweepRow>     &sweep = {}) const;
+                  const std::vector<SweepRow>     &sweep = {});
 
     /** sweep.csv: one row per position of Loads/Sweep. */
     void
@@ -255,9 +287,70 @@ namespace PlateOnHalfspace
     write_file(const std::string &name, const std::string &text) const;
 
   private:
-    /** Moves this program's result files from @p from to @p to. */
-    static unsigned int
-    move_result_files(const std::string &from, const std::string &to);
+    /** On rank 0: creates, locks, checks and prepares the directory (the
+     *  constructor's work). */
+    void
+    prepare_directory();
+
+    /** Takes the lock file's flock; a second run is refused at once. */
+    void
+    lock_directory();
+
+    /** Releases the lock and removes the lock file (if still ours). */
+    void
+    unlock_directory();
+
+    /** Creates and removes a probe file: the directory takes new files. */
+    void
+    check_writable() const;
+
+    /** Removes the temporary files (.NAME.tmp) a killed run left. */
+    void
+    remove_stale_temporaries() const;
+
+    /** After a killed run: the newest complete results back in place. */
+    void
+    recover_interrupted_run();
+
+    /** The directory's result files into previous-run/, `complete` first. */
+    void
+    set_earlier_results_aside();
+
+    /** previous-run/'s result files back, `complete` last. */
+    void
+    restore_earlier_results() const;
+
+    /** The directory's result files into failed-run/. */
+    void
+    set_failed_run_aside();
+
+    /** previous-run/ or failed-run/ opened (created if @p create), never
+     *  through a link; -1 if missing. */
+    int
+    open_results_folder(const char *name, const bool create) const;
+
+    /** Removes the result files of previous-run/ or failed-run/, then the
+     *  folder if it is empty. */
+    void
+    remove_results_folder(const char *name) const;
+
+    /** The names of the result files (regular files, not links) in the
+     *  open directory @p directory. */
+    static std::vector<std::string>
+    result_files_in(const int directory);
+
+    /** Moves the result files from @p from to @p to (open directories;
+     *  @p where names @p to in a message): `complete` first if
+     *  @p flag_first, else last. */
+    unsigned int
+    move_result_files(const int   from,
+                      const int   to,
+                      const bool  flag_first,
+                      std::string where) const;
+
+    /** Removes the result files of the open directory @p directory. */
+    static void
+    remove_result_files(const int directory);
 
     /** Whether this rank touches the directory: rank 0 only. */
     bool
@@ -265,11 +358,23 @@ namespace PlateOnHalfspace
 
     std::string directory;
     std::string previous_run, failed_run;
-    /** The run's ranks: all write the VTU, rank 0 the other files; their
+    /** The output directory and the lock file, open on rank 0 (-1: not). */
+    int directory_fd = -1, lock_fd = -1;
+    /** The run's ranks: all build the VTU, rank 0 writes every file; their
      *  number goes into summary.json. */
     MPI_Comm                                    communicator;
     bool                                        finished = false;
     std::vector<std::pair<double, std::string>> pvd_records;
+    /** The last summary.json written, its cycles and whether they all
+     *  converged: commit() rewrites it as finished. */
+    std::string  summary_text;
+    bool         summary_converged = false;
+    unsigned int summary_cycles    = 0;
+    /** Result files moved to failed-run/ by the last set_failed_run_aside(). */
+    unsigned int failed_files = 0;
+    std::string  recovery;
+    /** Whether the constructor began to move the earlier results. */
+    bool setting_aside = false;
   };
 } // namespace PlateOnHalfspace
 

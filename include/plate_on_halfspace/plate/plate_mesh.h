@@ -11,6 +11,8 @@
 
 #include <plate_on_halfspace/scene/parameters.h>
 
+#include <string>
+
 namespace PlateOnHalfspace
 {
   using namespace dealii;
@@ -38,10 +40,21 @@ namespace PlateOnHalfspace
    * @p communicator with METIS (GridTools::partition_triangulation): each
    * cell's subdomain id is its rank (doc/parallel.md). Nothing on one
    * process. Every rank computes the same partition of the same mesh.
+   * Throws ErrorOnEveryRank (base/error_on_every_rank.h) with
+   * too_many_ranks_message() if a rank would own no cell.
    */
   void
   partition_plate_mesh(Triangulation<2> &triangulation,
                        const MPI_Comm    communicator);
+
+  /**
+   * The refusal of a distributed run with more processes than the mesh of
+   * @p n_cells cells can share (doc/parallel.md): it names
+   * Discretization/Subdivisions x and y.
+   */
+  std::string
+  too_many_ranks_message(const unsigned int n_processes,
+                         const unsigned int n_cells);
 } // namespace PlateOnHalfspace
 
 #endif

@@ -41,6 +41,27 @@ namespace PlateOnHalfspace
   one_line_message(const std::exception &error);
 
   /**
+   * @p text as it may be printed to a terminal: every control character
+   * (C0, DEL) and every byte that is not part of valid UTF-8 written as
+   * \xNN, every C1 control (U+0080 ... U+009F) as \uNNNN. A value from
+   * the scene or a file name quoted in a message can then never send an
+   * escape sequence to the terminal (doc/errors-and-limits.md, "How a
+   * refusal looks"). main.cc prints every Error and Warning through it.
+   */
+  std::string
+  printable(const std::string &text);
+
+  /**
+   * "" if the value @p value of the path entry @p entry ("Output
+   * directory", "Plate/Mesh file") holds no control character, otherwise
+   * the message refusing it. The system calls end a name at a NUL, so a
+   * NUL would make the program act on another path than the one it
+   * checks (doc/errors-and-limits.md).
+   */
+  std::string
+  control_character_in_path(const std::string &entry, const std::string &value);
+
+  /**
    * The message for an error that ParameterHandler::parse_input() threw
    * while reading @p text (the contents of the file @p file_name; files
    * named in the error that are not @p file_name, i.e. included ones, are

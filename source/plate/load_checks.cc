@@ -1,0 +1,369 @@
+#include <deal.II/base/exceptions.h>
+
+#include <plate_on_halfspace/plate/load_checks.h>
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/plate/slab_grid.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /** The covered area of a region on the whole plate. */
+    template <typename RuleOnCell>
+    double
+    area_on_plate(const std::vector<FoundationSpace::Cell> &cells,
+                  const RuleOnCell                         &rule_on)
+    {
+      double area = 0;
+      for (const auto &cell : cells)
+        {
+          const Quadrature<2> rule = rule_on(cell.geometry);
+          for (unsigned int q = 0; q < rule.size(); ++q)
+            area += rule.weight(q);
+        }
+      return area;
+    }
+
+    double
+    cross(const Tensor<1, 2> &a, const Tensor<1, 2> &b)
+    {
+      return a[0] * b[1] - a[1] * b[0];
+    }
+
+    /** The convex hull of @p points, counterclockwise (monotone chain). */
+    std::vector<Point<2>>
+    convex_hull(std::vector<Point<2>> points)
+    {
+      std::sort(points.begin(),
+                points.end(),
+                [](const Point<2> &a, const Point<2> &b) {
+                  return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]);
+                });
+      points.erase(std::unique(points.begin(), points.end()), points.end());
+      if (points.size() < 3)
+        return points;
+      std::vector<Point<2>> hull(2 * points.size());
+      unsigned int          k = 0;
+      for (unsigned int i = 0; i < points.size(); ++i)
+        {
+          while (k >= 2 &&
+                 cross(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0)
+            --k;
+          hull[k++] = points[i];
+        }
+      for (int i = static_cast<int>(points.size()) - 2, lower = k + 1; i >= 0;
+           --i)
+        {
+          while (k >= static_cast<unsigned int>(lower) &&
+                 cross(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0)
+            --k;
+          hull[k++] = points[i];
+        }
+      hull.resize(k - 1);
+      return hull;
+    }
+
+    /** The distance of @p x from the outline of the convex @p hull,
+     *  negative outside. */
+    double
+    depth_in(const std::vector<Point<2>> &hull, const Point<2> &x)
+    {
+      double depth = std::numeric_limits<double>::infinity();
+      for (unsigned int i = 0; i < hull.size(); ++i)
+        {
+          const Tensor<1, 2> edge = hull[(i + 1) % hull.size()] - hull[i];
+          if (edge.norm() > 0)
+            depth = std::min(depth, cross(edge, x - hull[i]) / edge.norm());
+        }
+      return depth;
+    }
+
+    std::string
+    number(const double value)
+    {
+      std::ostringstream s;
+      s << std::setprecision(4) << value;
+      return s.str();
+    }
+
+    std::string
+    point(const Point<2> &x)
+    {
+      return "(" + number(x[0]) + ", " + number(x[1]) + ")";
+    }
+  } // namespace
+
+  std::vector<LoadOnPlate>
+  loads_on_plate(const FoundationSpace &space, const Parameters::Loads &loads)
+  {
+    std::vector<FoundationSpace::Cell> cells = space.cells;
+    for (auto &image : space.mirror_image_cells())
+      cells.push_back(std::move(image));
+    std::vector<LoadOnPlate> result;
+    for (unsigned int k = 0; k < loads.rectangular_patches.size(); ++k)
+      {
+        const auto  &patch = loads.rectangular_patches[k];
+        const double area =
+          (patch.upper[0] - patch.lower[0]) * (patch.upper[1] - patch.lower[1]);
+        const double covered =
+          area_on_plate(cells, [&](const BilinearQuadrilateral &cell) {
+            return quadrature_on_rectangle_part(cell,
+                                                patch.lower,
+                                                patch.upper,
+                                                2);
+          });
+        result.push_back(
+          {"Loads/Rectangular patches: patch " + std::to_string(k + 1),
+           patch.pressure * area,
+           patch.pressure * std::min(covered, area)});
+      }
+    for (const auto &patch : loads.circular_patches)
+      {
+        const double area = numbers::PI * patch.radius * patch.radius;
+        const double covered =
+          area_on_plate(cells, [&](const BilinearQuadrilateral &cell) {
+            return quadrature_on_disk_part(cell, patch.centre, patch.radius, 2);
+          });
+        result.push_back({patch.label,
+                          patch.pressure * area,
+                          patch.pressure * std::min(covered, area)});
+      }
+    return result;
+  }
+
+  std::vector<std::string>
+  partly_off_plate_warnings(const std::vector<LoadOnPlate> &loads,
+                            const std::string              &where)
+  {
+    std::vector<std::string> warnings;
+    for (const LoadOnPlate &l : loads)
+      {
+        // The overlap's quadrature of a disk's arcs is exact to about 1e-9
+        // of its area (a tyre tangent to the edge measured 1.1e-9 off);
+        // less than 1e-6 off the plate is a patch that ends on the edge.
+        const double share_off = l.load != 0 ? 1 - l.applied / l.load : 0;
+        if (!(share_off > 1e-6) || l.applied == 0)
+          continue;
+        std::ostringstream w;
+        w << where << l.entry
+          << " lies partly off the plate: " << std::setprecision(3)
+          << 100 * share_off << " % of its load is off the plate, so only "
+          << std::setprecision(6) << l.applied << " of its " << l.load
+          << " is applied (applied_load in summary.json and sweep.csv).";
+        warnings.push_back(w.str());
+      }
+    return warnings;
+  }
+
+  ResultantVerdict
+  check_load_resultant(const MindlinPlate      &plate,
+                       const Parameters::Loads &loads,
+                       const bool               has_weight)
+  {
+    ResultantVerdict       verdict;
+    const FoundationSpace &space = plate.get_foundation_space();
+    const auto            &dofs  = plate.get_foundation_dofs();
+    const Vector<double>  &load  = plate.get_load_vector();
+    const unsigned int     n     = space.n_nodes();
+    if (n == 0 || load.size() == 0)
+      return verdict;
+
+    // The slab of each node (the material id of its cells; one slab
+    // unless Shape = slabs) and the bodies: slabs joined by joints that
+    // keep them from separating vertically (every joint but a free one).
+    const SlabGrid           *grid    = plate.get_slab_grid();
+    const unsigned int        n_slabs = grid ? grid->n_slabs() : 1;
+    std::vector<unsigned int> body(n_slabs);
+    std::iota(body.begin(), body.end(), 0u);
+    const auto find = [&](unsigned int s) {
+      while (body[s] != s)
+        s = body[s] = body[body[s]];
+      return s;
+    };
+    if (grid)
+      for (const Joint &joint : grid->get_joints())
+        if (joint.transfer != Parameters::Joints::LoadTransfer::free &&
+            joint.slab_low < n_slabs && joint.slab_high < n_slabs)
+          body[find(joint.slab_low)] = find(joint.slab_high);
+    std::vector<unsigned int> body_of_node(n, 0);
+    std::vector<double>       cell_size_of_node(n, 0);
+    unsigned int              c = 0;
+    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+      {
+        const unsigned int slab =
+          std::min<unsigned int>(cell->material_id(), n_slabs - 1);
+        for (const unsigned int i : space.cells[c].nodes())
+          {
+            body_of_node[i]      = find(slab);
+            cell_size_of_node[i] = std::max(cell_size_of_node[i],
+                                            space.cells[c].geometry.diameter());
+          }
+        ++c;
+      }
+
+    // The reflections that make the whole plate of the computed part's
+    // bodies. A mirror plane on a joint that is not tied is two free
+    // edges (SlabGrid::mark_joint_faces()): the image across it is a
+    // body of its own, with the same loads, so it is not joined.
+    bool separate[2] = {false, false};
+    if (grid)
+      for (const Joint &joint : grid->get_joints())
+        if (joint.transfer != Parameters::Joints::LoadTransfer::tied &&
+            std::abs(joint.start[joint.axis]) <= space.symmetry.tolerance)
+          separate[joint.axis] = true;
+    std::vector<std::array<double, 2>> reflections = {{{1., 1.}}};
+    for (const auto &signs : space.symmetry.reflections())
+      if (!(separate[0] && signs[0] < 0) && !(separate[1] && signs[1] < 0))
+        reflections.push_back(signs);
+
+    struct Body
+    {
+      double                force = 0, magnitude = 0;
+      Tensor<1, 2>          moment;
+      std::vector<Point<2>> points;
+      /** node locations with their cell sizes, for the size near x */
+      std::vector<std::pair<Point<2>, double>> sizes;
+    };
+    std::vector<Body> bodies(n_slabs);
+    double            total = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        Body        &b = bodies[body_of_node[i]];
+        const double p = load[dofs[i]];
+        // The whole plate: each mirror image carries the same load. A node
+        // on a mirror plane is its own image there and carries only the
+        // computed part's share, so the images of a node share the copies.
+        const Point<2>       &node = space.node_locations[i];
+        std::vector<Point<2>> images;
+        for (const auto &signs : reflections)
+          {
+            const Point<2> x(signs[0] * node[0], signs[1] * node[1]);
+            if (std::none_of(images.begin(),
+                             images.end(),
+                             [&](const Point<2> &y) {
+                               return y.distance(x) <= space.symmetry.tolerance;
+                             }))
+              images.push_back(x);
+          }
+        const double share = double(reflections.size()) / images.size();
+        for (const Point<2> &x : images)
+          {
+            b.force += share * p;
+            b.magnitude += share * std::abs(p);
+            b.moment += share * p * x;
+            b.points.push_back(x);
+            b.sizes.emplace_back(x, cell_size_of_node[i]);
+            total += share * p;
+          }
+      }
+    // An upward or zero resultant has its own message (contact/interface.h).
+    if (!(total > 0))
+      return verdict;
+
+    const bool several =
+      separate[0] || separate[1] ||
+      std::count_if(bodies.begin(), bodies.end(), [](const Body &b) {
+        return !b.points.empty();
+      }) > 1;
+    for (unsigned int s = 0; s < n_slabs; ++s)
+      {
+        const Body &b = bodies[s];
+        if (b.points.empty() || b.magnitude == 0)
+          continue; // no load: the body rests where it is
+        const std::vector<Point<2>> hull = convex_hull(b.points);
+        if (hull.size() < 3)
+          continue;
+        double diameter = 0;
+        for (const Point<2> &x : hull)
+          for (const Point<2> &y : hull)
+            diameter = std::max(diameter, x.distance(y));
+        std::string whose = "the plate";
+        if (several)
+          {
+            std::vector<unsigned int> members;
+            for (unsigned int t = 0; t < n_slabs; ++t)
+              if (find(t) == s)
+                members.push_back(t + 1);
+            whose = members.size() == 1 ? "slab " : "slabs ";
+            for (unsigned int k = 0; k < members.size(); ++k)
+              whose += (k > 0 ? ", " : "") + std::to_string(members[k]);
+            whose += members.size() == 1 ?
+                       " (as summary.json's slabs, counted from 1)" :
+                       " (as summary.json's slabs, counted from 1; joined "
+                       "by joints that are not free)";
+          }
+        const std::string weight_advice =
+          has_weight ? "" : "give the plate its weight (Plate/Unit weight), ";
+        const std::string remedy =
+          " Move the load inward, " + weight_advice +
+          "or spread the load as a patch (Loads/Rectangular patches, "
+          "Circular patches).";
+        if (!(b.force > 1e-12 * b.magnitude))
+          {
+            verdict.error =
+              "The loads on " + whose + " have no downward resultant (" +
+              number(b.force) + "), so a tensionless foundation cannot hold " +
+              (several ? "them" : "it") +
+              " down and the scene has no determinate answer." + remedy;
+            return verdict;
+          }
+        const Point<2> resultant(b.moment / b.force);
+        const double   depth = depth_in(hull, resultant);
+        if (depth <= 1e-9 * diameter)
+          {
+            // name the point loads on or beyond the outline
+            std::string named;
+            for (const auto &l : loads.point_loads)
+              if (depth_in(hull, l.location) <= 1e-9 * diameter)
+                named +=
+                  std::string(named.empty() ? "" : ", ") + point(l.location);
+            verdict.error =
+              "The loads on a tensionless foundation have no determinate "
+              "answer: the resultant of the loads on " +
+              whose + ", " + number(b.force) + " at " + point(resultant) +
+              ", lies " + (depth < -1e-9 * diameter ? "outside" : "on") +
+              " the outline of " + (several ? "those slabs" : "the plate") +
+              (named.empty() ? std::string(" (Loads)") :
+                               " (Loads/Point loads at " + named + ")") +
+              ". A soil that cannot pull would have to carry the plate on "
+              "that point or edge alone: the contact region shrinks with "
+              "every refinement and the peak pressure grows without bound "
+              "(doc/errors-and-limits.md, \"A resultant on the outline\")." +
+              remedy;
+            return verdict;
+          }
+        // The resultant inside: determinate. A linear pressure q >= 0 with
+        // its resultant at the depth d from an edge needs a contact region
+        // at least 3 d wide (a triangle); cells larger than that cannot
+        // resolve it.
+        double size = 0, nearest = std::numeric_limits<double>::infinity();
+        for (const auto &[x, h] : b.sizes)
+          if (x.distance(resultant) < nearest)
+            {
+              nearest = x.distance(resultant);
+              size    = h;
+            }
+        if (3 * depth < size && verdict.warning.empty())
+          verdict.warning =
+            "The resultant of the loads on " + whose + ", " + number(b.force) +
+            " at " + point(resultant) + ", lies " + number(depth) +
+            " from the outline, less than a third of the cells there (" +
+            number(size) +
+            "): on a tensionless foundation the plate is then carried on a "
+            "region about three times that wide, which these cells cannot "
+            "resolve, so "
+            "the answer changes with the mesh until they are much smaller. "
+            "Refine there (Adaptivity), move the load inward, " +
+            weight_advice + "or spread the load as a patch.";
+      }
+    return verdict;
+  }
+} // namespace PlateOnHalfspace

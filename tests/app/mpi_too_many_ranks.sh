@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# More MPI processes than the mesh can share (doc/parallel.md): every rank
+# stops alike with one "Error:" line naming Discretization/Subdivisions,
+# exit status 1, no MPI_Abort and no crash, and the earlier results in the
+# output directory stay as they were. Scenes: one cell on 2 and 4
+# processes, 2 x 1 cells (one cell of the quarter computed) on 4
+# (rectangle, dense liquid, hierarchical storage), and a disk (3 cells of
+# the quarter computed) on 16 processes (--oversubscribe).
+# usage: mpi_too_many_ranks.sh PROGRAM TESTS_APP_DIRECTORY
+set -u
+program=$1
+here=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+cp "$here/bad_input_base.prm" base.prm
+export OMPI_MCA_rmaps_base_oversubscribe=1
+if [ "$(id -u)" = 0 ]; then
+  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+fi
+passed=0
+failed=0
+fail() { echo "FAILED: $*"; failed=$((failed + 1)); }
+
+# The earlier results every refused run must leave alone.
+"$program" base.prm >base.log 2>&1 || { fail "the valid base scene"; cat base.log; }
+snapshot() { (cd results && find . -type f -exec md5sum {} + | sort); }
+snapshot >before.md5
+
+scene() { # name, then the lines after "include base.prm"
+  local name=$1
+  shift
+  { echo "include base.prm"; printf '%s\n' "$@"; } >"$name.prm"
+}
+scene one_cell "subsection Discretization" "set Subdivisions x = 1" \
+  "set Subdivisions y = 1" "end"
+scene two_cells "subsection Discretization" "set Subdivisions x = 2" \
+  "set Subdivisions y = 1" "end"
+scene two_cells_dense_liquid "subsection Foundation" "set Model = dense liquid" \
+  "set Modulus of subgrade reaction = 5e4" "end" \
+  "subsection Discretization" "set Subdivisions x = 2" "set Subdivisions y = 1" "end"
+scene two_cells_hierarchical "subsection Foundation operator" \
+  "set Storage = hierarchical" "end" "subsection Contact" \
+  "set Solver = iterative" "end" "subsection Discretization" \
+  "set Subdivisions x = 2" "set Subdivisions y = 1" "end"
+scene disk "subsection Plate" "set Shape = disk" "set Radius = 1" "end"
+
+check() { # scene, processes
+  local name=$1 p=$2
+  timeout 300 mpirun -np "$p" "$program" "$name.prm" >stdout 2>stderr
+  local status=$?
+  local errors
+  errors=$(grep -c '^Error' stderr)
+  if [ $status -ne 1 ]; then
+    fail "$name on $p processes: exit status $status (1 expected)"; cat stderr
+  elif [ "$errors" -ne 1 ] ||
+       ! grep -q "^Error: More MPI processes than the mesh can share: $p processes for" stderr ||
+       ! grep -q 'Discretization/Subdivisions x and y' stderr; then
+    fail "$name on $p processes: not one 'Error: More MPI processes ...' line"; cat stderr
+  elif grep -q 'MPI_ABORT\|bad_array\|terminate called\|Signal' stderr; then
+    fail "$name on $p processes: aborted or crashed"; cat stderr
+  elif ! snapshot | cmp -s - before.md5 || [ -e results/previous-run ] ||
+       [ -e results/failed-run ]; then
+    fail "$name on $p processes: the earlier results changed"
+  else
+    echo "$name on $p processes: $(grep '^Error' stderr)"
+    passed=$((passed + 1))
+  fi
+}
+check one_cell 2
+check one_cell 4
+check two_cells 4
+check two_cells_dense_liquid 4
+check two_cells_hierarchical 4
+check disk 16
+
+# Two processes on two cells (no symmetry cut) still run; the mpi_* tests
+# check that they give the serial answer.
+scene two_cells_whole "subsection Discretization" "set Subdivisions x = 2" \
+  "set Subdivisions y = 1" "set Symmetry = none" "end"
+if mpirun -np 2 "$program" two_cells_whole.prm >stdout 2>stderr; then
+  passed=$((passed + 1))
+else
+  fail "two_cells on 2 processes must run"; cat stderr
+fi
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
