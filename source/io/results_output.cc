@@ -373,6 +373,14 @@ namespace PlateOnHalfspace
                                lock_name +
                                "> is not a regular file; remove "
                                "it."));
+        // A hard link planted at the name would make the pid written below
+        // overwrite the linked file: only a file of this user with no
+        // other name is the lock file (doc/outputs.md).
+        if (opened.st_nlink != 1 || opened.st_uid != ::geteuid())
+          fail("Output directory: <" + directory + "/" + lock_name +
+               "> has another name (a hard link) or another owner; this "
+               "program writes its lock there and never into a file it "
+               "did not create: remove it.");
         if (::flock(fd, LOCK_EX | LOCK_NB) != 0)
           {
             const int e = errno;

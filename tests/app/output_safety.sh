@@ -155,6 +155,14 @@ check "the lock file is a planted link: refused, the victim and the results unto
   eval '[ $status -eq 1 ] && one_error_line stderr && [ "$(cat victim.txt)" = precious ] && [ -L prev/.plate-on-halfspace.lock ]'
 rm -f prev/.plate-on-halfspace.lock
 check "the lock file is a planted link: the earlier results are untouched" same_snapshot prev "$earlier"
+# a hard link at the lock file's name: the pid must not overwrite the victim
+ln "$work/victim.txt" prev/.plate-on-halfspace.lock
+"$program" prev.prm >stdout 2>stderr
+status=$?
+check "the lock file is a planted hard link: refused, the victim untouched" \
+  eval '[ $status -eq 1 ] && one_error_line stderr && [ "$(cat victim.txt)" = precious ]'
+rm -f prev/.plate-on-halfspace.lock
+check "the lock file is a planted hard link: the earlier results are untouched" same_snapshot prev "$earlier"
 
 # 4. A NUL inside Output directory: the system calls would see the parent.
 mkdir parent
