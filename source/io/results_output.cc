@@ -261,18 +261,11 @@ namespace PlateOnHalfspace
   ResultsOutput::prepare_directory()
   {
     // A NUL inside the name would cut it short for the system calls while
-    // std::filesystem keeps it whole: refuse any control character (the
-    // scene checks refuse them too; this is the last line of defence).
-    for (std::size_t i = 0; i < directory.size(); ++i)
-      {
-        const unsigned char c = directory[i];
-        AssertThrow(c >= 0x20 && c != 0x7f,
-                    ExcMessage("Output directory: the name contains a control "
-                               "character (byte " +
-                               std::to_string(int(c)) + " at position " +
-                               std::to_string(i + 1) +
-                               "); write a plain path."));
-      }
+    // std::filesystem keeps it whole: the scene's own check, again here as
+    // the last line of defence for callers that bypass the scene.
+    const std::string control =
+      control_character_in_path("Output directory", directory);
+    AssertThrow(control.empty(), ExcMessage(control));
     AssertThrow(!directory.empty(),
                 ExcMessage("Output directory must not be empty."));
     std::error_code error;
