@@ -24,11 +24,11 @@
 
 #include <deal.II/grid/tria.h>
 
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
 #include <plate_on_halfspace/halfspace/hierarchical_flexibility.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
 
 #include <cmath>
 #include <cstdio>

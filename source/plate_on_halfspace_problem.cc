@@ -30,6 +30,7 @@ namespace PlateOnHalfspace
     std::ostream          &log)
     : parameters(parameters)
     , log(log)
+    , soil(create_soil_model(parameters))
     , communicator(Utilities::MPI::job_supports_mpi() ? MPI_COMM_WORLD :
                                                         MPI_COMM_SELF)
     , timer_output(log, TimerOutput::never, TimerOutput::wall_times)
@@ -264,20 +265,14 @@ namespace PlateOnHalfspace
       force += copies * std::abs(mindlin_plate->get_load_vector()[dof]);
     std::vector<bool> everywhere(space.n_nodes(), true);
     const double      area  = copies * space.area_in_contact(everywhere).first;
-    const double      size  = std::sqrt(area);
     const auto       &plate = parameters.plate;
-    const auto       &soil  = parameters.foundation;
     double            patches = std::abs(parameters.loads.uniform_pressure);
     for (const auto &p : parameters.loads.rectangular_patches)
       patches = std::max(patches, std::abs(p.pressure));
     for (const auto &p : parameters.loads.circular_patches)
       patches = std::max(patches, std::abs(p.pressure));
     const double thermal = std::abs(mindlin_plate->get_thermal_load().moment);
-    const double settlement =
-      soil.model == Parameters::Foundation::Model::dense_liquid ?
-        force / area / soil.subgrade_modulus :
-        force / size * (1 - soil.poissons_ratio * soil.poissons_ratio) /
-          soil.youngs_modulus;
+    const double settlement = soil->typical_settlement(force, area);
     const std::vector<std::pair<std::string, double>> scales = {
       {"the total load", force},
       {"the pressure (a load's pressure, or the total load over the "
@@ -413,7 +408,7 @@ namespace PlateOnHalfspace
           double(summary.n_foundation_dofs) *
           (triangulation.n_active_cells() + 3. * n_refined) /
           triangulation.n_active_cells();
-        const unsigned int limit = parameters.max_goal_foundation_nodes();
+        const unsigned int limit = soil->largest_goal_estimate();
         if (predicted_nodes > limit)
           {
             for (const auto &cell : triangulation.active_cell_iterators())
@@ -492,27 +487,58 @@ namespace PlateOnHalfspace
     // A goal's half-space residual evaluates the settlement at every Gauss
     // point of the contact cells against every cell (halfspace/
     // surface_settlement.h), O(n^2) with no compression.
-    AssertThrow(!goal || n <= parameters.max_goal_foundation_nodes(),
-                ExcMessage(
-                  "Adaptivity/Goal: the error estimate's half-space "
-                  "residual grows with the square of the foundation "
-                  "nodes; this cycle has " +
-                  std::to_string(n) + ", more than the " +
-                  std::to_string(parameters.max_goal_foundation_nodes()) +
-                  " it allows (about 75 s there on 2 cores). "
-                  "Coarsen the initial mesh (Discretization/"
-                  "Subdivisions x and y, Initial refinements), or "
-                  "leave Adaptivity/Goal empty."));
+    AssertThrow(!goal || n <= soil->largest_goal_estimate(),
+                ExcMessage("Adaptivity/Goal: the error estimate's half-space "
+                           "residual grows with the square of the foundation "
+                           "nodes; this cycle has " +
+                           std::to_string(n) + ", more than the " +
+                           std::to_string(soil->largest_goal_estimate()) +
+                           " it allows (about 75 s there on 2 cores). "
+                           "Coarsen the initial mesh (Discretization/"
+                           "Subdivisions x and y, Initial refinements), or "
+                           "leave Adaptivity/Goal empty."));
     if (storage == Parameters::FoundationOperator::Storage::dense)
       check_dense_foundation_memory(n,
                                     parameters.contact_solver(n) ==
                                       Parameters::Contact::Solver::iterative);
     if (!foundation_operator || operator_storage != storage)
       {
-        foundation_operator = create_foundation_operator(parameters, storage);
-        operator_storage    = storage;
+        foundation_operator =
+          create_foundation_operator(parameters, soil, storage);
+        operator_storage = storage;
       }
     foundation_operator->build(mindlin_plate->get_foundation_space(), {});
+    const std::string kernel_report = soil->kernel_report();
+    if (!kernel_report.empty() && kernel_report != last_kernel_report)
+      log << kernel_report << std::endl;
+    last_kernel_report = kernel_report;
+    // A smooth remainder is integrated with 3 + 3 H / l Gauss points per
+    // direction, at most 12 (cell_pair_quadrature.h): cells coarser than
+    // 3 l leave its error above the tabulation's.
+    if (const auto *elastic = dynamic_cast<const ElasticSoil *>(soil.get()))
+      {
+        const FoundationSpace &space = mindlin_plate->get_foundation_space();
+        const SurfaceKernel kernel   = elastic->kernel(maximal_distance(space));
+        double              largest  = 0;
+        for (const auto &cell : space.cells)
+          largest = std::max(largest, cell.geometry.diameter());
+        if (kernel.remainder &&
+            largest > 3. * kernel.remainder->length_scale() &&
+            !coarse_cell_warned)
+          {
+            std::ostringstream text;
+            text << "Foundation/Layers: the plate's cells (up to " << largest
+                 << ") are more than 3 times as wide as the top layer ("
+                 << kernel.remainder->length_scale()
+                 << " thick); the layered kernel is integrated with at most "
+                    "12 Gauss points per direction over such cells and its "
+                    "error may exceed the stated tolerance. Refine the mesh "
+                    "(Discretization/Initial refinements), or merge the top "
+                    "layer into the one below.";
+            warn(text.str());
+            coarse_cell_warned = true;
+          }
+      }
     summary.foundation_time_s = phase.wall_time();
     summary.foundation_compression_time_s =
       foundation_operator->build_times().compression;

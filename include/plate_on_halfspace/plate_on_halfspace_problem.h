@@ -223,8 +223,14 @@ namespace PlateOnHalfspace
     /** The cycle's contact solver (the adjoint problem reuses it). */
     std::unique_ptr<ContactSolver> contact_solver;
     /** Adaptivity/Goal (none: no estimate) and the cycle's estimate. */
-    std::unique_ptr<GoalFunctional>     goal;
-    GoalErrorEstimate                   goal_estimate;
+    std::unique_ptr<GoalFunctional> goal;
+    GoalErrorEstimate               goal_estimate;
+    /** The soil (Foundation/Model), made once per run. */
+    std::shared_ptr<const SoilModel> soil;
+    /** What the log last said of the soil's kernel (said once). */
+    std::string last_kernel_report;
+    /** Whether the coarse-cells warning of a layered soil was given. */
+    bool                                coarse_cell_warned = false;
     std::unique_ptr<FoundationOperator> foundation_operator;
     /** The storage foundation_operator was made with. */
     Parameters::FoundationOperator::Storage operator_storage;

@@ -3,8 +3,8 @@
 #include <deal.II/base/thread_management.h>
 
 #include <plate_on_halfspace/base/progress.h>
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
 
 #include <algorithm>
 #include <cmath>
@@ -465,5 +465,51 @@ namespace PlateOnHalfspace
                         block,
                         rows,
                         columns);
+  }
+
+  void
+  CellPairIntegrator::add_smooth_kernel(const unsigned int          k,
+                                        const unsigned int          l,
+                                        const SmoothRadialFunction &R,
+                                        FullMatrix<double>         &block,
+                                        const std::vector<bool>    &rows,
+                                        const std::vector<bool> &columns) const
+  {
+    const CellData    &dk = cell_data[k], &dl = cell_data[l];
+    const double       H          = std::max(dk.diameter, dl.diameter);
+    const double       separation = std::max(0.,
+                                       dk.centre.distance(dl.centre) -
+                                         0.5 * (dk.diameter + dl.diameter));
+    const unsigned int order      = static_cast<unsigned int>(
+      std::min(12., 3. + std::floor(3. * H / (R.length_scale() + separation))));
+    // The 3-point tables are kept (rules[1]); other orders are made here.
+    const bool   stored    = order == 3;
+    const Table  outer     = stored ? Table() : make_table(k, QGauss<2>(order));
+    const Table  inner     = stored ? Table() : make_table(l, QGauss<2>(order));
+    const Table &U         = stored ? dk.tables[1] : outer;
+    const Table &V         = stored ? dl.tables[1] : inner;
+    const unsigned int n_p = U.x.size(), n_q = V.x.size();
+    const unsigned int na = U.n_functions, nb = V.n_functions;
+    // s(q, a) = sum_p U(p, a) R(|x_p - y_q|), then block(a, b) += sum_q
+    // s(q, a) V(q, b).
+    std::vector<double> s(std::size_t(n_q) * na, 0.);
+    for (unsigned int p = 0; p < n_p; ++p)
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const double r      = std::hypot(U.x[p] - V.x[q], U.y[p] - V.y[q]);
+          const double kernel = R.value(r);
+          for (unsigned int a = 0; a < na; ++a)
+            s[q * na + a] += kernel * U.weighted_values[p * na + a];
+        }
+    for (unsigned int a = 0; a < na; ++a)
+      if (rows.empty() || rows[a])
+        for (unsigned int b = 0; b < nb; ++b)
+          if (columns.empty() || columns[b])
+            {
+              double sum = 0;
+              for (unsigned int q = 0; q < n_q; ++q)
+                sum += s[q * na + a] * V.weighted_values[q * nb + b];
+              block(a, b) += sum;
+            }
   }
 } // namespace PlateOnHalfspace

@@ -41,12 +41,12 @@ namespace PlateOnHalfspace
     const std::vector<FoundationSpace::Cell> &cells,
     const unsigned int                        n_copies,
     const unsigned int                        n_nodes,
-    const double                              alpha,
+    const SurfaceKernel                      &kernel,
     const unsigned int                        singular_order,
     const std::vector<bool>                  &cell_in_foundation)
     : n_computed(n_copies == 0 ? 0 : cells.size() / n_copies)
     , copies(n_copies)
-    , alpha(alpha)
+    , kernel(kernel)
     , cells_of_node(n_nodes)
   {
     AssertThrow(n_copies > 0 && n_computed * n_copies == cells.size(),
@@ -251,17 +251,20 @@ namespace PlateOnHalfspace
                                     const std::vector<bool> &columns) const
   {
     const unsigned int image = r * n_computed + other;
-    if (first == other && r > 0)
-      {
-        // A cell against its own image is symmetrised, so whole.
-        integrator->integrate_inverse_distance(first, image, block);
-        symmetrise_self_image_block(*cell_nodes[first],
-                                    *cell_nodes[image],
-                                    block);
-      }
-    else
-      integrator->integrate_inverse_distance(
-        first, image, block, rows, columns);
+    // A cell against its own image is symmetrised, so whole.
+    const bool               self_image = first == other && r > 0;
+    const std::vector<bool> &a_mask = self_image ? std::vector<bool>() : rows;
+    const std::vector<bool> &b_mask =
+      self_image ? std::vector<bool>() : columns;
+    integrator->integrate_inverse_distance(first, image, block, a_mask, b_mask);
+    block *= kernel.alpha;
+    if (kernel.remainder)
+      integrator->add_smooth_kernel(
+        first, image, *kernel.remainder, block, a_mask, b_mask);
+    if (self_image)
+      symmetrise_self_image_block(*cell_nodes[first],
+                                  *cell_nodes[image],
+                                  block);
   }
 
   void

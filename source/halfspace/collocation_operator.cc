@@ -1,16 +1,23 @@
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/collocation_operator.h>
-#include <plate_on_halfspace/halfspace/surface_settlement.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
+#include <plate_on_halfspace/soil/half_space.h>
 
 #include <cmath>
 
 namespace PlateOnHalfspace
 {
   BoussinesqCollocationOperator::BoussinesqCollocationOperator(
+    std::shared_ptr<const ElasticSoil> soil)
+    : elastic(std::move(soil))
+  {
+    soil_model = elastic;
+  }
+
+  BoussinesqCollocationOperator::BoussinesqCollocationOperator(
     const double       alpha,
     const unsigned int singular_order)
-    : alpha(alpha)
-    , singular_order(singular_order)
+    : BoussinesqCollocationOperator(
+        std::make_shared<HomogeneousHalfSpace>(alpha, singular_order))
   {}
 
   void
@@ -18,6 +25,13 @@ namespace PlateOnHalfspace
     const FoundationSpace   &space,
     const std::vector<bool> &cell_in_foundation)
   {
+    const SurfaceKernel kernel = elastic->kernel(maximal_distance(space));
+    AssertThrow(!kernel.remainder,
+                ExcMessage("Discretization/Flexibility = collocation is the "
+                           "paper's closed-form operator of the homogeneous "
+                           "half-space; with Foundation/Model = " +
+                           elastic->name() + " use galerkin."));
+    const double alpha = kernel.alpha;
     build_mass_matrix(space, cell_in_foundation);
     use_identity_test_coupling();
     const unsigned int n = space.n_nodes();
@@ -107,15 +121,5 @@ namespace PlateOnHalfspace
   BoussinesqCollocationOperator::memory_consumption() const
   {
     return flexibility.memory_consumption() + coupling_memory_consumption();
-  }
-
-  std::vector<double>
-  BoussinesqCollocationOperator::settlement_at_points(
-    const FoundationSpace       &space,
-    const Vector<double>        &nodal_pressure,
-    const std::vector<Point<2>> &points) const
-  {
-    return PlateOnHalfspace::settlement_at_points(
-      space, nodal_pressure, points, alpha, singular_order);
   }
 } // namespace PlateOnHalfspace

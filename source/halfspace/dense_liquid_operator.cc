@@ -1,7 +1,4 @@
-#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/exceptions.h>
-
-#include <deal.II/numerics/rtree.h>
 
 #include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/halfspace/dense_liquid_operator.h>
@@ -48,14 +45,16 @@ namespace PlateOnHalfspace
     };
   } // namespace
 
-  DenseLiquidOperator::DenseLiquidOperator(const double subgrade_modulus,
-                                           const bool   positive_pressure_basis)
-    : subgrade_modulus(subgrade_modulus)
+  DenseLiquidOperator::DenseLiquidOperator(
+    std::shared_ptr<const DenseLiquidSoil> soil,
+    const bool                             positive_pressure_basis)
+    : subgrade_modulus(soil->subgrade_modulus())
     , positive_pressure_basis(positive_pressure_basis)
   {
     AssertThrow(subgrade_modulus > 0,
                 ExcMessage("Foundation/Modulus of subgrade reaction must be "
                            "> 0 for Foundation/Model = dense liquid."));
+    soil_model = std::move(soil);
   }
 
   DenseLiquidOperator::~DenseLiquidOperator() = default;
@@ -129,53 +128,6 @@ namespace PlateOnHalfspace
                                "degenerate cell."));
       }
     return nullptr;
-  }
-
-  std::vector<double>
-  DenseLiquidOperator::settlement_at_points(
-    const FoundationSpace       &space,
-    const Vector<double>        &nodal_pressure,
-    const std::vector<Point<2>> &points) const
-  {
-    namespace bgi = boost::geometry::index;
-    std::vector<std::pair<BoundingBox<2>, unsigned int>> boxes;
-    boxes.reserve(space.cells.size());
-    for (unsigned int c = 0; c < space.cells.size(); ++c)
-      {
-        BoundingBox<2> box(space.cells[c].geometry.bounding_box());
-        box.extend(1e-10 * space.cells[c].geometry.diameter());
-        boxes.emplace_back(box, c);
-      }
-    const auto tree = pack_rtree(boxes);
-
-    std::vector<double> settlement(points.size());
-    std::vector<std::pair<BoundingBox<2>, unsigned int>> candidates;
-    for (unsigned int p = 0; p < points.size(); ++p)
-      {
-        candidates.clear();
-        tree.query(bgi::intersects(points[p]), std::back_inserter(candidates));
-        bool found = false;
-        for (const auto &candidate : candidates)
-          {
-            const FoundationSpace::Cell &cell = space.cells[candidate.second];
-            if (!cell.geometry.contains(points[p]))
-              continue;
-            const std::array<double, 9> shape =
-              q2_shape_values(cell.geometry.inverse_map(points[p]));
-            double pressure = 0;
-            for (unsigned int i = 0; i < 9; ++i)
-              for (const auto &term : cell.expansion[i])
-                pressure += shape[i] * term.second * nodal_pressure[term.first];
-            settlement[p] = pressure / subgrade_modulus;
-            found         = true;
-            break;
-          }
-        AssertThrow(found,
-                    ExcMessage("The point (" + std::to_string(points[p][0]) +
-                               ", " + std::to_string(points[p][1]) +
-                               ") is not on the plate."));
-      }
-    return settlement;
   }
 
   std::size_t

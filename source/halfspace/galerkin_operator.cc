@@ -1,7 +1,7 @@
 #include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
-#include <plate_on_halfspace/halfspace/surface_settlement.h>
+#include <plate_on_halfspace/soil/half_space.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,12 +9,21 @@
 namespace PlateOnHalfspace
 {
   BoussinesqGalerkinOperator::BoussinesqGalerkinOperator(
+    std::shared_ptr<const ElasticSoil> soil,
+    const bool                         positive_pressure_basis)
+    : elastic(std::move(soil))
+    , positive_pressure_basis(positive_pressure_basis)
+  {
+    soil_model = elastic;
+  }
+
+  BoussinesqGalerkinOperator::BoussinesqGalerkinOperator(
     const double       alpha,
     const unsigned int singular_order,
     const bool         positive_pressure_basis)
-    : alpha(alpha)
-    , singular_order(singular_order)
-    , positive_pressure_basis(positive_pressure_basis)
+    : BoussinesqGalerkinOperator(
+        std::make_shared<HomogeneousHalfSpace>(alpha, singular_order),
+        positive_pressure_basis)
   {}
 
   void
@@ -50,8 +59,8 @@ namespace PlateOnHalfspace
     const CellPairSummation summation(cells,
                                       space.symmetry.n_copies(),
                                       n,
-                                      alpha,
-                                      singular_order,
+                                      elastic->kernel(maximal_distance(space)),
+                                      elastic->singular_quadrature_order(),
                                       cell_in_foundation);
     ProgressReport progress("Dense Galerkin flexibility", summation.n_pairs());
     summation.add_all(
@@ -112,15 +121,5 @@ namespace PlateOnHalfspace
            full_mass.memory_consumption() +
            full_tested_mass.memory_consumption() +
            coupling_memory_consumption();
-  }
-
-  std::vector<double>
-  BoussinesqGalerkinOperator::settlement_at_points(
-    const FoundationSpace       &space,
-    const Vector<double>        &nodal_pressure,
-    const std::vector<Point<2>> &points) const
-  {
-    return PlateOnHalfspace::settlement_at_points(
-      space, nodal_pressure, points, alpha, singular_order);
   }
 } // namespace PlateOnHalfspace

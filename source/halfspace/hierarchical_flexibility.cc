@@ -87,13 +87,13 @@ namespace PlateOnHalfspace
 
   void
   HierarchicalFlexibility::build(const FoundationSpace &space,
-                                 const double           alpha,
+                                 const SurfaceKernel   &kernel,
                                  const unsigned int     singular_order)
   {
     build(CellPairSummation::cells_with_images(space),
           space.symmetry.n_copies(),
           space.node_locations,
-          alpha,
+          kernel,
           singular_order);
   }
 
@@ -102,14 +102,14 @@ namespace PlateOnHalfspace
     const std::vector<FoundationSpace::Cell> &cells,
     const unsigned int                        n_copies,
     const std::vector<Point<2>>              &node_locations,
-    const double                              alpha,
+    const SurfaceKernel                      &kernel,
     const unsigned int                        singular_order)
   {
     AssertThrow(!node_locations.empty() && n_copies > 0,
                 ExcMessage("HierarchicalFlexibility: no foundation nodes."));
     Timer                   timer;
     const CellPairSummation summation(
-      cells, n_copies, node_locations.size(), alpha, singular_order);
+      cells, n_copies, node_locations.size(), kernel, singular_order);
     const double summation_time = timer.wall_time();
     build(cells, summation, node_locations, {}, {});
     times.integration += summation_time;

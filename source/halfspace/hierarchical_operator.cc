@@ -3,7 +3,6 @@
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
-#include <plate_on_halfspace/halfspace/surface_settlement.h>
 
 #include <algorithm>
 
@@ -48,14 +47,14 @@ namespace PlateOnHalfspace
   } // namespace
 
   HierarchicalGalerkinOperator::HierarchicalGalerkinOperator(
-    const double       alpha,
-    const unsigned int singular_order,
-    const double       tolerance)
-    : alpha(alpha)
-    , singular_order(singular_order)
+    std::shared_ptr<const ElasticSoil> soil,
+    const double                       tolerance)
+    : elastic(std::move(soil))
     , tolerance(tolerance)
     , flexibility(settings_with(tolerance))
-  {}
+  {
+    soil_model = elastic;
+  }
 
   bool
   HierarchicalGalerkinOperator::rows_are_split() const
@@ -78,9 +77,11 @@ namespace PlateOnHalfspace
     set_pressure_basis(space, true);
     communicator = space.communicator;
     off_diagonal.clear();
+    const SurfaceKernel kernel = elastic->kernel(maximal_distance(space));
+    const unsigned int  singular_order = elastic->singular_quadrature_order();
     if (!rows_are_split())
       {
-        flexibility.build(space, alpha, singular_order);
+        flexibility.build(space, kernel, singular_order);
         times.compression = flexibility.build_times().compression;
         return;
       }
@@ -103,8 +104,11 @@ namespace PlateOnHalfspace
                            "Subdivisions x and y)."));
     const std::vector<FoundationSpace::Cell> cells =
       CellPairSummation::cells_with_images(space);
-    const CellPairSummation summation(
-      cells, space.symmetry.n_copies(), space.n_nodes(), alpha, singular_order);
+    const CellPairSummation summation(cells,
+                                      space.symmetry.n_copies(),
+                                      space.n_nodes(),
+                                      kernel,
+                                      singular_order);
     flexibility.build(cells, summation, space.node_locations, own, own);
     times.compression = flexibility.build_times().compression;
     for (unsigned int rank = 0; rank < nodes_of_rank.size(); ++rank)
@@ -215,15 +219,5 @@ namespace PlateOnHalfspace
     for (const auto &block : off_diagonal)
       bytes += block->memory_consumption();
     return bytes;
-  }
-
-  std::vector<double>
-  HierarchicalGalerkinOperator::settlement_at_points(
-    const FoundationSpace       &space,
-    const Vector<double>        &nodal_pressure,
-    const std::vector<Point<2>> &points) const
-  {
-    return PlateOnHalfspace::settlement_at_points(
-      space, nodal_pressure, points, alpha, singular_order);
   }
 } // namespace PlateOnHalfspace

@@ -2,7 +2,6 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/collocation_operator.h>
 #include <plate_on_halfspace/halfspace/dense_liquid_operator.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
@@ -234,26 +233,32 @@ namespace PlateOnHalfspace
   std::unique_ptr<FoundationOperator>
   create_foundation_operator(
     const SceneParameters                        &parameters,
+    const std::shared_ptr<const SoilModel>       &soil,
     const Parameters::FoundationOperator::Storage storage)
   {
+    // SceneParameters pairs the sparse storage with the dense liquid, and
+    // allows hierarchical storage only with the Galerkin operator.
     if (storage == Parameters::FoundationOperator::Storage::sparse)
-      return std::make_unique<DenseLiquidOperator>(
-        parameters.foundation.subgrade_modulus);
-    const double alpha =
-      boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
-                                      parameters.foundation.poissons_ratio);
-    // SceneParameters allows hierarchical storage only with the Galerkin
-    // operator.
+      {
+        auto dense_liquid =
+          std::dynamic_pointer_cast<const DenseLiquidSoil>(soil);
+        AssertThrow(dense_liquid,
+                    ExcMessage("The sparse storage holds the dense liquid "
+                               "only; Foundation/Model = " +
+                               soil->name() + " needs dense or hierarchical."));
+        return std::make_unique<DenseLiquidOperator>(dense_liquid);
+      }
+    auto elastic = std::dynamic_pointer_cast<const ElasticSoil>(soil);
+    AssertThrow(elastic,
+                ExcMessage("Foundation/Model = " + soil->name() +
+                           " is stored sparse; leave Foundation "
+                           "operator/Storage auto."));
     if (storage == Parameters::FoundationOperator::Storage::hierarchical)
       return std::make_unique<HierarchicalGalerkinOperator>(
-        alpha,
-        parameters.discretization.singular_quadrature_order,
-        parameters.foundation_operator.tolerance);
+        elastic, parameters.foundation_operator.tolerance);
     if (parameters.discretization.flexibility ==
         Parameters::Discretization::Flexibility::galerkin)
-      return std::make_unique<BoussinesqGalerkinOperator>(
-        alpha, parameters.discretization.singular_quadrature_order);
-    return std::make_unique<BoussinesqCollocationOperator>(
-      alpha, parameters.discretization.singular_quadrature_order);
+      return std::make_unique<BoussinesqGalerkinOperator>(elastic);
+    return std::make_unique<BoussinesqCollocationOperator>(elastic);
   }
 } // namespace PlateOnHalfspace

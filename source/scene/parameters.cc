@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -234,11 +235,33 @@ namespace PlateOnHalfspace
       prm.enter_subsection("Foundation");
       prm.declare_entry("Model",
                         "half-space",
-                        Patterns::Selection("half-space|dense liquid"),
+                        Patterns::Selection("half-space|dense liquid|layered"),
                         "half-space: the elastic half-space (Boussinesq; "
                         "Young's modulus and Poisson's ratio); dense liquid: "
                         "the Winkler foundation, q = k w where the soil "
-                        "carries the plate (Modulus of subgrade reaction).");
+                        "carries the plate (Modulus of subgrade reaction); "
+                        "layered: elastic Layers over a Base (a half-space "
+                        "of Young's modulus and Poisson's ratio, or rigid).");
+      prm.declare_entry("Layers",
+                        "",
+                        Patterns::Anything(),
+                        "Model = layered: the layers top down, each "
+                        "thickness, Young's modulus, Poisson's ratio "
+                        "[length, force/length^2, -], separated by ';' "
+                        "(e.g. 0.3, 3e5, 0.35 ; 4, 4e4, 0.4). Thickness > 0, "
+                        "E > 0, 0 <= nu < 0.5, at most 50 layers.");
+      prm.declare_entry("Base",
+                        "half-space",
+                        Patterns::Selection("half-space|rigid"),
+                        "Model = layered: what lies under the layers: an "
+                        "elastic half-space (Young's modulus, Poisson's "
+                        "ratio) or a rigid base (bedrock).");
+      prm.declare_entry("Interfaces",
+                        "bonded",
+                        Patterns::Selection("bonded|frictionless"),
+                        "Model = layered: between the layers and on a rigid "
+                        "base, bonded (continuous displacements) or "
+                        "frictionless (continuous settlement, no shear).");
       prm.declare_entry("Young's modulus",
                         "1e5",
                         Patterns::Double(0),
@@ -266,13 +289,41 @@ namespace PlateOnHalfspace
     Foundation::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Foundation");
-      model = (prm.get("Model") == "dense liquid" ? Model::dense_liquid :
-                                                    Model::half_space);
-      youngs_modulus   = prm.get_double("Young's modulus");
-      poissons_ratio   = prm.get_double("Poisson's ratio");
-      subgrade_modulus = prm.get_double("Modulus of subgrade reaction");
-      tensionless      = (prm.get("Contact") == "tensionless");
+      const std::string model_name = prm.get("Model");
+      model = model_name == "dense liquid" ? Model::dense_liquid :
+              model_name == "layered"      ? Model::layered :
+                                             Model::half_space;
+      layers.clear();
+      for (const auto &v : parse_number_list(
+             prm.get("Layers"), 3, "Foundation/Layers", "thickness, E, nu"))
+        {
+          const std::string which =
+            " (layer " + std::to_string(layers.size() + 1) + ")";
+          require(v[0] > 0,
+                  "Foundation/Layers: each thickness must be > 0" + which +
+                    got(v[0]) + ".");
+          require(v[1] > 0,
+                  "Foundation/Layers: each Young's modulus must be > 0" +
+                    which + got(v[1]) + ".");
+          require(v[2] >= 0 && v[2] < 0.5,
+                  "Foundation/Layers: each Poisson's ratio must lie in "
+                  "[0, 0.5)" +
+                    which + got(v[2]) + ".");
+          layers.push_back({v[0], v[1], v[2]});
+        }
+      rigid_base              = prm.get("Base") == "rigid";
+      frictionless_interfaces = prm.get("Interfaces") == "frictionless";
+      youngs_modulus          = prm.get_double("Young's modulus");
+      poissons_ratio          = prm.get_double("Poisson's ratio");
+      subgrade_modulus        = prm.get_double("Modulus of subgrade reaction");
+      tensionless             = (prm.get("Contact") == "tensionless");
       prm.leave_subsection();
+      if (model == Model::layered)
+        check_layers();
+      else
+        require(layers.empty(),
+                "Foundation/Layers belong to Foundation/Model = layered "
+                "(set Model = layered, or leave Layers empty).");
       if (model == Model::dense_liquid)
         require(subgrade_modulus > 0,
                 "Foundation/Modulus of subgrade reaction must be > 0 with "
@@ -293,6 +344,38 @@ namespace PlateOnHalfspace
       require(poissons_ratio >= 0 && poissons_ratio < 0.5,
               "Foundation/Poisson's ratio must lie in [0, 0.5)" +
                 got(poissons_ratio) + ".");
+    }
+
+    void
+    Foundation::check_layers() const
+    {
+      require(!layers.empty(),
+              "Foundation/Layers must list at least one layer (thickness, "
+              "Young's modulus, Poisson's ratio) with Foundation/Model = "
+              "layered.");
+      require(layers.size() <= 50,
+              "Foundation/Layers: at most 50 layers" + got(layers.size()) +
+                ".");
+      // The kernel's accuracy is stated relative to the settlements it
+      // adds; a contrast beyond 1e6 is not a soil but a rigid inclusion
+      // (doc/soil-models.md, "Limits").
+      double softest =
+               rigid_base ? std::numeric_limits<double>::max() : youngs_modulus,
+             stiffest = rigid_base ? 0. : youngs_modulus;
+      for (const Layer &layer : layers)
+        {
+          softest  = std::min(softest, layer.youngs_modulus);
+          stiffest = std::max(stiffest, layer.youngs_modulus);
+        }
+      require(stiffest <= 1e6 * softest,
+              "Foundation/Layers: the Young's moduli of the layers" +
+                std::string(rigid_base ? "" :
+                                         " and the half-space under "
+                                         "them (Foundation/Young's "
+                                         "modulus)") +
+                " may differ by a factor of at most 1e6" +
+                got(stiffest / softest) +
+                "; model a much stiffer stratum as Base = rigid.");
     }
 
     std::string

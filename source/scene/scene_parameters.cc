@@ -173,6 +173,12 @@ namespace PlateOnHalfspace
                 "half-space operator; with Foundation/Model = dense liquid "
                 "use galerkin.");
       }
+    if (foundation.model == Parameters::Foundation::Model::layered)
+      require(discretization.flexibility ==
+                Parameters::Discretization::Flexibility::galerkin,
+              "Discretization/Flexibility = collocation is the paper's "
+              "closed-form operator of the homogeneous half-space; with "
+              "Foundation/Model = layered use galerkin.");
     if (foundation_operator.storage ==
         Parameters::FoundationOperator::Storage::hierarchical)
       {
@@ -233,14 +239,6 @@ namespace PlateOnHalfspace
                Parameters::FoundationOperator::Storage::dense ?
              Solver::direct :
              Solver::iterative;
-  }
-
-  unsigned int
-  SceneParameters::max_goal_foundation_nodes() const
-  {
-    return foundation.model == Parameters::Foundation::Model::dense_liquid ?
-             std::numeric_limits<unsigned int>::max() :
-             20000;
   }
 
   namespace

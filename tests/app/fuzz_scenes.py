@@ -120,7 +120,12 @@ choices = {
     "Element": ["serendipity", "heterosis", "lagrange", "quad"],
     "Shear integration": ["auto", "reduced", "selective", "full", "none"],
     "Flexibility": ["galerkin", "collocation", "winkler"],
-    "Model": ["half-space", "dense liquid", "winkler", ""],
+    "Model": ["half-space", "dense liquid", "layered", "winkler", ""],
+    "Layers": ["", "0.3, 3e5, 0.35", "0.3, 3e5, 0.35 ; 4, 4e4, 0.4", "0, 1e5, 0.3",
+               "0.3, 3e5", "0.3, x, 0.3", "1e-9, 1e5, 0.3", "0.3, 1e300, 0.3",
+               "0.3, 3e5, 0.5", "1e6, 1e5, 0.3", "nan, 1, 0.3", ";;"],
+    "Base": ["half-space", "rigid", "bedrock", ""],
+    "Interfaces": ["bonded", "frictionless", "rough"],
     "Profile": ["", "20,10", "5", "1,x", "20,15,10,12", "20;10", "nan,1", "1e300,-1e300"],
     "Modulus of subgrade reaction": ["0", "1e4", "-1e4", "1e-300", "1e300", "nan",
                                      "x", "5e4 kN/m3"],
@@ -162,6 +167,13 @@ def unexpected_nulls(value, key=None, parent=None):
     if isinstance(value, list):
         return [n for v in value for n in unexpected_nulls(v, key, parent)]
     return []
+
+
+layered = base.replace("Model           = half-space",
+                       "Model           = layered\n"
+                       "  set Layers          = 0.3, 3e4, 0.35 ; 1, 2e4, 0.4\n"
+                       "  set Base            = rigid\n"
+                       "  set Interfaces      = bonded")
 
 
 dense_liquid = base.replace("Model           = half-space",
@@ -368,6 +380,7 @@ def main():
     try:
         for n in range(runs):
             scene, directory = perturb_more(rng, perturb(rng, jointed if n % 3 == 2 else
+                                                            layered if n % 5 == 4 else
                                                             dense_liquid if n % 2 else base))
             with open(os.path.join(work, "scene.prm"), "wb") as f:
                 f.write(scene)

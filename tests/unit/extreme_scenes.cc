@@ -26,9 +26,9 @@
 //   for an eccentricity e < a/3, just lifts at e = a/3 (incipient lift-off),
 //   lifts more as e grows and almost entirely (contact < 0.1) at 0.95 a.
 
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/scene/input_checks.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
 
 #include "../tests.h"
 

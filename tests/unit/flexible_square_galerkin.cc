@@ -15,8 +15,8 @@
 
 #include <deal.II/fe/fe_values.h>
 
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
 
 #include <cmath>
 #include <sstream>

@@ -16,10 +16,10 @@
 
 #include <deal.II/lac/lapack_full_matrix.h>
 
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/collocation_operator.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
 
 #include "../tests.h"
 

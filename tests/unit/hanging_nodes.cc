@@ -47,7 +47,9 @@ namespace
     result.plate->setup(mesh);
     result.plate->assemble_loads(parameters.loads, 0.);
     result.foundation = create_foundation_operator(
-      parameters, Parameters::FoundationOperator::Storage::dense);
+      parameters,
+      create_soil_model(parameters),
+      Parameters::FoundationOperator::Storage::dense);
     result.foundation->build(result.plate->get_foundation_space(), {});
     std::ostringstream  log;
     DirectContactSolver solver(parameters.contact, false, 0, log);

@@ -17,12 +17,12 @@
 
 #include <deal.II/grid/tria.h>
 
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
 #include <plate_on_halfspace/halfspace/hierarchical_flexibility.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
 
 #include <cmath>
 #include <limits>

@@ -7,7 +7,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
 
 #include <algorithm>
 #include <cmath>

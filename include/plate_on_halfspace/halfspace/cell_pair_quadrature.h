@@ -11,6 +11,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <plate_on_halfspace/plate/foundation_space.h>
+#include <plate_on_halfspace/soil/soil_model.h>
 
 #include <array>
 #include <map>
@@ -116,6 +117,23 @@ namespace PlateOnHalfspace
                                FullMatrix<double>      &block,
                                const std::vector<bool> &rows,
                                const std::vector<bool> &columns) const;
+
+    /**
+     * block(a, b) += ∫_{cell k} ∫_{cell l} psi_a(x) psi_b(y) R(|x - y|) dy
+     * dx for a smooth @p R (a layered soil's remainder, soil/
+     * layered_soil.h), only the entries of @p rows and @p columns (empty:
+     * all). Tensor Gauss rules of 3 + 3 H / (l + d) points per direction
+     * (at most 12), H the larger diameter, d the cells' separation and l
+     * R's length scale: a rule of that order resolves a function analytic
+     * in a strip of half-width l to about 1e-9 over a cell.
+     */
+    void
+    add_smooth_kernel(const unsigned int          k,
+                      const unsigned int          l,
+                      const SmoothRadialFunction &R,
+                      FullMatrix<double>         &block,
+                      const std::vector<bool>    &rows,
+                      const std::vector<bool>    &columns) const;
 
   private:
     /**

@@ -3,8 +3,11 @@
  * variant") as a sum over cell pairs, with the mirror images of a
  * symmetric scene (doc/formulation.md, "Symmetry"):
  *
- *   A_ij = alpha sum_K sum_L sum_R ∫_K ∫_{R L} psi_i(x) psi_j(R y) / |x - y|
+ *   A_ij = sum_K sum_L sum_R ∫_K ∫_{R L} psi_i(x) psi_j(R y) K(|x - y|)
  *
+ * with the soil's point-load kernel K(r) = alpha / r + remainder(r)
+ * (soil/soil_model.h: SurfaceKernel; the homogeneous half-space has no
+ * remainder),
  * over the computed cells K and L and the reflections R (the identity
  * first), psi the node shape functions. This is the one statement of which
  * cell pairs and images contribute to an entry, in which order, with which
@@ -18,6 +21,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <plate_on_halfspace/plate/foundation_space.h>
+#include <plate_on_halfspace/soil/soil_model.h>
 
 #include <cstdint>
 #include <functional>
@@ -35,8 +39,8 @@ namespace PlateOnHalfspace
    * Terms: the pairs first <= other of computed cells, and for each the
    * images r = 0, 1, ... of @p other (r = 0: the cell itself), in the
    * canonical order (first, other, r), lexicographic. A term integrates
-   * B(a, b) = ∫_first ∫_{R other} psi_a psi_b / |x - y| (CellPairIntegrator)
-   * and adds alpha B(a, b)
+   * B(a, b) = ∫_first ∫_{R other} psi_a psi_b K(|x - y|) (CellPairIntegrator:
+   * alpha times the 1/r integral, plus the remainder's) and adds B(a, b)
    *  - at (node a of first, node b of R other): test cell first,
    *    pressure cell other;
    *  - when first != other, also at (node b, node a): test cell other,
@@ -86,7 +90,7 @@ namespace PlateOnHalfspace
      *   outlive this object.
      * @param n_copies 1 + the number of reflections.
      * @param n_nodes number of foundation nodes.
-     * @param alpha (1 - nu0^2)/(pi E0).
+     * @param kernel the soil's kernel (a number alpha: alpha / r).
      * @param singular_order Gauss points per direction of the singular
      *   pairs (CellPairIntegrator).
      * @param cell_in_foundation per computed cell; empty: all.
@@ -94,7 +98,7 @@ namespace PlateOnHalfspace
     CellPairSummation(const std::vector<FoundationSpace::Cell> &cells,
                       const unsigned int                        n_copies,
                       const unsigned int                        n_nodes,
-                      const double                              alpha,
+                      const SurfaceKernel                      &kernel,
                       const unsigned int                        singular_order,
                       const std::vector<bool> &cell_in_foundation = {});
 
@@ -163,9 +167,9 @@ namespace PlateOnHalfspace
                                         const unsigned int        r,
                                         const FullMatrix<double> &block)>;
 
-    const unsigned int n_computed;
-    const unsigned int copies;
-    const double       alpha;
+    const unsigned int  n_computed;
+    const unsigned int  copies;
+    const SurfaceKernel kernel;
     /** Per computed cell; all true without exclusion. */
     std::vector<bool> in_foundation;
     /** Node lists of all cells, images included (the integrator's). */
@@ -357,7 +361,7 @@ namespace PlateOnHalfspace
           continue;
         for (unsigned int b = 0; b < n_b; ++b)
           {
-            const double value = alpha * block(a, b);
+            const double value = block(a, b);
             if (p >= 0 && indices.column_b[b] >= 0)
               sink(p, indices.column_b[b], value, first_in);
             if (q >= 0 && indices.row_b[b] >= 0)

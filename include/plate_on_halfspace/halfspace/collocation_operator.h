@@ -21,6 +21,13 @@ namespace PlateOnHalfspace
   {
   public:
     /**
+     * @param soil a homogeneous half-space: the paper's closed-form
+     *   integral (P5) has no remainder (build() refuses another kernel).
+     */
+    explicit BoussinesqCollocationOperator(
+      std::shared_ptr<const ElasticSoil> soil);
+
+    /**
      * @param alpha (1 - nu0^2)/(pi E0).
      * @param singular_order Duffy points of settlement_at_points().
      */
@@ -37,11 +44,6 @@ namespace PlateOnHalfspace
     void
     copy_block(const std::vector<unsigned int> &nodes,
                LAPACKFullMatrix<double>        &block) const override;
-    /** u(x) = alpha ∫ q_h(y)/|x - y| dy (halfspace/surface_settlement.h). */
-    std::vector<double>
-    settlement_at_points(const FoundationSpace       &space,
-                         const Vector<double>        &nodal_pressure,
-                         const std::vector<Point<2>> &points) const override;
     bool
     is_symmetric() const override
     {
@@ -63,9 +65,8 @@ namespace PlateOnHalfspace
     }
 
   private:
-    const double             alpha;
-    const unsigned int       singular_order;
-    LAPACKFullMatrix<double> flexibility;
+    const std::shared_ptr<const ElasticSoil> elastic;
+    LAPACKFullMatrix<double>                 flexibility;
   };
 } // namespace PlateOnHalfspace
 

@@ -16,6 +16,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 
 #include <plate_on_halfspace/halfspace/interface.h>
+#include <plate_on_halfspace/soil/dense_liquid.h>
 
 #include <memory>
 
@@ -26,12 +27,12 @@ namespace PlateOnHalfspace
   {
   public:
     /**
-     * @param subgrade_modulus k > 0 [force/length^3].
+     * @param soil the dense liquid, k > 0 [force/length^3].
      * @param positive_pressure_basis as for the half-space operators
      *   (galerkin_operator.h).
      */
-    explicit DenseLiquidOperator(const double subgrade_modulus,
-                                 const bool   positive_pressure_basis = true);
+    explicit DenseLiquidOperator(std::shared_ptr<const DenseLiquidSoil> soil,
+                                 const bool positive_pressure_basis = true);
     ~DenseLiquidOperator() override;
 
     /** Throws ExcMessage unless every cell is in the foundation: the
@@ -48,11 +49,6 @@ namespace PlateOnHalfspace
     /** The sparse Cholesky factor of F (CHOLMOD): exact. */
     std::unique_ptr<ApproximateInverse>
     make_approximate_inverse() override;
-    /** u(x) = q_h(x)/k at each point (throws for a point off the plate). */
-    std::vector<double>
-    settlement_at_points(const FoundationSpace       &space,
-                         const Vector<double>        &nodal_pressure,
-                         const std::vector<Point<2>> &points) const override;
     bool
     is_symmetric() const override
     {

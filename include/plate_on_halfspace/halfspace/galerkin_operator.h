@@ -21,14 +21,19 @@ namespace PlateOnHalfspace
   {
   public:
     /**
-     * @param alpha (1 - nu0^2)/(pi E0).
-     * @param singular_order Gauss points per direction for the outer rule
-     *   and the Duffy rule of coincident and touching pairs.
+     * @param soil the continuum whose kernel A integrates; its singular
+     *   order is the Gauss points per direction for the outer rule and the
+     *   Duffy rule of coincident and touching pairs.
      * @param positive_pressure_basis state the contact conditions in the
      *   positive basis of foundation_space.h (the program always does;
      *   false keeps the plain A, e.g. to compare with another assembly
      *   of A).
      */
+    explicit BoussinesqGalerkinOperator(
+      std::shared_ptr<const ElasticSoil> soil,
+      const bool                         positive_pressure_basis = true);
+
+    /** On the homogeneous half-space alpha = (1 - nu0^2)/(pi E0). */
     BoussinesqGalerkinOperator(const double       alpha,
                                const unsigned int singular_order,
                                const bool positive_pressure_basis = true);
@@ -44,11 +49,6 @@ namespace PlateOnHalfspace
     void
     copy_block(const std::vector<unsigned int> &nodes,
                LAPACKFullMatrix<double>        &block) const override;
-    /** u(x) = alpha ∫ q_h(y)/|x - y| dy (halfspace/surface_settlement.h). */
-    std::vector<double>
-    settlement_at_points(const FoundationSpace       &space,
-                         const Vector<double>        &nodal_pressure,
-                         const std::vector<Point<2>> &points) const override;
     bool
     is_symmetric() const override
     {
@@ -74,9 +74,8 @@ namespace PlateOnHalfspace
     }
 
   private:
-    const double       alpha;
-    const unsigned int singular_order;
-    const bool         positive_pressure_basis;
+    const std::shared_ptr<const ElasticSoil> elastic;
+    const bool                               positive_pressure_basis;
     /** Settlement of the whole plate from pressures on the foundation cells. */
     LAPACKFullMatrix<double> flexibility;
     /** A over foundation cells only; used when some cells are excluded. */

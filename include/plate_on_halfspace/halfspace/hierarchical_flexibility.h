@@ -17,6 +17,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <plate_on_halfspace/plate/foundation_space.h>
+#include <plate_on_halfspace/soil/soil_model.h>
 
 #include <vector>
 
@@ -111,7 +112,8 @@ namespace PlateOnHalfspace
      * @param n_copies 1 + the number of reflections (cells.size() / number
      *   of computed cells).
      * @param node_locations the foundation nodes (x, y).
-     * @param alpha (1 - nu0^2)/(pi E0).
+     * @param kernel the soil's point-load kernel (a number alpha: the
+     *   homogeneous half-space's alpha / r).
      * @param singular_order Gauss points per direction of the singular
      *   cell pairs (Discretization/Singular quadrature order).
      */
@@ -119,13 +121,13 @@ namespace PlateOnHalfspace
     build(const std::vector<FoundationSpace::Cell> &cells,
           const unsigned int                        n_copies,
           const std::vector<Point<2>>              &node_locations,
-          const double                              alpha,
+          const SurfaceKernel                      &kernel,
           const unsigned int                        singular_order);
 
     /** The same for a whole FoundationSpace (its cells and their images). */
     void
     build(const FoundationSpace &space,
-          const double           alpha,
+          const SurfaceKernel   &kernel,
           const unsigned int     singular_order);
 
     /**

@@ -41,15 +41,14 @@ namespace PlateOnHalfspace
   {
   public:
     /**
-     * @param alpha (1 - nu0^2)/(pi E0).
-     * @param singular_order Gauss points of the singular cell pairs.
+     * @param soil the continuum whose kernel A integrates (with its
+     *   singular order).
      * @param tolerance Foundation operator/Tolerance: the relative accuracy
      *   of the compressed blocks (the H-Cholesky factor is coarser:
      *   HierarchicalFlexibility::Settings::factor_tolerance).
      */
-    HierarchicalGalerkinOperator(const double       alpha,
-                                 const unsigned int singular_order,
-                                 const double       tolerance);
+    HierarchicalGalerkinOperator(std::shared_ptr<const ElasticSoil> soil,
+                                 const double                       tolerance);
 
     void
     build(const FoundationSpace   &space,
@@ -59,11 +58,6 @@ namespace PlateOnHalfspace
     /** The H-Cholesky factor of A (computed here, kept in the operator). */
     std::unique_ptr<ApproximateInverse>
     make_approximate_inverse() override;
-    /** u(x) = alpha ∫ q_h(y)/|x - y| dy (halfspace/surface_settlement.h). */
-    std::vector<double>
-    settlement_at_points(const FoundationSpace       &space,
-                         const Vector<double>        &nodal_pressure,
-                         const std::vector<Point<2>> &points) const override;
     bool
     is_symmetric() const override
     {
@@ -99,9 +93,8 @@ namespace PlateOnHalfspace
     apply_inverse_transpose_transform(const Vector<double> &x,
                                       Vector<double>       &y) const;
 
-    const double       alpha;
-    const unsigned int singular_order;
-    const double       tolerance;
+    const std::shared_ptr<const ElasticSoil> elastic;
+    const double                             tolerance;
     /** The whole A on one process, else this rank's diagonal block. */
     HierarchicalFlexibility flexibility;
     /**

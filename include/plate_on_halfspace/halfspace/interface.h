@@ -34,6 +34,7 @@
 
 #include <plate_on_halfspace/plate/foundation_space.h>
 #include <plate_on_halfspace/scene/parameters.h>
+#include <plate_on_halfspace/soil/soil_model.h>
 
 #include <memory>
 #include <string>
@@ -112,15 +113,24 @@ namespace PlateOnHalfspace
 
     /**
      * The settlement u(x) of the soil surface under the pressure with the
-     * nodal values @p nodal_pressure (the foundation's own law, not tested
-     * with the basis) at each of @p points of the computed part: what a
-     * goal's error estimate needs between the nodes (doc/formulation.md,
-     * "Goal-oriented refinement").
+     * nodal values @p nodal_pressure at each of @p points of the computed
+     * part: the soil model's own law (SoilModel::settlement_at_points()),
+     * which a goal's error estimate needs between the nodes.
      */
-    virtual std::vector<double>
+    std::vector<double>
     settlement_at_points(const FoundationSpace       &space,
                          const Vector<double>        &nodal_pressure,
-                         const std::vector<Point<2>> &points) const = 0;
+                         const std::vector<Point<2>> &points) const
+    {
+      return soil_model->settlement_at_points(space, nodal_pressure, points);
+    }
+
+    /** The soil model whose flexibility this operator stores. */
+    const SoilModel &
+    soil() const
+    {
+      return *soil_model;
+    }
 
     /** Whether F is symmetric (then the coupled problem is SPD). */
     virtual bool
@@ -250,6 +260,9 @@ namespace PlateOnHalfspace
     std::size_t
     coupling_memory_consumption() const;
 
+    /** Set by each variant's constructor. */
+    std::shared_ptr<const SoilModel> soil_model;
+
     SparsityPattern      mass_sparsity;
     SparseMatrix<double> mass;
     std::vector<bool>    node_supported;
@@ -263,14 +276,16 @@ namespace PlateOnHalfspace
   };
 
   /**
-   * Make the operator the scene asks for (Foundation/Model,
-   * Discretization/Flexibility and Foundation operator/Tolerance) with
-   * @p storage, dense, hierarchical or sparse (SceneParameters::
-   * foundation_storage(), auto resolved; sparse is the dense liquid's).
+   * Make the operator that stores @p soil with @p storage, dense,
+   * hierarchical or sparse (SceneParameters::foundation_storage(), auto
+   * resolved; sparse is the dense liquid's), as Discretization/Flexibility
+   * and Foundation operator/Tolerance ask. For a continuum soil the space's
+   * plate diameter @p max_distance bounds the kernel's range.
    */
   std::unique_ptr<FoundationOperator>
   create_foundation_operator(
     const SceneParameters                        &parameters,
+    const std::shared_ptr<const SoilModel>       &soil,
     const Parameters::FoundationOperator::Storage storage);
 } // namespace PlateOnHalfspace
 

@@ -65,14 +65,27 @@ namespace PlateOnHalfspace
     {
       enum class Model
       {
-        half_space,  ///< Boussinesq: E0, nu0
-        dense_liquid ///< Winkler: q = k w where the soil carries the plate
+        half_space,   ///< Boussinesq: E0, nu0
+        dense_liquid, ///< Winkler: q = k w where the soil carries the plate
+        layered       ///< elastic layers over a half-space or a rigid base
+      };
+      /** One of Layers: thickness [length], E [force/length^2], nu. */
+      struct Layer
+      {
+        double thickness, youngs_modulus, poissons_ratio;
       };
       Model  model;
-      double youngs_modulus;   ///< half-space E0
-      double poissons_ratio;   ///< half-space nu0
-      double subgrade_modulus; ///< dense liquid k [force/length^3]
-      bool   tensionless;      ///< Contact = tensionless (true) or bonded
+      double youngs_modulus;     ///< half-space E0 (layered: under the layers)
+      double poissons_ratio;     ///< half-space nu0
+      double subgrade_modulus;   ///< dense liquid k [force/length^3]
+      bool   tensionless;        ///< Contact = tensionless (true) or bonded
+      std::vector<Layer> layers; ///< Model = layered: top down
+      bool               rigid_base; ///< Base = rigid (layered)
+      bool frictionless_interfaces;  ///< Interfaces = frictionless (layered)
+
+      /** The checks of Layers with Model = layered. */
+      void
+      check_layers() const;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -440,14 +453,6 @@ namespace PlateOnHalfspace
     Parameters::Contact::Solver
     contact_solver(const unsigned int n_foundation_nodes) const;
 
-    /**
-     * The most foundation nodes a cycle of a goal run may have: the error
-     * estimate's half-space residual costs the square of the nodes (about
-     * 75 s at the limit on 2 cores); the dense liquid's is local and has
-     * no limit.
-     */
-    unsigned int
-    max_goal_foundation_nodes() const;
 
     /** Declare, read @p filename, parse and check. Throws on bad input. */
     void

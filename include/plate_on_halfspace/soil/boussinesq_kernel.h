@@ -3,8 +3,8 @@
  * integral over an axis-aligned rectangle (doc/formulation.md, "Half-space";
  * the paper's equations (P2)-(P5)).
  */
-#ifndef plate_on_halfspace_halfspace_boussinesq_kernel_h
-#define plate_on_halfspace_halfspace_boussinesq_kernel_h
+#ifndef plate_on_halfspace_soil_boussinesq_kernel_h
+#define plate_on_halfspace_soil_boussinesq_kernel_h
 
 #include <deal.II/base/point.h>
 

@@ -2,8 +2,8 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/work_stream.h>
 
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
-#include <plate_on_halfspace/halfspace/surface_settlement.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
+#include <plate_on_halfspace/soil/surface_settlement.h>
 
 #include <algorithm>
 #include <array>
@@ -28,8 +28,14 @@ namespace PlateOnHalfspace
       Point<2>                  centre;
       double                    diameter = 0;
       std::array<GaussTable, 3> gauss; ///< 2, 3 and 5 points per direction
-      bool                      loaded = false;
+      /** For a smooth remainder: 3, 5 and near_order points per direction. */
+      std::array<GaussTable, 3> smooth;
+      unsigned int              near_order = 0;
+      bool                      loaded     = false;
     };
+
+    GaussTable
+    make_table(const PressureCell &cell, const unsigned int order);
 
     double
     pressure_at(const PressureCell &cell, const Point<2> &reference)
@@ -45,7 +51,7 @@ namespace PlateOnHalfspace
     make_cell(const FoundationSpace::Cell &space_cell,
               const Vector<double>        &nodal_pressure)
     {
-      PressureCell cell{space_cell.geometry, {}, {}, {}, 0, {}, false};
+      PressureCell cell{space_cell.geometry, {}, {}, {}, 0, {}, {}, 0, false};
       const auto  &v = cell.geometry.get_vertices();
       cell.polygon   = {v[0], v[1], v[3], v[2]};
       for (unsigned int i = 0; i < 9; ++i)
@@ -60,18 +66,57 @@ namespace PlateOnHalfspace
         cell.diameter = std::max(cell.diameter, 2. * p.distance(cell.centre));
       const std::array<unsigned int, 3> orders = {{2, 3, 5}};
       for (unsigned int r = 0; r < 3; ++r)
-        {
-          const QGauss<2> rule(orders[r]);
-          for (unsigned int q = 0; q < rule.size(); ++q)
-            {
-              const Point<2> &p = rule.point(q);
-              cell.gauss[r].points.push_back(cell.geometry.map(p));
-              cell.gauss[r].weighted_pressure.push_back(
-                rule.weight(q) * cell.geometry.jacobian_determinant(p) *
-                pressure_at(cell, p));
-            }
-        }
+        cell.gauss[r] = make_table(cell, orders[r]);
       return cell;
+    }
+
+    GaussTable
+    make_table(const PressureCell &cell, const unsigned int order)
+    {
+      GaussTable      table;
+      const QGauss<2> rule(order);
+      for (unsigned int q = 0; q < rule.size(); ++q)
+        {
+          const Point<2> &p = rule.point(q);
+          table.points.push_back(cell.geometry.map(p));
+          table.weighted_pressure.push_back(
+            rule.weight(q) * cell.geometry.jacobian_determinant(p) *
+            pressure_at(cell, p));
+        }
+      return table;
+    }
+
+    /** The rules of a smooth remainder of length scale @p l. */
+    void
+    add_smooth_tables(PressureCell &cell, const double l)
+    {
+      cell.near_order = static_cast<unsigned int>(
+        std::min(12., 3. + std::floor(3. * cell.diameter / l)));
+      cell.smooth[0] = cell.gauss[1];
+      cell.smooth[1] = cell.gauss[2];
+      if (cell.near_order > 5)
+        cell.smooth[2] = make_table(cell, cell.near_order);
+    }
+
+    /** ∫_cell q_h(y) R(|x - y|) dy for a smooth R. */
+    double
+    smooth_integral(const PressureCell         &cell,
+                    const Point<2>             &x,
+                    const SmoothRadialFunction &R)
+    {
+      const double separation =
+        std::max(0., x.distance(cell.centre) - 0.5 * cell.diameter);
+      const double needed =
+        3. + std::floor(3. * cell.diameter / (R.length_scale() + separation));
+      const GaussTable &table = needed <= 3 ? cell.smooth[0] :
+                                needed <= 5 || cell.near_order <= 5 ?
+                                              cell.smooth[1] :
+                                              cell.smooth[2];
+      double            sum   = 0;
+      for (unsigned int q = 0; q < table.points.size(); ++q)
+        sum +=
+          table.weighted_pressure[q] * R.value(x.distance(table.points[q]));
+      return sum;
     }
 
     /** ∫_cell q_h(y) / |x - y| dy. */
@@ -118,13 +163,15 @@ namespace PlateOnHalfspace
   settlement_at_points(const FoundationSpace       &space,
                        const Vector<double>        &nodal_pressure,
                        const std::vector<Point<2>> &points,
-                       const double                 alpha,
+                       const SurfaceKernel         &kernel,
                        const unsigned int           singular_order)
   {
     std::vector<PressureCell> cells;
     for (const auto &space_cell : space.cells)
       {
         PressureCell cell = make_cell(space_cell, nodal_pressure);
+        if (kernel.remainder)
+          add_smooth_tables(cell, kernel.remainder->length_scale());
         if (cell.loaded)
           cells.push_back(std::move(cell));
       }
@@ -142,15 +189,19 @@ namespace PlateOnHalfspace
       [&](const unsigned int begin, const unsigned int end) {
         for (unsigned int p = begin; p < end; ++p)
           {
-            double sum = 0;
+            double sum = 0, smooth = 0;
             for (const auto &image : images)
               {
                 const Point<2> x(image[0] * points[p][0],
                                  image[1] * points[p][1]);
                 for (const PressureCell &cell : cells)
-                  sum += inverse_distance_integral(cell, x, duffy);
+                  {
+                    sum += inverse_distance_integral(cell, x, duffy);
+                    if (kernel.remainder)
+                      smooth += smooth_integral(cell, x, *kernel.remainder);
+                  }
               }
-            settlement[p] = alpha * sum;
+            settlement[p] = kernel.alpha * sum + smooth;
           }
       },
       16);

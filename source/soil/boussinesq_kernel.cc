@@ -1,4 +1,4 @@
-#include <plate_on_halfspace/halfspace/boussinesq_kernel.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
 
 #include <cmath>
 

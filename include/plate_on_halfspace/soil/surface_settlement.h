@@ -4,14 +4,15 @@
  * (P3)): what the error estimate of a goal needs between the nodes
  * (doc/formulation.md, "Goal-oriented refinement").
  */
-#ifndef plate_on_halfspace_halfspace_surface_settlement_h
-#define plate_on_halfspace_halfspace_surface_settlement_h
+#ifndef plate_on_halfspace_soil_surface_settlement_h
+#define plate_on_halfspace_soil_surface_settlement_h
 
 #include <deal.II/base/point.h>
 
 #include <deal.II/lac/vector.h>
 
 #include <plate_on_halfspace/plate/foundation_space.h>
+#include <plate_on_halfspace/soil/soil_model.h>
 
 #include <vector>
 
@@ -20,20 +21,23 @@ namespace PlateOnHalfspace
   using namespace dealii;
 
   /**
-   * u(x) = alpha ∫ q_h(y) / |x - y| dy at each of @p points, q_h = sum_i
+   * u(x) = ∫ q_h(y) K(|x - y|) dy at each of @p points, K(r) = alpha / r +
+   * remainder(r) the soil's kernel (soil_model.h), q_h = sum_i
    * q_i phi_i with the nodal values @p nodal_pressure, over the cells of
    * @p space and their mirror images. Cells near x (within 1.5 of their
    * diameters) are integrated with the singularity subtracted at x's
    * reference point, the remainder by a Duffy rule of @p singular_order
    * (as the Galerkin operator's singular pairs); farther cells by Gauss
    * rules of 5, 3 or 2 points per direction below 2.5, below 20 and from
-   * 20 diameters. The points are split over the threads.
+   * 20 diameters. A smooth remainder is integrated by Gauss rules of 3, 5
+   * or 3 + 3 H / l points per direction (CellPairIntegrator::
+   * add_smooth_kernel()'s choice). The points are split over the threads.
    */
   std::vector<double>
   settlement_at_points(const FoundationSpace       &space,
                        const Vector<double>        &nodal_pressure,
                        const std::vector<Point<2>> &points,
-                       const double                 alpha,
+                       const SurfaceKernel         &kernel,
                        const unsigned int           singular_order);
 } // namespace PlateOnHalfspace
 

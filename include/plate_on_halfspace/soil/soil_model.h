@@ -1,0 +1,171 @@
+/**
+ * The soil family's interface (doc/architecture.md, "The soil family";
+ * doc/soil-models.md): what a soil model states about the ground under
+ * the plate, independent of how a foundation operator stores its
+ * flexibility (halfspace/interface.h). Every model gives the settlement of
+ * the soil surface under a pressure field at any point, the scale of that
+ * settlement, and how large a goal estimate it can afford. Continuum
+ * models (ElasticSoil) also give their point-load kernel, which the dense,
+ * hierarchical and collocation storages integrate; a local model (the
+ * dense liquid) has none and is stored sparse.
+ */
+#ifndef plate_on_halfspace_soil_soil_model_h
+#define plate_on_halfspace_soil_soil_model_h
+
+#include <deal.II/base/point.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <plate_on_halfspace/plate/foundation_space.h>
+#include <plate_on_halfspace/scene/parameters.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  using namespace dealii;
+
+  /** A smooth function of the distance r (length^-1 x length/force). */
+  class SmoothRadialFunction
+  {
+  public:
+    virtual ~SmoothRadialFunction() = default;
+
+    /** The value at distance @p r, 0 <= r <= the range it was made for. */
+    virtual double
+    value(const double r) const = 0;
+
+    /**
+     * The shortest length over which the function changes appreciably: a
+     * quadrature over a cell of diameter H resolves it with about
+     * 3 + 3 H / length_scale() points per direction.
+     */
+    virtual double
+    length_scale() const = 0;
+  };
+
+  /**
+   * The surface settlement at distance r from a unit point load:
+   *   K(r) = alpha / r + remainder(r),
+   * alpha / r the Boussinesq part (the top layer's, for a layered soil) that
+   * the singular cell-pair rules integrate, and a smooth remainder (none for
+   * the homogeneous half-space) that regular Gauss rules integrate
+   * (doc/soil-models.md, "The kernel"). A number converts to the
+   * homogeneous kernel alpha / r.
+   */
+  struct SurfaceKernel
+  {
+    SurfaceKernel(const double                                 alpha = 0.,
+                  std::shared_ptr<const SmoothRadialFunction> remainder = {})
+      : alpha(alpha)
+      , remainder(std::move(remainder))
+    {}
+
+    double                                      alpha;
+    std::shared_ptr<const SmoothRadialFunction> remainder;
+  };
+
+  /** The soil model (see the file documentation). */
+  class SoilModel
+  {
+  public:
+    virtual ~SoilModel() = default;
+
+    /** The model's name as Foundation/Model spells it. */
+    virtual std::string
+    name() const = 0;
+
+    /**
+     * The settlement u(x) of the soil surface under the pressure with the
+     * nodal values @p nodal_pressure at each of @p points of the computed
+     * part (the model's own law, not tested with the basis): what a goal's
+     * error estimate needs between the nodes (doc/formulation.md,
+     * "Goal-oriented refinement").
+     */
+    virtual std::vector<double>
+    settlement_at_points(const FoundationSpace       &space,
+                         const Vector<double>        &nodal_pressure,
+                         const std::vector<Point<2>> &points) const = 0;
+
+    /**
+     * The order of the settlement under the force @p force spread over the
+     * area @p area: what the scene's scale checks compare with 1e30.
+     */
+    virtual double
+    typical_settlement(const double force, const double area) const = 0;
+
+    /**
+     * The most foundation nodes for which a goal's error estimate is
+     * affordable: settlement_at_points() at every Gauss point of the
+     * contact cells costs O(n^2) for a continuum, O(n) for a local model.
+     */
+    virtual unsigned int
+    largest_goal_estimate() const = 0;
+
+    /**
+     * How accurately the model's kernel is known, for the log: empty where
+     * it is exact (the half-space, the dense liquid); a layered soil's
+     * tabulation states its knots, range and error.
+     */
+    virtual std::string
+    kernel_report() const
+    {
+      return {};
+    }
+  };
+
+  /** A continuum soil, given by its point-load kernel (SurfaceKernel). */
+  class ElasticSoil : public SoilModel
+  {
+  public:
+    /**
+     * @param singular_order Gauss points per direction of the singular
+     *   rules (Discretization/Singular quadrature order).
+     */
+    explicit ElasticSoil(const unsigned int singular_order);
+
+    /**
+     * The kernel, valid for distances up to @p max_distance (the plate's
+     * diameter with its mirror images, maximal_distance()).
+     */
+    virtual SurfaceKernel
+    kernel(const double max_distance) const = 0;
+
+    /** Integrates kernel() over the cells and their mirror images
+     *  (soil/surface_settlement.h). */
+    std::vector<double>
+    settlement_at_points(const FoundationSpace       &space,
+                         const Vector<double>        &nodal_pressure,
+                         const std::vector<Point<2>> &points) const override;
+
+    unsigned int
+    largest_goal_estimate() const override;
+
+    unsigned int
+    singular_quadrature_order() const
+    {
+      return singular_order;
+    }
+
+  private:
+    const unsigned int singular_order;
+  };
+
+  /**
+   * The largest distance between two points of the plate: the diagonal of
+   * the box around the space's cells and their mirror images.
+   */
+  double
+  maximal_distance(const FoundationSpace &space);
+
+  /**
+   * Make the soil of Foundation/Model: half-space, layered or dense liquid
+   * (the registration of a new model, doc/architecture.md).
+   */
+  std::shared_ptr<const SoilModel>
+  create_soil_model(const SceneParameters &parameters);
+} // namespace PlateOnHalfspace
+
+#endif

@@ -1,0 +1,32 @@
+#include <plate_on_halfspace/soil/half_space.h>
+
+#include <cmath>
+
+namespace PlateOnHalfspace
+{
+  HomogeneousHalfSpace::HomogeneousHalfSpace(const double       alpha,
+                                             const unsigned int singular_order)
+    : ElasticSoil(singular_order)
+    , alpha(alpha)
+  {}
+
+  std::string
+  HomogeneousHalfSpace::name() const
+  {
+    return "half-space";
+  }
+
+  SurfaceKernel
+  HomogeneousHalfSpace::kernel(const double) const
+  {
+    return SurfaceKernel(alpha);
+  }
+
+  double
+  HomogeneousHalfSpace::typical_settlement(const double force,
+                                           const double area) const
+  {
+    // alpha pi = (1 - nu0^2)/E0: the settlement of F over sqrt(A).
+    return force / std::sqrt(area) * alpha * M_PI;
+  }
+} // namespace PlateOnHalfspace

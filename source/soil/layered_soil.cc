@@ -1,0 +1,324 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/parallel.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>
+#include <boost/math/special_functions/bessel.hpp>
+
+#include <plate_on_halfspace/soil/layered_soil.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /** The most knots a tabulation may take before it gives up. */
+    constexpr unsigned int most_knots = 1u << 16;
+    /** The most wave numbers of the Hankel integral's rule. */
+    constexpr double most_wave_numbers = 1e6;
+  } // namespace
+
+  struct TabulatedLayeredRemainder::Implementation
+  {
+    double top_thickness = 0, span = 0, achieved = 0;
+    /** The closed-form far field: (C_b - C1)/(2 pi) and D^2. */
+    double far_coefficient = 0, depth_squared = 0;
+    /** The Hankel integral's nodes and weighted integrand over 2 pi. */
+    std::vector<double> nodes, weighted;
+    boost::math::interpolators::cardinal_cubic_b_spline<double> spline;
+    unsigned int                                                knots = 0;
+
+    double
+    integral(const double r) const
+    {
+      double sum = 0;
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        sum += weighted[j] * boost::math::cyl_bessel_j(0, nodes[j] * r);
+      return far_coefficient / std::sqrt(r * r + depth_squared) + sum;
+    }
+
+    /** dR/dr: the spline's slope at the range's end (a finite-difference
+     *  estimate there would cost the spline two orders). */
+    double
+    slope(const double r) const
+    {
+      double sum = 0;
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        sum -= weighted[j] * nodes[j] *
+               boost::math::cyl_bessel_j(1, nodes[j] * r);
+      return sum - far_coefficient * r /
+                     std::pow(r * r + depth_squared, 1.5);
+    }
+
+    double
+    distance(const double t) const
+    {
+      return top_thickness * std::sinh(t);
+    }
+  };
+
+  namespace
+  {
+    /**
+     * The nodes and weights (over 2 pi) of the Hankel integral on panels
+     * of width @p panel up to @p k_end, 10 Gauss-Legendre points each.
+     */
+    void
+    make_rule(const LayeredProfile &profile,
+              const double          panel,
+              const double          k_end,
+              std::vector<double>  &nodes,
+              std::vector<double>  &weighted)
+    {
+      const SoilLayer &top = profile.layers.front();
+      const double     C1 =
+        2. * (1. - top.poissons_ratio * top.poissons_ratio) / top.youngs_modulus;
+      const double     far   = profile.far_field_coefficient() - C1;
+      const double     D     = profile.depth();
+      const QGauss<1>  gauss(10);
+      const std::size_t n_panels =
+        static_cast<std::size_t>(std::ceil(k_end / panel));
+      nodes.resize(n_panels * gauss.size());
+      weighted.resize(nodes.size());
+      parallel::apply_to_subranges(
+        std::size_t(0),
+        n_panels,
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t p = begin; p < end; ++p)
+            for (unsigned int q = 0; q < gauss.size(); ++q)
+              {
+                const double k = (p + gauss.point(q)[0]) * panel;
+                const std::size_t j = p * gauss.size() + q;
+                nodes[j]            = k;
+                weighted[j] = gauss.weight(q) * panel / (2. * numbers::PI) *
+                              (profile.compliance_remainder(k) -
+                               far * std::exp(-k * D));
+              }
+        },
+        64);
+    }
+  } // namespace
+
+  TabulatedLayeredRemainder::TabulatedLayeredRemainder(
+    const LayeredProfile &profile,
+    const double          range,
+    const double          tolerance)
+    : data(std::make_unique<Implementation>())
+  {
+    AssertThrow(range > 0 && std::isfinite(range),
+                ExcMessage("The layered kernel's range must be > 0."));
+    const SoilLayer &top = profile.layers.front();
+    const double     C1 =
+      2. * (1. - top.poissons_ratio * top.poissons_ratio) / top.youngs_modulus;
+    const double alpha = C1 / (2. * numbers::PI);
+    const double D     = profile.depth();
+    data->top_thickness   = top.thickness;
+    data->span            = range;
+    data->far_coefficient = (profile.far_field_coefficient() - C1) /
+                            (2. * numbers::PI);
+    data->depth_squared   = D * D;
+
+    // The integrand decays like (k h1)^2 exp(-2 k h1) and exp(-k D): both
+    // are below 1e-15 of their scale at k_end.
+    const double k_end = std::max(20. / top.thickness, 40. / D);
+    const double panel = std::min(numbers::PI / range, 1. / D);
+    // About a second of Bessel functions per 10^5 wave numbers and 100
+    // knots; beyond this the top layer is too thin for the plate.
+    const double n_wave_numbers = 10. * std::ceil(k_end / panel);
+    if (n_wave_numbers > most_wave_numbers)
+      {
+        std::ostringstream message;
+        message << "Foundation/Layers: the top layer (" << top.thickness
+                << " thick) is too thin for distances up to " << range
+                << " on the plate, on layers " << D
+                << " deep: the layered kernel would need " << n_wave_numbers
+                << " wave numbers, at most " << most_wave_numbers
+                << ". Merge the thin top layer into the plate or the layer "
+                   "below, or make it thicker.";
+        AssertThrow(false, ExcMessage(message.str()));
+      }
+    make_rule(profile, panel, k_end, data->nodes, data->weighted);
+
+    // The quadrature's error: the same integral on panels half as wide,
+    // at the ends and the middle of the range.
+    {
+      std::vector<double> fine_nodes, fine_weighted;
+      make_rule(profile, panel / 2., k_end, fine_nodes, fine_weighted);
+      Implementation fine;
+      fine.far_coefficient = data->far_coefficient;
+      fine.depth_squared   = data->depth_squared;
+      fine.nodes           = std::move(fine_nodes);
+      fine.weighted        = std::move(fine_weighted);
+      for (const double r : {0., 0.01 * range, 0.5 * range, range})
+        data->achieved =
+          std::max(data->achieved,
+                   std::abs(fine.integral(r) - data->integral(r)) /
+                     (alpha / std::max(r, top.thickness) +
+                      std::abs(fine.integral(r))));
+    }
+
+    // The spline: knots doubled until every midpoint agrees.
+    const double t_end = std::asinh(range / top.thickness);
+    // dR/dt at the end, for the spline's end condition (even in t, the
+    // slope at t = 0 is zero).
+    const double end_slope =
+      data->slope(range) * top.thickness * std::cosh(t_end);
+    unsigned int n = 32; // intervals
+    std::vector<double> values(n + 1);
+    parallel::apply_to_subranges(
+      0u,
+      n + 1,
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int i = begin; i < end; ++i)
+          values[i] = data->integral(data->distance(t_end * i / n));
+      },
+      4);
+    while (true)
+      {
+        const double h = t_end / n;
+        data->spline =
+          boost::math::interpolators::cardinal_cubic_b_spline<double>(
+            values.begin(), values.end(), 0., h, 0., end_slope);
+        std::vector<double> midpoints(n);
+        parallel::apply_to_subranges(
+          0u,
+          n,
+          [&](const unsigned int begin, const unsigned int end) {
+            for (unsigned int i = begin; i < end; ++i)
+              midpoints[i] = data->integral(data->distance((i + 0.5) * h));
+          },
+          4);
+        double worst = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const double t = (i + 0.5) * h, r = data->distance(t);
+            worst = std::max(worst,
+                             std::abs(data->spline(t) - midpoints[i]) /
+                               (alpha / r + std::abs(midpoints[i])));
+          }
+        if (worst <= tolerance || 2 * n > most_knots)
+          {
+            AssertThrow(worst <= tolerance,
+                        ExcMessage(
+                          "Foundation/Layers: the layered kernel could not be "
+                          "tabulated to " +
+                          std::to_string(tolerance) +
+                          " with " + std::to_string(most_knots) +
+                          " knots; the layers' stiffness contrast or the "
+                          "ratio of the plate to the top layer's thickness "
+                          "is too large."));
+            data->achieved = std::max(data->achieved, worst);
+            data->knots    = n + 1;
+            break;
+          }
+        std::vector<double> doubled(2 * n + 1);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            doubled[2 * i]     = values[i];
+            doubled[2 * i + 1] = midpoints[i];
+          }
+        doubled[2 * n] = values[n];
+        values.swap(doubled);
+        n *= 2;
+      }
+    AssertThrow(std::isfinite(data->achieved),
+                ExcMessage("Foundation/Layers: the layered kernel is not "
+                           "finite; check the layers' moduli."));
+  }
+
+  TabulatedLayeredRemainder::~TabulatedLayeredRemainder() = default;
+
+  double
+  TabulatedLayeredRemainder::value(const double r) const
+  {
+    Assert(r >= 0 && r <= data->span * (1. + 1e-12),
+           ExcMessage("The layered kernel is asked beyond its range."));
+    return data->spline(std::asinh(r / data->top_thickness));
+  }
+
+  double
+  TabulatedLayeredRemainder::length_scale() const
+  {
+    return data->top_thickness;
+  }
+
+  double
+  TabulatedLayeredRemainder::range() const
+  {
+    return data->span;
+  }
+
+  double
+  TabulatedLayeredRemainder::error() const
+  {
+    return data->achieved;
+  }
+
+  unsigned int
+  TabulatedLayeredRemainder::n_knots() const
+  {
+    return data->knots;
+  }
+
+  LayeredSoil::LayeredSoil(const LayeredProfile &profile,
+                           const unsigned int    singular_order)
+    : ElasticSoil(singular_order)
+    , profile(profile)
+  {}
+
+  std::string
+  LayeredSoil::name() const
+  {
+    return "layered";
+  }
+
+  SurfaceKernel
+  LayeredSoil::kernel(const double max_distance) const
+  {
+    const SoilLayer &top   = profile.layers.front();
+    const double     alpha = (1. - top.poissons_ratio * top.poissons_ratio) /
+                         (numbers::PI * top.youngs_modulus);
+    const std::lock_guard<std::mutex> lock(table_mutex);
+    if (!table || table->range() < max_distance)
+      // A margin, so that a slightly larger plate (an adaptive mesh's
+      // curved boundary) does not tabulate again.
+      table = std::make_shared<const TabulatedLayeredRemainder>(
+        profile, 1.1 * max_distance, kernel_tolerance);
+    return SurfaceKernel(alpha, table);
+  }
+
+  double
+  LayeredSoil::typical_settlement(const double force, const double area) const
+  {
+    double flexibility = 0;
+    for (const SoilLayer &layer : profile.layers)
+      flexibility = std::max(flexibility,
+                             (1. - layer.poissons_ratio * layer.poissons_ratio) /
+                               layer.youngs_modulus);
+    if (profile.base == LayeredProfile::Base::half_space)
+      flexibility = std::max(flexibility,
+                             (1. - profile.base_poissons_ratio *
+                                     profile.base_poissons_ratio) /
+                               profile.base_youngs_modulus);
+    return force / std::sqrt(area) * flexibility;
+  }
+
+  std::string
+  LayeredSoil::kernel_report() const
+  {
+    const std::lock_guard<std::mutex> lock(table_mutex);
+    if (!table)
+      return {};
+    std::ostringstream report;
+    report << "Layered soil: kernel tabulated on " << table->n_knots()
+           << " knots up to r = " << table->range()
+           << ", error <= " << std::max(table->error(), 1e-16)
+           << " of alpha1/r + |R(r)| (tolerance "
+           << kernel_tolerance << ")";
+    return report.str();
+  }
+} // namespace PlateOnHalfspace
