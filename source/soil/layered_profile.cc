@@ -48,13 +48,13 @@ namespace PlateOnHalfspace
       // 1 - E^2 and 1 - E^4 without cancellation at small k h.
       const double one_minus_E2 = -std::expm1(-2. * s);
       const double one_minus_E4 = -std::expm1(-4. * s);
-      const double d =
-        c * c * one_minus_E2 * one_minus_E2 - 4. * E2 * s * s;
+      const double d = c * c * one_minus_E2 * one_minus_E2 - 4. * E2 * s * s;
       const double f = mu * k / d;
 
       const double xx = 4. * (1. - nu) * (c * one_minus_E4 - 4. * E2 * s);
       const double zz = 4. * (1. - nu) * (c * one_minus_E4 + 4. * E2 * s);
-      const double xz = 2. * (m * one_minus_E2 * one_minus_E2 - 4. * E2 * s * s);
+      const double xz =
+        2. * (m * one_minus_E2 * one_minus_E2 - 4. * E2 * s * s);
       const double far_xx =
         8. * E * (1. - nu) * (s * (1. + E2) - c * one_minus_E2);
       const double far_xz = 8. * E * s * one_minus_E2 * (1. - nu);
@@ -110,8 +110,7 @@ namespace PlateOnHalfspace
   {
     AssertThrow(k > 0 && std::isfinite(k),
                 ExcMessage("LayeredProfile: wave numbers must be > 0."));
-    AssertThrow(!layers.empty(),
-                ExcMessage("LayeredProfile: no layers."));
+    AssertThrow(!layers.empty(), ExcMessage("LayeredProfile: no layers."));
     const bool frictionless = interfaces == Interfaces::frictionless;
     // The stiffness seen at the top of what lies below the current layer,
     // condensed upwards: K_top = K_tt - K_tb (K_bb + S)^-1 K_bt. A rigid
@@ -120,8 +119,7 @@ namespace PlateOnHalfspace
     Matrix2 below;
     bool    rigid = (base == Base::rigid);
     if (!rigid)
-      below =
-        half_space_stiffness(base_youngs_modulus, base_poissons_ratio, k);
+      below = half_space_stiffness(base_youngs_modulus, base_poissons_ratio, k);
     for (auto layer = layers.rbegin(); layer != layers.rend(); ++layer)
       {
         const LayerStiffness K = layer_stiffness(*layer, k);
@@ -139,7 +137,7 @@ namespace PlateOnHalfspace
         else
           {
             const Matrix2 seen = frictionless ? vertical_only(below) : below;
-            top = K.tt - K.tb * invert(K.bb + seen) * K.bt;
+            top                = K.tt - K.tb * invert(K.bb + seen) * K.bt;
           }
         below = top;
         rigid = false;
@@ -160,10 +158,10 @@ namespace PlateOnHalfspace
   double
   LayeredProfile::far_field_coefficient() const
   {
-    return base == Base::rigid ? 0. :
-                                 2. * (1. - base_poissons_ratio *
-                                              base_poissons_ratio) /
-                                   base_youngs_modulus;
+    return base == Base::rigid ?
+             0. :
+             2. * (1. - base_poissons_ratio * base_poissons_ratio) /
+               base_youngs_modulus;
   }
 
   double
@@ -193,19 +191,18 @@ namespace PlateOnHalfspace
     if (r <= a)
       homogeneous = 2. / numbers::PI * boost::math::ellint_2(r / a);
     else
-      homogeneous =
-        2. / numbers::PI * (r / a) *
-        (boost::math::ellint_2(a / r) -
-         (1. - a * a / (r * r)) * boost::math::ellint_1(a / r));
+      homogeneous = 2. / numbers::PI * (r / a) *
+                    (boost::math::ellint_2(a / r) -
+                     (1. - a * a / (r * r)) * boost::math::ellint_1(a / r));
     // The rest, p a Int (k G - C)/k J1(k a) J0(k r) dk, decays like
     // exp(-2 k h1): 30-point Gauss-Legendre on intervals of half the
     // shorter Bessel period and at most 1/D wide (the compliance changes
     // on that scale) up to where the integrand is below rounding.
-    const double h1       = top.thickness;
-    const double k_end    = 40. / std::min(h1, profile.depth());
+    const double h1    = top.thickness;
+    const double k_end = 40. / std::min(h1, profile.depth());
     const double interval =
       std::min(numbers::PI / std::max({a, r, h1}), 1. / profile.depth());
-    const auto   integrand = [&](const double k) {
+    const auto integrand = [&](const double k) {
       if (k == 0.)
         return 0.5 * a * profile.far_field_coefficient() - 0.5 * a * C;
       return profile.compliance_remainder(k) / k *

@@ -28,7 +28,7 @@ namespace PlateOnHalfspace
     /** The closed-form far field: (C_b - C1)/(2 pi) and D^2. */
     double far_coefficient = 0, depth_squared = 0;
     /** The Hankel integral's nodes and weighted integrand over 2 pi. */
-    std::vector<double> nodes, weighted;
+    std::vector<double>                                         nodes, weighted;
     boost::math::interpolators::cardinal_cubic_b_spline<double> spline;
     unsigned int                                                knots = 0;
 
@@ -48,10 +48,9 @@ namespace PlateOnHalfspace
     {
       double sum = 0;
       for (std::size_t j = 0; j < nodes.size(); ++j)
-        sum -= weighted[j] * nodes[j] *
-               boost::math::cyl_bessel_j(1, nodes[j] * r);
-      return sum - far_coefficient * r /
-                     std::pow(r * r + depth_squared, 1.5);
+        sum -=
+          weighted[j] * nodes[j] * boost::math::cyl_bessel_j(1, nodes[j] * r);
+      return sum - far_coefficient * r / std::pow(r * r + depth_squared, 1.5);
     }
 
     double
@@ -75,11 +74,11 @@ namespace PlateOnHalfspace
               std::vector<double>  &weighted)
     {
       const SoilLayer &top = profile.layers.front();
-      const double     C1 =
-        2. * (1. - top.poissons_ratio * top.poissons_ratio) / top.youngs_modulus;
-      const double     far   = profile.far_field_coefficient() - C1;
-      const double     D     = profile.depth();
-      const QGauss<1>  gauss(10);
+      const double C1 = 2. * (1. - top.poissons_ratio * top.poissons_ratio) /
+                        top.youngs_modulus;
+      const double      far = profile.far_field_coefficient() - C1;
+      const double      D   = profile.depth();
+      const QGauss<1>   gauss(10);
       const std::size_t n_panels =
         static_cast<std::size_t>(std::ceil(k_end / panel));
       nodes.resize(n_panels * gauss.size());
@@ -91,12 +90,12 @@ namespace PlateOnHalfspace
           for (std::size_t p = begin; p < end; ++p)
             for (unsigned int q = 0; q < gauss.size(); ++q)
               {
-                const double k = (p + gauss.point(q)[0]) * panel;
+                const double      k = (p + gauss.point(q)[0]) * panel;
                 const std::size_t j = p * gauss.size() + q;
                 nodes[j]            = k;
-                weighted[j] = gauss.weight(q) * panel / (2. * numbers::PI) *
-                              (profile.compliance_remainder(k) -
-                               far * std::exp(-k * D));
+                weighted[j] =
+                  gauss.weight(q) * panel / (2. * numbers::PI) *
+                  (profile.compliance_remainder(k) - far * std::exp(-k * D));
               }
         },
         64);
@@ -114,13 +113,13 @@ namespace PlateOnHalfspace
     const SoilLayer &top = profile.layers.front();
     const double     C1 =
       2. * (1. - top.poissons_ratio * top.poissons_ratio) / top.youngs_modulus;
-    const double alpha = C1 / (2. * numbers::PI);
-    const double D     = profile.depth();
-    data->top_thickness   = top.thickness;
-    data->span            = range;
-    data->far_coefficient = (profile.far_field_coefficient() - C1) /
-                            (2. * numbers::PI);
-    data->depth_squared   = D * D;
+    const double alpha  = C1 / (2. * numbers::PI);
+    const double D      = profile.depth();
+    data->top_thickness = top.thickness;
+    data->span          = range;
+    data->far_coefficient =
+      (profile.far_field_coefficient() - C1) / (2. * numbers::PI);
+    data->depth_squared = D * D;
 
     // The integrand decays like (k h1)^2 exp(-2 k h1) and exp(-k D): both
     // are below 1e-15 of their scale at k_end.
@@ -167,7 +166,7 @@ namespace PlateOnHalfspace
     // slope at t = 0 is zero).
     const double end_slope =
       data->slope(range) * top.thickness * std::cosh(t_end);
-    unsigned int n = 32; // intervals
+    unsigned int        n = 32; // intervals
     std::vector<double> values(n + 1);
     parallel::apply_to_subranges(
       0u,
@@ -206,8 +205,8 @@ namespace PlateOnHalfspace
                         ExcMessage(
                           "Foundation/Layers: the layered kernel could not be "
                           "tabulated to " +
-                          std::to_string(tolerance) +
-                          " with " + std::to_string(most_knots) +
+                          std::to_string(tolerance) + " with " +
+                          std::to_string(most_knots) +
                           " knots; the layers' stiffness contrast or the "
                           "ratio of the plate to the top layer's thickness "
                           "is too large."));
@@ -286,8 +285,10 @@ namespace PlateOnHalfspace
     if (!table || table->range() < max_distance)
       // A margin, so that a slightly larger plate (an adaptive mesh's
       // curved boundary) does not tabulate again.
-      table = std::make_shared<const TabulatedLayeredRemainder>(
-        profile, 1.1 * max_distance, kernel_tolerance);
+      table =
+        std::make_shared<const TabulatedLayeredRemainder>(profile,
+                                                          1.1 * max_distance,
+                                                          kernel_tolerance);
     return SurfaceKernel(alpha, table);
   }
 
@@ -296,9 +297,10 @@ namespace PlateOnHalfspace
   {
     double flexibility = 0;
     for (const SoilLayer &layer : profile.layers)
-      flexibility = std::max(flexibility,
-                             (1. - layer.poissons_ratio * layer.poissons_ratio) /
-                               layer.youngs_modulus);
+      flexibility =
+        std::max(flexibility,
+                 (1. - layer.poissons_ratio * layer.poissons_ratio) /
+                   layer.youngs_modulus);
     if (profile.base == LayeredProfile::Base::half_space)
       flexibility = std::max(flexibility,
                              (1. - profile.base_poissons_ratio *
@@ -317,8 +319,7 @@ namespace PlateOnHalfspace
     report << "Layered soil: kernel tabulated on " << table->n_knots()
            << " knots up to r = " << table->range()
            << ", error <= " << std::max(table->error(), 1e-16)
-           << " of alpha1/r + |R(r)| (tolerance "
-           << kernel_tolerance << ")";
+           << " of alpha1/r + |R(r)| (tolerance " << kernel_tolerance << ")";
     return report.str();
   }
 } // namespace PlateOnHalfspace

@@ -24,7 +24,8 @@ namespace PlateOnHalfspace
     return PlateOnHalfspace::settlement_at_points(space,
                                                   nodal_pressure,
                                                   points,
-                                                  kernel(maximal_distance(space)),
+                                                  kernel(
+                                                    maximal_distance(space)),
                                                   singular_order);
   }
 
@@ -39,10 +40,10 @@ namespace PlateOnHalfspace
   double
   maximal_distance(const FoundationSpace &space)
   {
-    double lower[2] = {std::numeric_limits<double>::max(),
-                       std::numeric_limits<double>::max()};
-    double upper[2] = {-lower[0], -lower[1]};
-    const auto extend = [&](const std::vector<FoundationSpace::Cell> &cells) {
+    double     lower[2] = {std::numeric_limits<double>::max(),
+                           std::numeric_limits<double>::max()};
+    double     upper[2] = {-lower[0], -lower[1]};
+    const auto extend   = [&](const std::vector<FoundationSpace::Cell> &cells) {
       for (const auto &cell : cells)
         for (const Point<2> &v : cell.geometry.get_vertices())
           for (unsigned int d = 0; d < 2; ++d)
@@ -79,10 +80,9 @@ namespace PlateOnHalfspace
                                              LayeredProfile::Base::half_space;
             profile.base_youngs_modulus = soil.youngs_modulus;
             profile.base_poissons_ratio = soil.poissons_ratio;
-            profile.interfaces =
-              soil.frictionless_interfaces ?
-                LayeredProfile::Interfaces::frictionless :
-                LayeredProfile::Interfaces::bonded;
+            profile.interfaces          = soil.frictionless_interfaces ?
+                                            LayeredProfile::Interfaces::frictionless :
+                                            LayeredProfile::Interfaces::bonded;
             return std::make_shared<LayeredSoil>(profile, order);
           }
         case Model::half_space:

@@ -20,6 +20,7 @@
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
 #include <plate_on_halfspace/soil/boussinesq_kernel.h>
+#include <plate_on_halfspace/soil/half_space.h>
 
 #include "../tests.h"
 
@@ -87,7 +88,8 @@ main()
 
   BoussinesqGalerkinOperator    galerkin(alpha, order);
   BoussinesqCollocationOperator collocation(alpha);
-  HierarchicalGalerkinOperator  hierarchical(alpha, order, 1e-8);
+  HierarchicalGalerkinOperator  hierarchical(
+    std::make_shared<HomogeneousHalfSpace>(alpha, order), 1e-8);
   galerkin.build(space, {});
   collocation.build(space, {});
   hierarchical.build(space, {});

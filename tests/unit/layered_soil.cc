@@ -9,8 +9,8 @@
 //    by the top material's value (the difference is O(a/h));
 //  - a thin layer on a rough rigid base has G -> h / E_oed as k h -> 0;
 //  - the tabulated remainder agrees with the same Hankel integral
-//    integrated independently (30-point Gauss-Legendre per half period, no far-field
-//    subtraction, no spline);
+//    integrated independently (30-point Gauss-Legendre per half period, no
+//    far-field subtraction, no spline);
 //  - through the whole program: such layers give the half-space's
 //    deflections, pressures and moments to 1e-10; a plate on a two-layer
 //    soil matches the infinite plate's Hankel integral
@@ -32,8 +32,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "../test_tools.h"
 #include "../tests.h"
+
+#include "../test_tools.h"
 
 namespace
 {
@@ -60,14 +61,14 @@ namespace
   double
   remainder_by_quadrature(const LayeredProfile &profile, const double r)
   {
-    const double h1      = profile.layers.front().thickness;
-    const double k_end   = 40. / h1;
+    const double h1    = profile.layers.front().thickness;
+    const double k_end = 40. / h1;
     const double period =
       std::min(numbers::PI / std::max(r, h1), 1. / profile.depth());
-    double       sum     = 0;
-    const auto   f       = [&](const double k) {
+    double     sum = 0;
+    const auto f   = [&](const double k) {
       return k == 0. ? 0. :
-                             profile.compliance_remainder(k) *
+                         profile.compliance_remainder(k) *
                          boost::math::cyl_bessel_j(0, k * r);
     };
     for (double k0 = 0; k0 < k_end; k0 += period)
@@ -101,8 +102,10 @@ namespace
     for (unsigned int i = 0; i < 20000; ++i)
       {
         previous = sum;
-        sum += boost::math::quadrature::gauss<double, 30>::integrate(
-          f, i * half, (i + 1) * half);
+        sum +=
+          boost::math::quadrature::gauss<double, 30>::integrate(f,
+                                                                i * half,
+                                                                (i + 1) * half);
       }
     return P / (numbers::PI * a) * 0.5 * (sum + previous);
   }
@@ -162,12 +165,11 @@ main()
                 worst,
                 1e-10);
     const TabulatedLayeredRemainder table(profile, 30., 1e-9);
-    const double alpha = (1. - nu * nu) / (numbers::PI * E);
-    double       largest = 0;
+    const double                    alpha = (1. - nu * nu) / (numbers::PI * E);
+    double                          largest = 0;
     for (double r = 0; r <= 30.; r += 0.173)
       largest = std::max(largest,
-                         std::abs(table.value(r)) /
-                           (alpha / std::max(r, 0.3)));
+                         std::abs(table.value(r)) / (alpha / std::max(r, 0.3)));
     check_below("own material: |R(r)| / (alpha / r)", largest, 1e-10);
 
     const double a = 0.2, p = 600.;
@@ -197,10 +199,9 @@ main()
   {
     LayeredProfile thin;
     const double   h = 0.05, E1 = 5e4, nu1 = 0.3;
-    thin.layers      = {{h, E1, nu1}};
-    thin.base        = LayeredProfile::Base::rigid;
-    const double E_oed =
-      E1 * (1. - nu1) / ((1. + nu1) * (1. - 2. * nu1));
+    thin.layers        = {{h, E1, nu1}};
+    thin.base          = LayeredProfile::Base::rigid;
+    const double E_oed = E1 * (1. - nu1) / ((1. + nu1) * (1. - 2. * nu1));
     check("thin layer on a rough rigid base, k h = 1e-3: G E_oed / h",
           thin.surface_compliance(1e-3 / h) * E_oed / h,
           1.,
@@ -213,8 +214,8 @@ main()
     two.base_youngs_modulus = 3e4;
     two.base_poissons_ratio = 0.4;
     const TabulatedLayeredRemainder table(two, 25., 1e-9);
-    const double alpha = (1. - 0.09) / (numbers::PI * 4e5);
-    double       worst = 0;
+    const double                    alpha = (1. - 0.09) / (numbers::PI * 4e5);
+    double                          worst = 0;
     for (const double r : {0., 0.05, 0.3, 1.1, 4.7, 12.5, 25.})
       {
         const double independent = remainder_by_quadrature(two, r);
@@ -234,8 +235,9 @@ main()
 
   // Through the whole program.
   {
-    const auto half = TestTools::run_scene_text(disk_scene(
-      " set Young's modulus = 1e5\n set Poisson's ratio = 0.35\n", 3));
+    const auto half = TestTools::run_scene_text(
+      disk_scene(" set Young's modulus = 1e5\n set Poisson's ratio = 0.35\n",
+                 3));
     const auto same = TestTools::run_scene_text(disk_scene(
       " set Model = layered\n set Young's modulus = 1e5\n"
       " set Poisson's ratio = 0.35\n"
@@ -260,16 +262,15 @@ main()
     two.base_youngs_modulus = 1e5;
     two.base_poissons_ratio = 0.35;
     const double t = 0.25, Ep = 3e7, nup = 0.15;
-    const double D = Ep * t * t * t / (12. * (1. - nup * nup));
+    const double D  = Ep * t * t * t / (12. * (1. - nup * nup));
     const double Gp = Ep / (2. * (1. + nup));
     const double c  = D / (5. / 6. * Gp * t);
     const double a = 0.15, P = 700. * numbers::PI * a * a;
-    const double reference =
-      infinite_plate_centre_deflection(two, D, c, P, a);
-    const auto layered = TestTools::run_scene_text(disk_scene(
-      " set Model = layered\n set Young's modulus = 1e5\n"
-      " set Poisson's ratio = 0.35\n set Layers = 0.3, 4e5, 0.3\n",
-      5));
+    const double reference = infinite_plate_centre_deflection(two, D, c, P, a);
+    const auto   layered   = TestTools::run_scene_text(
+      disk_scene(" set Model = layered\n set Young's modulus = 1e5\n"
+                     " set Poisson's ratio = 0.35\n set Layers = 0.3, 4e5, 0.3\n",
+                 5));
     check("program, base over subgrade: w(0) against the infinite plate",
           layered->values_at(Point<2>(0, 0)).w,
           reference,
@@ -279,21 +280,21 @@ main()
   {
     // A thin layer on a rough rigid base: the dense liquid k = E_oed / h.
     const double E1 = 5e4, nu1 = 0.3;
-    const double E_oed = E1 * (1. - nu1) / ((1. + nu1) * (1. - 2. * nu1));
+    const double E_oed    = E1 * (1. - nu1) / ((1. + nu1) * (1. - 2. * nu1));
     double       previous = 0;
     for (const double h : {0.1, 0.05})
       {
         std::ostringstream layer, liquid;
-        layer << " set Model = layered\n set Base = rigid\n set Layers = "
-              << h << ", " << E1 << ", " << nu1 << "\n";
+        layer << " set Model = layered\n set Base = rigid\n set Layers = " << h
+              << ", " << E1 << ", " << nu1 << "\n";
         liquid << " set Model = dense liquid\n"
                << " set Modulus of subgrade reaction = " << E_oed / h << "\n";
         const auto thin = TestTools::run_scene_text(slab_scene(layer.str()));
         const auto winkler =
           TestTools::run_scene_text(slab_scene(liquid.str()));
-        const double w_layer  = thin->values_at(Point<2>(0, 0)).w;
-        const double w_liquid = winkler->values_at(Point<2>(0, 0)).w;
-        const double difference = std::abs(w_layer / w_liquid - 1.);
+        const double       w_layer    = thin->values_at(Point<2>(0, 0)).w;
+        const double       w_liquid   = winkler->values_at(Point<2>(0, 0)).w;
+        const double       difference = std::abs(w_layer / w_liquid - 1.);
         std::ostringstream name;
         name << "thin layer h = " << h
              << " on a rough rigid base: |w(0) / w_dense liquid - 1|";

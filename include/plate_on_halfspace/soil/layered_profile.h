@@ -12,7 +12,8 @@
 
 namespace PlateOnHalfspace
 {
-  /** One layer: thickness, Young's modulus, Poisson's ratio (the scene's units). */
+  /** One layer: thickness, Young's modulus, Poisson's ratio (the scene's
+   * units). */
   struct SoilLayer
   {
     double thickness, youngs_modulus, poissons_ratio;
@@ -36,11 +37,11 @@ namespace PlateOnHalfspace
     Base                   base = Base::half_space;
     /** The half-space under the layers (Base = half-space). */
     double     base_youngs_modulus = 0, base_poissons_ratio = 0;
-    Interfaces interfaces          = Interfaces::bonded;
+    Interfaces interfaces = Interfaces::bonded;
 
     /**
-     * The surface compliance G(k) (length^3/force): the settlement amplitude of the
-     * surface under a vertical pressure of unit amplitude with wave number
+     * The surface compliance G(k) (length^3/force): the settlement amplitude of
+     * the surface under a vertical pressure of unit amplitude with wave number
      * @p k > 0 (cos(k x) in plane strain, J0(k r) axisymmetrically: the
      * same function), the surface free of shear. G(k) -> 2 (1 - nu1^2) /
      * (E1 k) as k -> infinity (the top layer's half-space).

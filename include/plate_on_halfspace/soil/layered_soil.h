@@ -100,7 +100,7 @@ namespace PlateOnHalfspace
     kernel_report() const override;
 
   private:
-    const LayeredProfile                                    profile;
+    const LayeredProfile                                     profile;
     mutable std::shared_ptr<const TabulatedLayeredRemainder> table;
     mutable std::mutex                                       table_mutex;
   };

@@ -57,7 +57,7 @@ namespace PlateOnHalfspace
    */
   struct SurfaceKernel
   {
-    SurfaceKernel(const double                                 alpha = 0.,
+    SurfaceKernel(const double                                alpha     = 0.,
                   std::shared_ptr<const SmoothRadialFunction> remainder = {})
       : alpha(alpha)
       , remainder(std::move(remainder))
