@@ -80,4 +80,11 @@ namespace PlateOnHalfspace
     // The settlement is local: O(n) at any size.
     return std::numeric_limits<unsigned int>::max();
   }
+
+  double
+  DenseLiquidSoil::radius_of_relative_stiffness(
+    const double flexural_rigidity) const
+  {
+    return std::sqrt(std::sqrt(flexural_rigidity / modulus));
+  }
 } // namespace PlateOnHalfspace

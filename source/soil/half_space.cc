@@ -29,4 +29,12 @@ namespace PlateOnHalfspace
     // alpha pi = (1 - nu0^2)/E0: the settlement of F over sqrt(A).
     return force / std::sqrt(area) * alpha * M_PI;
   }
+
+  double
+  HomogeneousHalfSpace::radius_of_relative_stiffness(
+    const double flexural_rigidity) const
+  {
+    // G(k) = 2 pi alpha / k.
+    return std::cbrt(2. * M_PI * alpha * flexural_rigidity);
+  }
 } // namespace PlateOnHalfspace

@@ -5,10 +5,12 @@
 
 #include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>
 #include <boost/math/special_functions/bessel.hpp>
+#include <boost/math/tools/roots.hpp>
 
 #include <plate_on_halfspace/soil/layered_soil.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -124,10 +126,10 @@ namespace PlateOnHalfspace
     // The integrand decays like (k h1)^2 exp(-2 k h1) and exp(-k D): both
     // are below 1e-15 of their scale at k_end.
     const double k_end = std::max(20. / top.thickness, 40. / D);
-    const double panel = std::min(numbers::PI / range, 1. / D);
+    double       panel = std::min(numbers::PI / range, 1. / D);
     // About a second of Bessel functions per 10^5 wave numbers and 100
     // knots; beyond this the top layer is too thin for the plate.
-    const double n_wave_numbers = 10. * std::ceil(k_end / panel);
+    const double n_wave_numbers = 20. * std::ceil(k_end / panel);
     if (n_wave_numbers > most_wave_numbers)
       {
         std::ostringstream message;
@@ -142,23 +144,45 @@ namespace PlateOnHalfspace
       }
     make_rule(profile, panel, k_end, data->nodes, data->weighted);
 
-    // The quadrature's error: the same integral on panels half as wide,
-    // at the ends and the middle of the range.
-    {
-      std::vector<double> fine_nodes, fine_weighted;
-      make_rule(profile, panel / 2., k_end, fine_nodes, fine_weighted);
-      Implementation fine;
-      fine.far_coefficient = data->far_coefficient;
-      fine.depth_squared   = data->depth_squared;
-      fine.nodes           = std::move(fine_nodes);
-      fine.weighted        = std::move(fine_weighted);
-      for (const double r : {0., 0.01 * range, 0.5 * range, range})
-        data->achieved =
-          std::max(data->achieved,
-                   std::abs(fine.integral(r) - data->integral(r)) /
-                     (alpha / std::max(r, top.thickness) +
-                      std::abs(fine.integral(r))));
-    }
+    // The quadrature's error: the same integral on panels half as wide, at
+    // the ends and the middle of the range. Panels are halved until that
+    // difference is within the tolerance, and the finer rule is kept, so
+    // the difference bounds its error.
+    while (true)
+      {
+        std::vector<double> fine_nodes, fine_weighted;
+        make_rule(profile, panel / 2., k_end, fine_nodes, fine_weighted);
+        Implementation fine;
+        fine.far_coefficient = data->far_coefficient;
+        fine.depth_squared   = data->depth_squared;
+        fine.nodes           = std::move(fine_nodes);
+        fine.weighted        = std::move(fine_weighted);
+        double difference    = 0;
+        for (const double r : {0., 0.01 * range, 0.5 * range, range})
+          difference = std::max(difference,
+                                std::abs(fine.integral(r) - data->integral(r)) /
+                                  (alpha / std::max(r, top.thickness) +
+                                   std::abs(fine.integral(r))));
+        data->nodes    = std::move(fine.nodes);
+        data->weighted = std::move(fine.weighted);
+        panel /= 2.;
+        if (difference <= tolerance)
+          {
+            data->achieved = difference;
+            break;
+          }
+        if (2. * static_cast<double>(data->nodes.size()) > most_wave_numbers)
+          {
+            std::ostringstream message;
+            message << "Foundation/Layers: the layered kernel's wave-number "
+                       "integral could not be brought to "
+                    << tolerance << " with " << most_wave_numbers
+                    << " wave numbers (it reached " << difference
+                    << "); the layers' stiffness contrast or the ratio of "
+                       "the plate to the top layer's thickness is too large.";
+            AssertThrow(false, ExcMessage(message.str()));
+          }
+      }
 
     // The spline: knots doubled until every midpoint agrees.
     const double t_end = std::asinh(range / top.thickness);
@@ -283,12 +307,18 @@ namespace PlateOnHalfspace
                          (numbers::PI * top.youngs_modulus);
     const std::lock_guard<std::mutex> lock(table_mutex);
     if (!table || table->range() < max_distance)
-      // A margin, so that a slightly larger plate (an adaptive mesh's
-      // curved boundary) does not tabulate again.
-      table =
-        std::make_shared<const TabulatedLayeredRemainder>(profile,
-                                                          1.1 * max_distance,
-                                                          kernel_tolerance);
+      {
+        const auto start = std::chrono::steady_clock::now();
+        // A margin, so that a slightly larger plate (an adaptive mesh's
+        // curved boundary) does not tabulate again.
+        table =
+          std::make_shared<const TabulatedLayeredRemainder>(profile,
+                                                            1.1 * max_distance,
+                                                            kernel_tolerance);
+        table_seconds = std::chrono::duration<double>(
+                          std::chrono::steady_clock::now() - start)
+                          .count();
+      }
     return SurfaceKernel(alpha, table);
   }
 
@@ -309,6 +339,40 @@ namespace PlateOnHalfspace
     return force / std::sqrt(area) * flexibility;
   }
 
+  double
+  LayeredSoil::radius_of_relative_stiffness(
+    const double flexural_rigidity) const
+  {
+    AssertThrow(flexural_rigidity > 0 && std::isfinite(flexural_rigidity),
+                ExcMessage("The flexural rigidity must be > 0."));
+    // log(D k^4 G(k)) at k = exp(-s), s = log(l): decreasing in s, from +inf
+    // (G ~ C1/k as k -> inf) to -inf (G bounded, or ~ C_b/k, as k -> 0).
+    const auto excess = [&](const double s) {
+      const double k = std::exp(-s);
+      return std::log(flexural_rigidity) - 4. * s +
+             std::log(profile.surface_compliance(k));
+    };
+    // The top layer's own half-space radius as the first guess.
+    const SoilLayer &top = profile.layers.front();
+    const double     guess =
+      std::log(flexural_rigidity * 2. *
+               (1. - top.poissons_ratio * top.poissons_ratio) /
+               top.youngs_modulus) /
+      3.;
+    std::uintmax_t iterations = 200;
+    const auto     bracket    = boost::math::tools::bracket_and_solve_root(
+      excess,
+      guess,
+      2.,
+      false,
+      boost::math::tools::eps_tolerance<double>(40),
+      iterations);
+    AssertThrow(iterations < 200,
+                ExcMessage("The radius of relative stiffness on the layered "
+                           "soil was not found."));
+    return std::exp(0.5 * (bracket.first + bracket.second));
+  }
+
   std::string
   LayeredSoil::kernel_report() const
   {
@@ -319,7 +383,8 @@ namespace PlateOnHalfspace
     report << "Layered soil: kernel tabulated on " << table->n_knots()
            << " knots up to r = " << table->range()
            << ", error <= " << std::max(table->error(), 1e-16)
-           << " of alpha1/r + |R(r)| (tolerance " << kernel_tolerance << ")";
+           << " of alpha1/r + |R(r)| (tolerance " << kernel_tolerance << ") in "
+           << table_seconds << " s";
     return report.str();
   }
 } // namespace PlateOnHalfspace

@@ -26,6 +26,7 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/special_functions/bessel.hpp>
 
+#include <plate_on_halfspace/soil/dense_liquid.h>
 #include <plate_on_halfspace/soil/layered_soil.h>
 
 #include <algorithm>
@@ -173,6 +174,12 @@ main()
     check_below("own material: |R(r)| / (alpha / r)", largest, 1e-10);
 
     const double a = 0.2, p = 600.;
+    const double D = 2.5e4;
+    check("own material: radius of relative stiffness -> the half-space's",
+          LayeredSoil(profile, 8).radius_of_relative_stiffness(D),
+          std::cbrt(2. * D * (1. - nu * nu) / E),
+          1e-9);
+
     check("own material: circle's centre settlement",
           settlement_under_uniform_circle(profile, a, p, 0.),
           2. * (1. - nu * nu) * p * a / E,
@@ -206,6 +213,15 @@ main()
           thin.surface_compliance(1e-3 / h) * E_oed / h,
           1.,
           1e-6);
+
+    // The radius of relative stiffness of a plate (l about 1 m, 100 h) on
+    // the layer: Westergaard's on the dense liquid k = E_oed / h.
+    const double D = 1e4;
+    check("thin layer on a rough rigid base: radius of relative stiffness "
+          "-> the dense liquid's",
+          LayeredSoil(thin, 8).radius_of_relative_stiffness(D),
+          DenseLiquidSoil(E_oed / h).radius_of_relative_stiffness(D),
+          1e-3);
   }
 
   {

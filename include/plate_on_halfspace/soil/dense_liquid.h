@@ -33,6 +33,9 @@ namespace PlateOnHalfspace
     largest_goal_estimate() const override;
 
     double
+    radius_of_relative_stiffness(const double flexural_rigidity) const override;
+
+    double
     subgrade_modulus() const
     {
       return modulus;

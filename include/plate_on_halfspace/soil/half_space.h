@@ -25,6 +25,9 @@ namespace PlateOnHalfspace
     double
     typical_settlement(const double force, const double area) const override;
 
+    double
+    radius_of_relative_stiffness(const double flexural_rigidity) const override;
+
   private:
     const double alpha;
   };

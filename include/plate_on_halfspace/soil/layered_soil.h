@@ -86,6 +86,10 @@ namespace PlateOnHalfspace
     double
     typical_settlement(const double force, const double area) const override;
 
+    /** Where D k^4 G(k) = 1, G the profile's surface compliance. */
+    double
+    radius_of_relative_stiffness(const double flexural_rigidity) const override;
+
     const LayeredProfile &
     get_profile() const
     {
@@ -93,8 +97,8 @@ namespace PlateOnHalfspace
     }
 
     /**
-     * What the last tabulation achieved, for the log: knots, range and
-     * error; empty before the first kernel().
+     * What the last tabulation achieved, for the log: knots, range, error
+     * and wall time; empty before the first kernel().
      */
     std::string
     kernel_report() const override;
@@ -103,6 +107,8 @@ namespace PlateOnHalfspace
     const LayeredProfile                                     profile;
     mutable std::shared_ptr<const TabulatedLayeredRemainder> table;
     mutable std::mutex                                       table_mutex;
+    /** Wall seconds the last tabulation took. */
+    mutable double table_seconds = 0;
   };
 } // namespace PlateOnHalfspace
 

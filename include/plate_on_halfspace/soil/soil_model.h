@@ -105,6 +105,16 @@ namespace PlateOnHalfspace
     largest_goal_estimate() const = 0;
 
     /**
+     * The radius of relative stiffness of a plate of flexural rigidity
+     * @p flexural_rigidity on this soil: the length l at which the plate's
+     * bending stiffness D k^4 equals the soil's 1/G(k), k = 1/l
+     * (doc/soil-models.md, "Radius of relative stiffness"); (D/k)^(1/4) on
+     * a dense liquid, (2 D (1 - nu0^2)/E0)^(1/3) on a half-space.
+     */
+    virtual double
+    radius_of_relative_stiffness(const double flexural_rigidity) const = 0;
+
+    /**
      * How accurately the model's kernel is known, for the log: empty where
      * it is exact (the half-space, the dense liquid); a layered soil's
      * tabulation states its knots, range and error.

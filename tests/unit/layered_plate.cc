@@ -1,0 +1,132 @@
+// Plates on a layered soil (doc/soil-models.md), through the whole program:
+//  - a flexible disk under a uniform pressure p on a clay layer over
+//    bedrock settles like the soil under p on the disk's circle alone,
+//    the kernel's Hankel integral (settlement_under_uniform_circle,
+//    layered_profile.h), in its middle: the plate (radius of relative
+//    stiffness l about a/60) resists only the settlement profile's
+//    curvature (measured 5.5e-6 relative at the centre; tolerance 1e-4);
+//  - a tensionless weightless slab on a base layer over the subgrade,
+//    loaded at its middle so that part of it lifts, ends with exact
+//    complementarity (no tensile pressure, no penetration, the contact
+//    force equal to the load) on the dense storage, and to the iterative
+//    solver's tolerance on the hierarchical one, whose answers agree.
+// A near-rigid disk on such a layer is compared with an axisymmetric finite
+// element model in tests/unit/layered_kernel_fem.cc.
+
+#include <plate_on_halfspace/soil/layered_profile.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "../tests.h"
+
+#include "../test_tools.h"
+
+namespace
+{
+  using namespace PlateOnHalfspace;
+
+  std::string
+  flexible_disk_scene(const unsigned int cycles)
+  {
+    std::ostringstream prm;
+    prm << "set Output directory = results\n"
+        << "subsection Plate\n set Shape = disk\n set Radius = 2\n"
+        << " set Thickness = 0.02\n set Young's modulus = 3e5\n"
+        << " set Poisson's ratio = 0.3\nend\n"
+        << "subsection Foundation\n set Model = layered\n"
+        << " set Layers = 2, 1e4, 0.3\n set Base = rigid\n"
+        << " set Contact = bonded\nend\n"
+        << "subsection Loads\n set Uniform pressure = 100\nend\n"
+        << "subsection Discretization\n set Initial refinements = 2\n"
+        << " set Symmetry = xy\nend\n"
+        << "subsection Adaptivity\n set Cycles = " << cycles
+        << "\n set Refinement = adaptive\n set Refine fraction = 0.3\nend\n"
+        << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n";
+    return prm.str();
+  }
+
+  std::string
+  lifting_slab_scene(const std::string &storage)
+  {
+    std::ostringstream prm;
+    prm << "set Output directory = results\n"
+        << "subsection Plate\n set Length x = 4\n set Length y = 3\n"
+        << " set Thickness = 0.25\n set Young's modulus = 3e7\n"
+        << " set Poisson's ratio = 0.15\nend\n"
+        << "subsection Foundation\n set Model = layered\n"
+        << " set Layers = 0.3, 4e5, 0.3\n set Young's modulus = 5e4\n"
+        << " set Poisson's ratio = 0.4\n set Contact = tensionless\nend\n"
+        << "subsection Loads\n set Circular patches = 0,0,0.15,700\nend\n"
+        << "subsection Discretization\n set Subdivisions x = 8\n"
+        << " set Subdivisions y = 6\n set Initial refinements = 2\n"
+        << " set Symmetry = none\nend\n"
+        << "subsection Foundation operator\n set Storage = " << storage
+        << "\n set Tolerance = 1e-8\nend\n"
+        << "subsection Contact\n set Method = active set\nend\n"
+        << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n";
+    return prm.str();
+  }
+} // namespace
+
+int
+main()
+{
+  initlog();
+
+  {
+    LayeredProfile clay;
+    clay.layers    = {{2., 1e4, 0.3}};
+    clay.base      = LayeredProfile::Base::rigid;
+    const double a = 2., p = 100.;
+    const auto   run = TestTools::run_scene_text(flexible_disk_scene(3));
+    for (const double r : {0., 0.5 * a})
+      {
+        std::ostringstream name;
+        name << "flexible disk on clay over bedrock: w(" << r / a
+             << " a) against the soil under p on the circle";
+        check(name.str(),
+              run->values_at(Point<2>(r, 0)).w,
+              settlement_under_uniform_circle(clay, a, p, r),
+              1e-4);
+      }
+  }
+
+  {
+    const auto dense = TestTools::run_scene_text(lifting_slab_scene("dense"));
+    const auto hierarchical =
+      TestTools::run_scene_text(lifting_slab_scene("hierarchical"));
+    for (const auto *run : {dense.get(), hierarchical.get()})
+      {
+        const CycleSummary &s = run->summaries().back();
+        // The hierarchical storage's iterative solver meets the contact
+        // conditions to its own tolerance
+        // (tests/unit/iterative_contact_solver).
+        const double      conditions = run == dense.get() ? 1e-10 : 1e-8;
+        const std::string name =
+          std::string("lifting slab, ") +
+          (run == dense.get() ? "dense" : "hierarchical");
+        check_below(name + ": complementarity violation (relative)",
+                    s.complementarity_violation,
+                    conditions);
+        check_below(name + ": tensile nodes", s.tensile_nodes, 0.5);
+        check_below(name + ": penetration (relative)",
+                    s.max_penetration,
+                    conditions);
+        check(name + ": contact force", s.contact_force, s.applied_load, 1e-9);
+        check_below(name + ": contact area fraction below 1 (it lifts)",
+                    s.contact_area_fraction,
+                    0.99);
+      }
+    const Point<2> middle(0, 0), corner(2, 1.5);
+    check("lifting slab: hierarchical against dense, w(0)",
+          hierarchical->values_at(middle).w,
+          dense->values_at(middle).w,
+          1e-6);
+    check("lifting slab: hierarchical against dense, w(corner)",
+          hierarchical->values_at(corner).w,
+          dense->values_at(corner).w,
+          1e-5);
+  }
+}
