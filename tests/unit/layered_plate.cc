@@ -10,12 +10,25 @@
 //    complementarity (no tensile pressure, no penetration, the contact
 //    force equal to the load) on the dense storage, and to the iterative
 //    solver's tolerance on the hierarchical one, whose answers agree.
+//  - goal refinement for the corner settlement of a 6 x 3 plate far more
+//    flexible than the soil (tests/unit/goal_oriented_refinement on two
+//    layers over bedrock): the estimate against the true error on every
+//    cycle, the exact settlement being the top layer's closed form for the
+//    rectangle plus the tabulated remainder (checked in
+//    tests/unit/layered_soil) integrated in polar coordinates about the
+//    corner by adaptive Gauss-Kronrod.
 // A near-rigid disk on such a layer is compared with an axisymmetric finite
 // element model in tests/unit/layered_kernel_fem.cc.
 
+#include <deal.II/base/numbers.h>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+
 #include <plate_on_halfspace/soil/layered_profile.h>
+#include <plate_on_halfspace/soil/layered_soil.h>
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <string>
 
@@ -67,6 +80,70 @@ namespace
         << "subsection Contact\n set Method = active set\nend\n"
         << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n";
     return prm.str();
+  }
+
+  /** Two layers over bedrock under the goal test's plate. */
+  LayeredProfile
+  goal_soil()
+  {
+    LayeredProfile soil;
+    soil.layers = {{1., 2e5, 0.3}, {3., 5e4, 0.35}};
+    soil.base   = LayeredProfile::Base::rigid;
+    return soil;
+  }
+
+  /** The settlement at the corner of the a x b rectangle under p. */
+  double
+  corner_settlement(const LayeredProfile &soil,
+                    const double          a,
+                    const double          b,
+                    const double          p)
+  {
+    const SoilLayer &top   = soil.layers.front();
+    const double     alpha = (1. - top.poissons_ratio * top.poissons_ratio) /
+                         (numbers::PI * top.youngs_modulus);
+    const double d = std::hypot(a, b);
+    const double singular =
+      alpha * (a * std::log((b + d) / a) + b * std::log((a + d) / b));
+    const TabulatedLayeredRemainder remainder(soil, 1.1 * d, 1e-10);
+    using Rule = boost::math::quadrature::gauss_kronrod<double, 31>;
+    // Over the angle, the ray from the corner to the far edge x = a
+    // (theta < atan(b/a)) or y = b.
+    const auto ray = [&](const double theta) {
+      const double length = std::min(a / std::cos(theta), b / std::sin(theta));
+      return Rule::integrate(
+        [&](const double rho) { return remainder.value(rho) * rho; },
+        0.,
+        length,
+        10,
+        1e-13);
+    };
+    const double corner_angle = std::atan2(b, a);
+    const double smooth =
+      Rule::integrate(ray, 0., corner_angle, 10, 1e-12) +
+      Rule::integrate(ray, corner_angle, 0.5 * numbers::PI, 10, 1e-12);
+    return p * (singular + smooth);
+  }
+
+  std::vector<CycleSummary>
+  goal_run()
+  {
+    std::ostringstream prm;
+    prm << "include " << SOURCE_DIR << "/../../parameters/flexible-square.prm\n"
+        << "set Output directory = results-goal\n"
+        << "subsection Plate\n set Length x = 6\n set Length y = 3\nend\n"
+        << "subsection Foundation\n set Model = layered\n"
+        << " set Layers = 1, 2e5, 0.3 ; 3, 5e4, 0.35\n set Base = rigid\n"
+        << "end\n"
+        << "subsection Discretization\n set Flexibility = galerkin\n"
+        << " set Subdivisions x = 6\n set Subdivisions y = 3\n"
+        << " set Initial refinements = 1\nend\n"
+        << "subsection Contact\n set Solver = direct\nend\n"
+        << "subsection Adaptivity\n set Refinement = goal\n"
+        << " set Goal = w at 3,1.5\n set Cycles = 4\nend\n"
+        << "subsection Output\n set Probe points = 0,0\n set Verbosity = 0\n"
+        << "end\nsubsection Verification\n set Checks =\nend\n";
+    return TestTools::run_scene_text(prm.str())->summaries();
   }
 } // namespace
 
@@ -128,5 +205,25 @@ main()
           hierarchical->values_at(corner).w,
           dense->values_at(corner).w,
           1e-5);
+  }
+
+  {
+    // The plate is [-3, 3] x [-1.5, 1.5]; its corner settles like the
+    // corner of a 6 x 3 rectangle.
+    const double exact = corner_settlement(goal_soil(), 6., 3., 100.);
+    for (const CycleSummary &c : goal_run())
+      {
+        const double       error = exact - c.goal.value;
+        std::ostringstream name;
+        name << "goal w at the corner on layers, cycle " << c.cycle;
+        check(name.str() + ": estimate / |true error|",
+              c.goal.estimated_error / std::abs(error),
+              1.,
+              0.1);
+        check(name.str() + ": signed residual / true error",
+              c.goal.dwr / error,
+              1.,
+              0.1);
+      }
   }
 }
