@@ -30,9 +30,9 @@ namespace PlateOnHalfspace
     std::ostream          &log)
     : parameters(parameters)
     , log(log)
-    , soil(create_soil_model(parameters))
     , communicator(Utilities::MPI::job_supports_mpi() ? MPI_COMM_WORLD :
                                                         MPI_COMM_SELF)
+    , soil(create_soil_model(parameters))
     , timer_output(log, TimerOutput::never, TimerOutput::wall_times)
   {}
 

@@ -1,4 +1,5 @@
 #include <deal.II/base/multithread_info.h>
+#include <deal.II/base/parallel.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/thread_management.h>
 
@@ -170,14 +171,16 @@ namespace PlateOnHalfspace
                                         const Table             &inner,
                                         FullMatrix<double>      &block,
                                         const std::vector<bool> &rows,
-                                        const std::vector<bool> &columns) const
+                                        const std::vector<bool> &columns,
+                                        const SurfaceKernel     &kernel) const
   {
     const unsigned int n_p = outer.x.size(), n_q = inner.x.size();
     const unsigned int na = outer.n_functions, nb = inner.n_functions;
-    // G(p, q) = 1 / |x_p - y_q| (at most 25 x 25 points); a plain loop
-    // over flat arrays, which the compiler vectorises.
+    // G(p, q) = alpha / |x_p - y_q| (at most 25 x 25 points); a plain loop
+    // over flat arrays, which the compiler vectorises; then the remainder.
     std::array<double, 625> G;
     Assert(n_p * n_q <= G.size(), ExcInternalError());
+    const double alpha = kernel.alpha;
     for (unsigned int p = 0; p < n_p; ++p)
       {
         const double  xp = outer.x[p], yp = outer.y[p];
@@ -185,8 +188,22 @@ namespace PlateOnHalfspace
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const double dx = xp - inner.x[q], dy = yp - inner.y[q];
-            g[q] = 1. / std::sqrt(dx * dx + dy * dy);
+            g[q] = alpha / std::sqrt(dx * dx + dy * dy);
           }
+      }
+    if (kernel.remainder)
+      {
+        std::array<double, 625> squared;
+        for (unsigned int p = 0; p < n_p; ++p)
+          {
+            const double xp = outer.x[p], yp = outer.y[p];
+            for (unsigned int q = 0; q < n_q; ++q)
+              {
+                const double dx = xp - inner.x[q], dy = yp - inner.y[q];
+                squared[p * n_q + q] = dx * dx + dy * dy;
+              }
+          }
+        kernel.remainder->add_values(squared.data(), G.data(), n_p * n_q);
       }
     std::array<unsigned int, 9> a_list, b_list;
     unsigned int                n_a = 0, n_b = 0;
@@ -324,8 +341,46 @@ namespace PlateOnHalfspace
 
   void
   CellPairIntegrator::integrate_singular_pairs(
-    const std::vector<std::pair<unsigned int, unsigned int>> &pairs) const
+    const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
+    const SmoothRadialFunction                               *remainder) const
   {
+    if (remainder)
+      {
+        // Each new size of configuration from its first pair, as below.
+        std::vector<std::pair<unsigned int, unsigned int>> representatives;
+        {
+          std::set<std::array<long long, 17>> seen;
+          const std::lock_guard<std::mutex>   lock(singular_cache_mutex);
+          AssertThrow(smooth_cache_function == nullptr ||
+                        smooth_cache_function == remainder,
+                      ExcMessage("One smooth kernel per CellPairIntegrator."));
+          smooth_cache_function = remainder;
+          for (const auto &pair : pairs)
+            {
+              const auto key =
+                smooth_configuration(pair.first, pair.second, *remainder);
+              if (smooth_cache.count(key) == 0 && seen.insert(key).second)
+                representatives.push_back(pair);
+            }
+        }
+        std::vector<FullMatrix<double>> blocks(representatives.size());
+        parallel::apply_to_subranges(
+          std::size_t(0),
+          representatives.size(),
+          [&](const std::size_t begin, const std::size_t end) {
+            for (std::size_t p = begin; p < end; ++p)
+              blocks[p] = integrate_smooth(representatives[p].first,
+                                           representatives[p].second,
+                                           *remainder);
+          },
+          1);
+        const std::lock_guard<std::mutex> lock(singular_cache_mutex);
+        for (std::size_t p = 0; p < representatives.size(); ++p)
+          smooth_cache.emplace(smooth_configuration(representatives[p].first,
+                                                    representatives[p].second,
+                                                    *remainder),
+                               std::move(blocks[p]));
+      }
     // The first pair of each new configuration, in the order given, so
     // that the cache does not depend on which thread finishes first.
     std::vector<std::pair<unsigned int, unsigned int>> representatives;
@@ -424,13 +479,28 @@ namespace PlateOnHalfspace
     const std::vector<bool> &rows,
     const std::vector<bool> &columns) const
   {
+    integrate_kernel(k, l, SurfaceKernel(1.), block, rows, columns);
+  }
+
+  void
+  CellPairIntegrator::integrate_kernel(const unsigned int       k,
+                                       const unsigned int       l,
+                                       const SurfaceKernel     &kernel,
+                                       FullMatrix<double>      &block,
+                                       const std::vector<bool> &rows,
+                                       const std::vector<bool> &columns) const
+  {
     const CellData &dk = cell_data[k], &dl = cell_data[l];
     block.reinit(dk.nodes.size(), dl.nodes.size());
     if (singular_pair(k, l))
       {
-        // to the node shape functions: block = T_k B T_l^T
-        const FullMatrix<double> &q2_block = singular_q2_block(k, l);
-        const double       scale = dk.diameter * dk.diameter * dk.diameter;
+        // B = alpha (1/r block) + (R block) in the Q2 basis, then to the
+        // node shape functions: block = T_k B T_l^T
+        FullMatrix<double> q2_block(9, 9);
+        q2_block.add(kernel.alpha * dk.diameter * dk.diameter * dk.diameter,
+                     singular_q2_block(k, l));
+        if (kernel.remainder)
+          q2_block.add(1., smooth_q2_block(k, l, *kernel.remainder));
         FullMatrix<double> right(9, dl.nodes.size()); // B T_l^T
         for (unsigned int i = 0; i < 9; ++i)
           for (unsigned int b = 0; b < dl.nodes.size(); ++b)
@@ -438,7 +508,7 @@ namespace PlateOnHalfspace
               double sum = 0;
               for (unsigned int j = 0; j < 9; ++j)
                 sum += q2_block(i, j) * dl.node_from_q2(b, j);
-              right(i, b) = sum * scale;
+              right(i, b) = sum;
             }
         for (unsigned int a = 0; a < dk.nodes.size(); ++a)
           for (unsigned int b = 0; b < dl.nodes.size(); ++b)
@@ -458,22 +528,33 @@ namespace PlateOnHalfspace
     const double       rounded = std::round(separation * 1e6) * 1e-6;
     const unsigned int rule    = (rounded < 2.5 ? 2 : rounded < 20 ? 1 : 0);
     if (rule < n_stored_rules)
-      integrate_regular(dk.tables[rule], dl.tables[rule], block, rows, columns);
+      integrate_regular(
+        dk.tables[rule], dl.tables[rule], block, rows, columns, kernel);
     else
       integrate_regular(make_table(k, rules[rule]),
                         make_table(l, rules[rule]),
                         block,
                         rows,
-                        columns);
+                        columns,
+                        kernel);
   }
 
-  void
-  CellPairIntegrator::add_smooth_kernel(const unsigned int          k,
-                                        const unsigned int          l,
-                                        const SmoothRadialFunction &R,
-                                        FullMatrix<double>         &block,
-                                        const std::vector<bool>    &rows,
-                                        const std::vector<bool> &columns) const
+  std::array<long long, 17>
+  CellPairIntegrator::smooth_configuration(const unsigned int          k,
+                                           const unsigned int          l,
+                                           const SmoothRadialFunction &R) const
+  {
+    const auto                key = configuration(k, l);
+    std::array<long long, 17> sized;
+    std::copy(key.begin(), key.end(), sized.begin());
+    sized[16] = std::llround(cell_data[k].diameter / R.length_scale() * 1e9);
+    return sized;
+  }
+
+  FullMatrix<double>
+  CellPairIntegrator::integrate_smooth(const unsigned int          k,
+                                       const unsigned int          l,
+                                       const SmoothRadialFunction &R) const
   {
     const CellData    &dk = cell_data[k], &dl = cell_data[l];
     const double       H          = std::max(dk.diameter, dl.diameter);
@@ -482,34 +563,70 @@ namespace PlateOnHalfspace
                                          0.5 * (dk.diameter + dl.diameter));
     const unsigned int order      = static_cast<unsigned int>(
       std::min(12., 3. + std::floor(3. * H / (R.length_scale() + separation))));
-    // The 3-point tables are kept (rules[1]); other orders are made here.
-    const bool   stored    = order == 3;
-    const Table  outer     = stored ? Table() : make_table(k, QGauss<2>(order));
-    const Table  inner     = stored ? Table() : make_table(l, QGauss<2>(order));
-    const Table &U         = stored ? dk.tables[1] : outer;
-    const Table &V         = stored ? dl.tables[1] : inner;
-    const unsigned int n_p = U.x.size(), n_q = V.x.size();
-    const unsigned int na = U.n_functions, nb = V.n_functions;
-    // s(q, a) = sum_p U(p, a) R(|x_p - y_q|), then block(a, b) += sum_q
-    // s(q, a) V(q, b).
-    std::vector<double> s(std::size_t(n_q) * na, 0.);
-    for (unsigned int p = 0; p < n_p; ++p)
-      for (unsigned int q = 0; q < n_q; ++q)
+    const QGauss<2> rule(order);
+    // Points relative to k's first vertex, so that congruent pairs see the
+    // same distances up to rounding.
+    const Point<2> origin = cells[k].geometry.get_vertices()[0];
+    struct Points
+    {
+      std::vector<Point<2>>              x;
+      std::vector<std::array<double, 9>> weighted_phi;
+    };
+    const auto tabulate = [&](const unsigned int c) {
+      Points points;
+      for (unsigned int q = 0; q < rule.size(); ++q)
         {
-          const double r      = std::hypot(U.x[p] - V.x[q], U.y[p] - V.y[q]);
-          const double kernel = R.value(r);
-          for (unsigned int a = 0; a < na; ++a)
-            s[q * na + a] += kernel * U.weighted_values[p * na + a];
+          const Point<2> &p = rule.point(q);
+          const double    JxW =
+            rule.weight(q) * cells[c].geometry.jacobian_determinant(p);
+          points.x.emplace_back(cells[c].geometry.map(p) - origin);
+          auto phi = q2_shape_values(p);
+          for (double &v : phi)
+            v *= JxW;
+          points.weighted_phi.push_back(phi);
         }
-    for (unsigned int a = 0; a < na; ++a)
-      if (rows.empty() || rows[a])
-        for (unsigned int b = 0; b < nb; ++b)
-          if (columns.empty() || columns[b])
-            {
-              double sum = 0;
-              for (unsigned int q = 0; q < n_q; ++q)
-                sum += s[q * na + a] * V.weighted_values[q * nb + b];
-              block(a, b) += sum;
-            }
+      return points;
+    };
+    const Points U = tabulate(k), V = tabulate(l);
+    // s(q, i) = sum_p U(p, i) R(|x_p - y_q|), then B(i, j) = sum_q s(q, i)
+    // V(q, j).
+    std::vector<std::array<double, 9>> s(V.x.size());
+    for (unsigned int q = 0; q < V.x.size(); ++q)
+      {
+        s[q].fill(0.);
+        for (unsigned int p = 0; p < U.x.size(); ++p)
+          {
+            const double kernel = R.value(U.x[p].distance(V.x[q]));
+            for (unsigned int i = 0; i < 9; ++i)
+              s[q][i] += kernel * U.weighted_phi[p][i];
+          }
+      }
+    FullMatrix<double> block(9, 9);
+    for (unsigned int q = 0; q < V.x.size(); ++q)
+      for (unsigned int i = 0; i < 9; ++i)
+        for (unsigned int j = 0; j < 9; ++j)
+          block(i, j) += s[q][i] * V.weighted_phi[q][j];
+    return block;
+  }
+
+  const FullMatrix<double> &
+  CellPairIntegrator::smooth_q2_block(const unsigned int          k,
+                                      const unsigned int          l,
+                                      const SmoothRadialFunction &R) const
+  {
+    const auto key = smooth_configuration(k, l, R);
+    {
+      const std::lock_guard<std::mutex> lock(singular_cache_mutex);
+      AssertThrow(smooth_cache_function == nullptr ||
+                    smooth_cache_function == &R,
+                  ExcMessage("One smooth kernel per CellPairIntegrator."));
+      smooth_cache_function = &R;
+      const auto found      = smooth_cache.find(key);
+      if (found != smooth_cache.end())
+        return found->second;
+    }
+    FullMatrix<double>                block = integrate_smooth(k, l, R);
+    const std::lock_guard<std::mutex> lock(singular_cache_mutex);
+    return smooth_cache.emplace(key, std::move(block)).first->second;
   }
 } // namespace PlateOnHalfspace

@@ -220,7 +220,7 @@ namespace PlateOnHalfspace
         for (const auto &[other, r] : candidates)
           pairs.emplace_back(first, r * n_computed + other);
       }
-    integrator->integrate_singular_pairs(pairs);
+    integrator->integrate_singular_pairs(pairs, kernel.remainder.get());
   }
 
   bool
@@ -256,11 +256,7 @@ namespace PlateOnHalfspace
     const std::vector<bool> &a_mask = self_image ? std::vector<bool>() : rows;
     const std::vector<bool> &b_mask =
       self_image ? std::vector<bool>() : columns;
-    integrator->integrate_inverse_distance(first, image, block, a_mask, b_mask);
-    block *= kernel.alpha;
-    if (kernel.remainder)
-      integrator->add_smooth_kernel(
-        first, image, *kernel.remainder, block, a_mask, b_mask);
+    integrator->integrate_kernel(first, image, kernel, block, a_mask, b_mask);
     if (self_image)
       symmetrise_self_image_block(*cell_nodes[first],
                                   *cell_nodes[image],

@@ -119,23 +119,12 @@ namespace PlateOnHalfspace
       return sum;
     }
 
-    /** ∫_cell q_h(y) / |x - y| dy. */
+    /** ∫_cell q_h(y) / |x - y| dy for x near the cell. */
     double
-    inverse_distance_integral(const PressureCell &cell,
-                              const Point<2>     &x,
-                              const QDuffy       &duffy)
+    near_inverse_distance_integral(const PressureCell &cell,
+                                   const Point<2>     &x,
+                                   const QDuffy       &duffy)
     {
-      const double distance = x.distance(cell.centre) / cell.diameter;
-      if (distance >= 1.5)
-        {
-          const GaussTable &table = cell.gauss[distance < 2.5 ? 2 :
-                                               distance < 20  ? 1 :
-                                                                0];
-          double            sum   = 0;
-          for (unsigned int q = 0; q < table.points.size(); ++q)
-            sum += table.weighted_pressure[q] / x.distance(table.points[q]);
-          return sum;
-        }
       // q_h(y) = (q_h(y) - q_h(split)) + q_h(split): the first part over
       // r is bounded (Duffy rule split at x's reference point, clamped
       // onto the cell), the second is exact (polygon integral).
@@ -156,6 +145,43 @@ namespace PlateOnHalfspace
                  (pressure_at(cell, y) - q_split) / r;
         }
       return sum;
+    }
+
+    /**
+     * ∫_cell q_h(y) K(|x - y|) dy for the kernel K(r) = alpha / r + R(r):
+     * from 1.5 cell diameters on, the whole kernel on the Gauss rule 1/r
+     * gets at that distance, which resolves R as well (doc/soil-models.md,
+     * "How the storages use it"); nearer, the singular 1/r rule and R's
+     * own rule.
+     */
+    double
+    kernel_integral(const PressureCell  &cell,
+                    const Point<2>      &x,
+                    const QDuffy        &duffy,
+                    const SurfaceKernel &kernel)
+    {
+      const double distance = x.distance(cell.centre) / cell.diameter;
+      if (distance >= 1.5)
+        {
+          const GaussTable &table = cell.gauss[distance < 2.5 ? 2 :
+                                               distance < 20  ? 1 :
+                                                                0];
+          double            sum = 0, smooth = 0;
+          for (unsigned int q = 0; q < table.points.size(); ++q)
+            {
+              const double r = x.distance(table.points[q]);
+              sum += table.weighted_pressure[q] / r;
+              if (kernel.remainder)
+                smooth +=
+                  table.weighted_pressure[q] * kernel.remainder->value(r);
+            }
+          return kernel.alpha * sum + smooth;
+        }
+      double integral =
+        kernel.alpha * near_inverse_distance_integral(cell, x, duffy);
+      if (kernel.remainder)
+        integral += smooth_integral(cell, x, *kernel.remainder);
+      return integral;
     }
   } // namespace
 
@@ -189,19 +215,15 @@ namespace PlateOnHalfspace
       [&](const unsigned int begin, const unsigned int end) {
         for (unsigned int p = begin; p < end; ++p)
           {
-            double sum = 0, smooth = 0;
+            double sum = 0;
             for (const auto &image : images)
               {
                 const Point<2> x(image[0] * points[p][0],
                                  image[1] * points[p][1]);
                 for (const PressureCell &cell : cells)
-                  {
-                    sum += inverse_distance_integral(cell, x, duffy);
-                    if (kernel.remainder)
-                      smooth += smooth_integral(cell, x, *kernel.remainder);
-                  }
+                  sum += kernel_integral(cell, x, duffy, kernel);
               }
-            settlement[p] = kernel.alpha * sum + smooth;
+            settlement[p] = sum;
           }
       },
       16);

@@ -89,11 +89,14 @@ namespace PlateOnHalfspace
      * configurations, in parallel, each new configuration from its first
      * pair in the list (so the result does not depend on the threads).
      * Callers that integrate pairs concurrently call this first. Shows its
-     * progress (ProgressReport, "Singular cell pairs").
+     * progress (ProgressReport, "Singular cell pairs"). With a smooth
+     * @p remainder (a layered soil's), its blocks of those pairs too
+     * (smooth_q2_block()).
      */
     void
     integrate_singular_pairs(
-      const std::vector<std::pair<unsigned int, unsigned int>> &pairs) const;
+      const std::vector<std::pair<unsigned int, unsigned int>> &pairs,
+      const SmoothRadialFunction *remainder = nullptr) const;
 
     /**
      * block(a,b) = ∫_{cell k} ∫_{cell l} psi_a(x) psi_b(y) / |x - y| dy dx,
@@ -119,21 +122,23 @@ namespace PlateOnHalfspace
                                const std::vector<bool> &columns) const;
 
     /**
-     * block(a, b) += ∫_{cell k} ∫_{cell l} psi_a(x) psi_b(y) R(|x - y|) dy
-     * dx for a smooth @p R (a layered soil's remainder, soil/
-     * layered_soil.h), only the entries of @p rows and @p columns (empty:
-     * all). Tensor Gauss rules of 3 + 3 H / (l + d) points per direction
-     * (at most 12), H the larger diameter, d the cells' separation and l
-     * R's length scale: a rule of that order resolves a function analytic
-     * in a strip of half-width l to about 1e-9 over a cell.
+     * block(a,b) = ∫_{cell k} ∫_{cell l} psi_a(x) psi_b(y) K(|x - y|) dy dx
+     * for the kernel K(r) = alpha / r + R(r) of a soil (SurfaceKernel),
+     * only the entries of @p rows and @p columns (empty: all). Singular
+     * pairs take alpha times their 1/r rules and R by add_smooth_kernel();
+     * separated pairs integrate the whole kernel on the Gauss rule that
+     * 1/r picks. That rule suffices for R: R is analytic within a distance
+     * of about the top layer's thickness of the real axis as well as at
+     * r = 0, so at a distance d it varies over no less than d, as 1/r does
+     * (doc/soil-models.md, "How the storages use it").
      */
     void
-    add_smooth_kernel(const unsigned int          k,
-                      const unsigned int          l,
-                      const SmoothRadialFunction &R,
-                      FullMatrix<double>         &block,
-                      const std::vector<bool>    &rows,
-                      const std::vector<bool>    &columns) const;
+    integrate_kernel(const unsigned int       k,
+                     const unsigned int       l,
+                     const SurfaceKernel     &kernel,
+                     FullMatrix<double>      &block,
+                     const std::vector<bool> &rows,
+                     const std::vector<bool> &columns) const;
 
   private:
     /**
@@ -184,12 +189,14 @@ namespace PlateOnHalfspace
     bool
     touching(const unsigned int k, const unsigned int l) const;
 
+    /** The separated pair's block of @p kernel on the tables' rule. */
     void
     integrate_regular(const Table             &outer,
                       const Table             &inner,
                       FullMatrix<double>      &block,
                       const std::vector<bool> &rows,
-                      const std::vector<bool> &columns) const;
+                      const std::vector<bool> &columns,
+                      const SurfaceKernel     &kernel) const;
 
     /**
      * The singular pair (k, l) in the Q2 basis of the two cells (9 x 9,
@@ -221,6 +228,33 @@ namespace PlateOnHalfspace
     std::array<long long, 16>
     configuration(const unsigned int k, const unsigned int l) const;
 
+    /** configuration() and k's diameter over @p R's length scale, rounded
+     *  to 1e-9: R is invariant under translation only. */
+    std::array<long long, 17>
+    smooth_configuration(const unsigned int          k,
+                         const unsigned int          l,
+                         const SmoothRadialFunction &R) const;
+
+    /**
+     * ∫_{cell k} ∫_{cell l} phi_i(x) phi_j(y) R(|x - y|) dy dx in the Q2
+     * basis (9 x 9) for a smooth @p R (a layered soil's remainder, soil/
+     * layered_soil.h): tensor Gauss rules of 3 + 3 H / (l + d) points per
+     * direction (at most 12), H the larger diameter, d the cells'
+     * separation and l R's length scale. A rule of that order resolves a
+     * function analytic in a strip of half-width l to about 1e-9 over a
+     * cell.
+     */
+    FullMatrix<double>
+    integrate_smooth(const unsigned int          k,
+                     const unsigned int          l,
+                     const SmoothRadialFunction &R) const;
+
+    /** integrate_smooth() by smooth_configuration(), cached. */
+    const FullMatrix<double> &
+    smooth_q2_block(const unsigned int          k,
+                    const unsigned int          l,
+                    const SmoothRadialFunction &R) const;
+
     const std::vector<FoundationSpace::Cell> &cells;
     const unsigned int                        singular_order;
     /** Gauss rules of 2, 3 and 5 points per direction, then the graded
@@ -240,8 +274,13 @@ namespace PlateOnHalfspace
      * cache of what is integrated, filled from concurrent callers.
      */
     mutable std::map<std::array<long long, 16>, FullMatrix<double>>
-                       singular_cache;
-    mutable std::mutex singular_cache_mutex;
+      singular_cache;
+    /** The R blocks of singular pairs by smooth_configuration(), for the
+     *  one R this integrator is used with; under the same mutex. */
+    mutable std::map<std::array<long long, 17>, FullMatrix<double>>
+                                        smooth_cache;
+    mutable const SmoothRadialFunction *smooth_cache_function = nullptr;
+    mutable std::mutex                  singular_cache_mutex;
   };
 } // namespace PlateOnHalfspace
 

@@ -43,6 +43,11 @@ namespace PlateOnHalfspace
     double
     value(const double r) const override;
 
+    void
+    add_values(const double      *squared_distances,
+               double            *values,
+               const unsigned int n) const override;
+
     /** The top layer's thickness h1. */
     double
     length_scale() const override;

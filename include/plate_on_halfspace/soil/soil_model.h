@@ -19,6 +19,7 @@
 #include <plate_on_halfspace/plate/foundation_space.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +37,20 @@ namespace PlateOnHalfspace
     /** The value at distance @p r, 0 <= r <= the range it was made for. */
     virtual double
     value(const double r) const = 0;
+
+    /**
+     * values[i] += value(sqrt(squared_distances[i])) for i < n: one call
+     * per cell pair of the operator's integration, whose inner loop this is
+     * (a variant may evaluate faster in bulk).
+     */
+    virtual void
+    add_values(const double      *squared_distances,
+               double            *values,
+               const unsigned int n) const
+    {
+      for (unsigned int i = 0; i < n; ++i)
+        values[i] += value(std::sqrt(squared_distances[i]));
+    }
 
     /**
      * The shortest length over which the function changes appreciably: a
