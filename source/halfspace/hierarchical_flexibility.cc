@@ -397,6 +397,35 @@ namespace PlateOnHalfspace
                 ExcMessage("HierarchicalFlexibility::factorize before "
                            "build(), or of a block off the diagonal."));
     const Timer timer;
+    // The factor only preconditions conjugate gradients, whose answer
+    // does not depend on it: recompress it more coarsely than A (first the
+    // copy, then every update of the factorisation). At n = 4961 a factor
+    // at 1e-3 instead of 1e-6 took a quarter of the time and the same CG
+    // iterations (388 against 389, benchmarks/hierarchical_scaling.py).
+    // A flexibility whose spectrum spans more (stiff thin layers over a
+    // soft soil, doc/soil-models.md) may lose its positive definiteness at
+    // that accuracy: then the factor is made again 100 times finer, down
+    // to the compression's own tolerance.
+    for (double factor_tolerance =
+           std::max(settings.tolerance, settings.factor_tolerance);
+         ;
+         factor_tolerance =
+           std::max(settings.tolerance, 1e-2 * factor_tolerance))
+      {
+        const std::string failure = try_factorize(factor_tolerance);
+        if (failure.empty())
+          {
+            used_factor_tolerance = factor_tolerance;
+            break;
+          }
+        AssertThrow(factor_tolerance > settings.tolerance, ExcMessage(failure));
+      }
+    times.factorization = timer.wall_time();
+  }
+
+  std::string
+  HierarchicalFlexibility::try_factorize(const double factor_tolerance)
+  {
     if (factor != nullptr)
       hmat().destroy(factor);
     // hmat-oss factorises in place; the product keeps the original.
@@ -404,13 +433,6 @@ namespace PlateOnHalfspace
     AssertThrow(factor != nullptr,
                 ExcMessage("Foundation operator/Storage = hierarchical: "
                            "hmat-oss could not copy the H-matrix."));
-    // The factor only preconditions conjugate gradients, whose answer
-    // does not depend on it: recompress it more coarsely than A (first the
-    // copy, then every update of the factorisation). At n = 4961 a factor
-    // at 1e-3 instead of 1e-6 took a quarter of the time and the same CG
-    // iterations (388 against 389, benchmarks/hierarchical_scaling.py).
-    const double factor_tolerance =
-      std::max(settings.tolerance, settings.factor_tolerance);
     hmat().set_low_rank_epsilon(factor, factor_tolerance);
     if (factor_tolerance > settings.tolerance)
       check_hmat(hmat().truncate(factor),
@@ -442,14 +464,13 @@ namespace PlateOnHalfspace
       {
         hmat().destroy(factor);
         factor = nullptr;
-        AssertThrow(false,
-                    ExcMessage("Foundation operator/Tolerance: the H-Cholesky "
-                               "factorisation of the compressed flexibility "
-                               "failed (hmat-oss status " +
-                               std::to_string(status) +
-                               "): at this tolerance the compressed matrix "
-                               "is not positive definite." +
-                               tolerance_advice));
+        return "Foundation operator/Tolerance: the H-Cholesky "
+               "factorisation of the compressed flexibility failed (hmat-oss "
+               "status " +
+               std::to_string(status) +
+               "): at this tolerance the compressed matrix is not positive "
+               "definite." +
+               tolerance_advice;
       }
 
     progress.finish();
@@ -472,14 +493,12 @@ namespace PlateOnHalfspace
       {
         hmat().destroy(factor);
         factor = nullptr;
-        AssertThrow(false,
-                    ExcMessage("Foundation operator/Tolerance: the H-Cholesky "
-                               "factor of the compressed flexibility solves "
-                               "a test system only to a relative residual "
-                               "of " +
-                               measured.str() + "." + tolerance_advice));
+        return "Foundation operator/Tolerance: the H-Cholesky factor of the "
+               "compressed flexibility solves a test system only to a "
+               "relative residual of " +
+               measured.str() + "." + tolerance_advice;
       }
-    times.factorization = timer.wall_time();
+    return {};
   }
 
   void

@@ -243,6 +243,24 @@ main()
       previous = errors.product;
     }
 
+  // A factor tolerance at which the factor is useless (every block
+  // recompressed to nothing): factorize() makes it again finer.
+  {
+    HierarchicalFlexibility::Settings settings;
+    settings.tolerance        = 1e-6;
+    settings.factor_tolerance = 1.;
+    HierarchicalFlexibility hierarchical(settings);
+    hierarchical.build(rectangle.space,
+                       rectangle.alpha,
+                       rectangle.singular_order);
+    hierarchical.factorize();
+    require("factor tolerance 1: the factor is made again finer",
+            hierarchical.factor_tolerance() < 1.);
+    require("factor tolerance 1: the final factor solves the test system "
+            "to 1e-2",
+            hierarchical.factorization_residual() <= 1e-2);
+  }
+
   // Failures: a clear message, no matrix.
   expect_failure("tolerance 1", "Foundation operator/Tolerance", [&]() {
     HierarchicalFlexibility::Settings settings;

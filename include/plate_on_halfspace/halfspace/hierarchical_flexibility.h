@@ -19,6 +19,7 @@
 #include <plate_on_halfspace/plate/foundation_space.h>
 #include <plate_on_halfspace/soil/soil_model.h>
 
+#include <string>
 #include <vector>
 
 // hmat-oss's opaque C types (hmat/hmat.h), declared here so that users of
@@ -155,13 +156,21 @@ namespace PlateOnHalfspace
     /**
      * H-Cholesky factorisation A ≈ L L^T of a copy of A (the product keeps
      * using A), with every recompression at the larger of the tolerance
-     * and the factor tolerance. Checks the
-     * factor by solving for a known vector; throws if hmat-oss reports a
-     * failure (A not positive definite at this tolerance) or the factor
-     * does not reproduce the vector.
+     * and the factor tolerance. Checks the factor by solving for a known
+     * vector. If hmat-oss reports a failure (A not positive definite at
+     * that accuracy) or the factor does not reproduce the vector, makes it
+     * again with a 100 times finer factor tolerance, and throws only when
+     * it fails at the tolerance itself.
      */
     void
     factorize();
+
+    /** The factor tolerance factorize() ended with. */
+    double
+    factor_tolerance() const
+    {
+      return used_factor_tolerance;
+    }
 
     /** dst = (L L^T)^{-1} src, natural numbering, on the block's rows
      *  (other entries of dst zero); needs factorize(). */
@@ -254,6 +263,13 @@ namespace PlateOnHalfspace
     }
 
   private:
+    /**
+     * One factorisation with recompressions at @p factor_tolerance and its
+     * check: the reason it failed, or empty.
+     */
+    std::string
+    try_factorize(const double factor_tolerance);
+
     Settings     settings;
     unsigned int n_nodes = 0;
     /** The block's nodes (empty: all) and each node's place among them
@@ -271,10 +287,13 @@ namespace PlateOnHalfspace
     /** A or its block; lower-symmetric storage if symmetric. */
     hmat_matrix_struct *matrix = nullptr;
     /** The H-Cholesky factor of a copy of A (nullptr before factorize()). */
-    hmat_matrix_struct *factor         = nullptr;
-    double              row_error      = 0;
-    double              solve_residual = 0;
-    Times               times;
+    hmat_matrix_struct *factor    = nullptr;
+    double              row_error = 0;
+    /** The recompression accuracy the factor was made with (factorize()
+     *  tightens Settings::factor_tolerance when it must). */
+    double used_factor_tolerance = 0;
+    double solve_residual        = 0;
+    Times  times;
 
     void
     release();
