@@ -150,12 +150,16 @@ namespace PlateOnHalfspace
           << (symmetry.n_copies() == 2 ? "half" : "a quarter")
           << " of the plate" << std::endl;
     if (parameters.output.verbosity > 0)
-      log << "radius of relative stiffness on the " << soil->name()
-          << " soil: l = "
-          << soil->radius_of_relative_stiffness(
-               parameters.plate.flexural_rigidity())
-          << " for the plate's D = " << parameters.plate.flexural_rigidity()
-          << " (doc/soil-models.md)" << std::endl;
+      {
+        // Computed before the line is begun, so that a failure leaves no
+        // half-written line in the log.
+        const double l = soil->radius_of_relative_stiffness(
+          parameters.plate.flexural_rigidity());
+        log << "radius of relative stiffness on the " << soil->name()
+            << " soil: l = " << l
+            << " for the plate's D = " << parameters.plate.flexural_rigidity()
+            << " (doc/soil-models.md)" << std::endl;
+      }
     mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
                                                    parameters.discretization);
     mindlin_plate->set_mirror_symmetry(symmetry);

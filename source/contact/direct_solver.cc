@@ -85,7 +85,8 @@ namespace PlateOnHalfspace
     state.contact_block_rcond = 1.;
     if (contact_index.empty())
       return;
-    const bool symmetric = foundation->is_symmetric();
+    const bool        symmetric = foundation->is_symmetric();
+    const std::string advice    = foundation->soil().definiteness_advice();
     state.contact_block_rcond =
       factorise(contact_factor,
                 symmetric,
@@ -93,7 +94,8 @@ namespace PlateOnHalfspace
                   "The Galerkin half-space matrix A of the contact set is not "
                   "positive definite; the singular quadrature is too coarse "
                   "for this mesh (raise Discretization/Singular quadrature "
-                  "order)." :
+                  "order)." +
+                    (advice.empty() ? std::string() : " " + advice) :
                   "The collocation flexibility matrix G of the contact set is "
                   "singular.");
     if (!factorised_once)

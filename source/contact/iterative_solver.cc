@@ -82,6 +82,13 @@ namespace PlateOnHalfspace
       Vector<double>
       restrict_to_contact_set(const Vector<double> &x) const;
 
+      /** SoilModel::definiteness_advice() of the foundation's soil. */
+      std::string
+      definiteness_advice() const
+      {
+        return foundation.soil().definiteness_advice();
+      }
+
     private:
       /** G^T x. */
       Vector<double>
@@ -323,7 +330,8 @@ namespace PlateOnHalfspace
                   "with Plate/Young's modulus and Plate/Thickness, and "
                   "Joints/Shear stiffness, Dowel modulus and Dowel support "
                   "modulus with the slabs; for a joint far stiffer than the "
-                  "slabs use Joints/Load transfer = tied."));
+                  "slabs use Joints/Load transfer = tied. " +
+                  problem.definiteness_advice()));
               const double step = rz / curvature;
               q.add(step, p);
               soil.add(step, soil_p);

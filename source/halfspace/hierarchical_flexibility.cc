@@ -20,6 +20,7 @@
 
 namespace PlateOnHalfspace
 {
+  using HmatGlue::CapturedStandardError;
   using HmatGlue::check_hmat;
   using HmatGlue::hmat;
   using HmatGlue::SingleThreadedBlas;
@@ -418,7 +419,11 @@ namespace PlateOnHalfspace
             used_factor_tolerance = factor_tolerance;
             break;
           }
-        AssertThrow(factor_tolerance > settings.tolerance, ExcMessage(failure));
+        AssertThrow(factor_tolerance > settings.tolerance,
+                    ExcMessage(failure +
+                               (settings.definiteness_advice.empty() ?
+                                  std::string() :
+                                  " " + settings.definiteness_advice)));
       }
     times.factorization = timer.wall_time();
   }
@@ -453,10 +458,13 @@ namespace PlateOnHalfspace
     hmat_factorization_context_init(&context);
     context.factorization = hmat_factorization_llt;
     context.progress      = &bar;
-    int status;
+    int         status;
+    std::string library_says;
     {
       const SingleThreadedBlas single_threaded_blas;
-      status = hmat().factorize_generic(factor, &context);
+      CapturedStandardError    library_output;
+      status       = hmat().factorize_generic(factor, &context);
+      library_says = library_output.release();
     }
     // The factor keeps the bar for later factorisations; it ends here.
     hmat().set_progressbar(factor, nullptr);
@@ -468,6 +476,7 @@ namespace PlateOnHalfspace
                "factorisation of the compressed flexibility failed (hmat-oss "
                "status " +
                std::to_string(status) +
+               (library_says.empty() ? std::string() : ", " + library_says) +
                "): at this tolerance the compressed matrix is not positive "
                "definite." +
                tolerance_advice;

@@ -11,10 +11,12 @@ namespace PlateOnHalfspace
   namespace
   {
     HierarchicalFlexibility::Settings
-    settings_with(const double tolerance)
+    settings_with(const double       tolerance,
+                  const std::string &definiteness_advice = {})
     {
       HierarchicalFlexibility::Settings settings;
-      settings.tolerance = tolerance;
+      settings.tolerance           = tolerance;
+      settings.definiteness_advice = definiteness_advice;
       return settings;
     }
 
@@ -51,7 +53,7 @@ namespace PlateOnHalfspace
     const double                       tolerance)
     : elastic(std::move(soil))
     , tolerance(tolerance)
-    , flexibility(settings_with(tolerance))
+    , flexibility(settings_with(tolerance, elastic->definiteness_advice()))
   {
     soil_model = elastic;
   }

@@ -3,8 +3,12 @@
 #include <deal.II/base/exceptions.h>
 
 #include <dlfcn.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <iostream>
 
 namespace PlateOnHalfspace
 {
@@ -81,6 +85,58 @@ namespace PlateOnHalfspace
     {
       if (set_threads != nullptr && get_threads != nullptr)
         set_threads(previous);
+    }
+
+    CapturedStandardError::CapturedStandardError()
+    {
+      // On a terminal the progress reports (base/progress.h) share stderr
+      // with the library and are left alone.
+      if (isatty(STDERR_FILENO))
+        return;
+      std::cerr.flush();
+      std::fflush(stderr);
+      int ends[2];
+      if (pipe2(ends, O_NONBLOCK | O_CLOEXEC) != 0)
+        return;
+      saved = fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 0);
+      if (saved < 0 || dup2(ends[1], STDERR_FILENO) < 0)
+        {
+          if (saved >= 0)
+            close(saved);
+          saved = -1;
+          close(ends[0]);
+          close(ends[1]);
+          return;
+        }
+      close(ends[1]);
+      reader = ends[0];
+    }
+
+    std::string
+    CapturedStandardError::release()
+    {
+      std::string text;
+      if (saved < 0)
+        return text;
+      std::cerr.flush();
+      std::fflush(stderr);
+      // Restoring fd 2 closes the pipe's last write end: the reads below
+      // end at its end of file or, non-blocking, at an empty pipe.
+      dup2(saved, STDERR_FILENO);
+      close(saved);
+      saved = -1;
+      char    buffer[4096];
+      ssize_t n;
+      while ((n = read(reader, buffer, sizeof(buffer))) > 0)
+        text.append(buffer, static_cast<std::size_t>(n));
+      close(reader);
+      reader = -1;
+      return text;
+    }
+
+    CapturedStandardError::~CapturedStandardError()
+    {
+      release();
     }
   } // namespace HmatGlue
 } // namespace PlateOnHalfspace

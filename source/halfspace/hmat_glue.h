@@ -71,6 +71,35 @@ namespace PlateOnHalfspace
     };
 
     /**
+     * What hmat-oss writes to the standard error while it lives, kept
+     * instead of printed. hmat-oss reports a failed factorisation (a
+     * non-positive pivot) on stderr as well as in its status; the program
+     * retries such a factorisation more finely, and reports a final
+     * failure in its own message, which quotes this text
+     * (doc/errors-and-limits.md: one "Error:" line). Captured through a
+     * non-blocking pipe: text beyond the pipe's buffer is lost, never
+     * blocking the library. On a terminal (where the progress reports
+     * share stderr) or where the pipe cannot be made, nothing is captured
+     * and the library prints as before.
+     */
+    class CapturedStandardError
+    {
+    public:
+      CapturedStandardError();
+      ~CapturedStandardError();
+      CapturedStandardError(const CapturedStandardError &) = delete;
+      CapturedStandardError &
+      operator=(const CapturedStandardError &) = delete;
+
+      /** Restore the standard error and return what was written to it. */
+      std::string
+      release();
+
+    private:
+      int saved = -1, reader = -1;
+    };
+
+    /**
      * The foundation nodes of a cluster tree: its k-th unknown is node
      * natural[k] (natural numbering); local[i] is the unknown of node i,
      * -1 for nodes not in the tree. Empty vectors: every node, in order.

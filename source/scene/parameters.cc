@@ -39,6 +39,14 @@ namespace PlateOnHalfspace
             continue;
           const std::vector<std::string> fields =
             Utilities::split_string_list(item, ',');
+          // split_string_list() drops a trailing empty field: a comma
+          // with nothing after it is a malformed item, not a shorter one.
+          AssertThrow(static_cast<std::size_t>(
+                        std::count(item.begin(), item.end(), ',')) +
+                          1 ==
+                        fields.size(),
+                      ExcMessage("Entry <" + entry_name + ">: the item <" +
+                                 item + "> has an empty field."));
           AssertThrow(n_fields == 0 || fields.size() == n_fields,
                       ExcMessage("Entry <" + entry_name + ">: the item <" +
                                  item + "> must have " +
@@ -47,9 +55,13 @@ namespace PlateOnHalfspace
           std::vector<double> numbers;
           for (const std::string &field : fields)
             {
+              // A decimal number: strtod alone would also take the
+              // hexadecimal 0x10 as 16 (and 0x1p4).
               double value = 0;
               try
                 {
+                  AssertThrow(field.find_first_of("xXpP") == std::string::npos,
+                              ExcInternalError());
                   value = Utilities::string_to_double(field);
                 }
               catch (...)
@@ -321,9 +333,21 @@ namespace PlateOnHalfspace
       if (model == Model::layered)
         check_layers();
       else
-        require(layers.empty(),
-                "Foundation/Layers belong to Foundation/Model = layered "
-                "(set Model = layered, or leave Layers empty).");
+        {
+          require(layers.empty(),
+                  "Foundation/Layers belong to Foundation/Model = layered "
+                  "(set Model = layered, or leave Layers empty).");
+          // Entries that only the layered soil reads are refused rather
+          // than silently ignored.
+          require(!rigid_base,
+                  "Foundation/Base = rigid belongs to Foundation/Model = "
+                  "layered (set Model = layered and list the Layers over "
+                  "the rigid base, or leave Base = half-space).");
+          require(!frictionless_interfaces,
+                  "Foundation/Interfaces = frictionless belongs to "
+                  "Foundation/Model = layered (set Model = layered, or "
+                  "leave Interfaces = bonded).");
+        }
       if (model == Model::dense_liquid)
         require(subgrade_modulus > 0,
                 "Foundation/Modulus of subgrade reaction must be > 0 with "

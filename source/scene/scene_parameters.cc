@@ -124,6 +124,33 @@ namespace PlateOnHalfspace
               "Discretization/Flexibility = collocation needs axis-aligned "
               "rectangular cells (the paper's closed-form integral); use "
               "galerkin for Plate/Shape = disk.");
+    if (foundation.model == Parameters::Foundation::Model::layered)
+      for (unsigned int i = 0; i < foundation.layers.size(); ++i)
+        {
+          // The layers against the plate, as the dense liquid's k below:
+          // a layer thinner than this is lost to rounding in the
+          // condensation of the layers' stiffness at the plate's
+          // wavelengths (doc/soil-models.md, "The surface compliance"),
+          // and a softer one does not hold the plate in any digit.
+          const auto        &layer = foundation.layers[i];
+          std::ostringstream which;
+          which << "Foundation/Layers: layer " << i + 1 << " ("
+                << layer.thickness << " thick, E = " << layer.youngs_modulus
+                << ") ";
+          std::ostringstream thin;
+          thin << which.str() << "is thinner than 1e-9 of the plate's "
+               << "thickness (" << plate.thickness
+               << "): too thin to matter or to be resolved; leave it out "
+                  "or merge it into a neighbouring layer.";
+          require(layer.thickness >= 1e-9 * plate.thickness, thin.str());
+          std::ostringstream soft;
+          soft << which.str() << "is softer than 1e-15 of the plate's "
+               << "Young's modulus (" << plate.youngs_modulus
+               << "): such a soil does not hold the plate; check the "
+                  "units of the moduli.";
+          require(layer.youngs_modulus >= 1e-15 * plate.youngs_modulus,
+                  soft.str());
+        }
     if (foundation.model == Parameters::Foundation::Model::dense_liquid)
       {
         // Below this the soil no longer holds the plate in any digit that

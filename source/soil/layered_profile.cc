@@ -19,7 +19,18 @@ namespace PlateOnHalfspace
 
   namespace
   {
-    using Matrix2 = Tensor<2, 2>;
+    /**
+     * The arithmetic of the condensation: x87 extended precision (64-bit
+     * significands, 3 digits more than double). Stiffness condensed from a
+     * layer onto its top cancels where the layer is thin against the
+     * wavelength: a stiff layer over a soft one bends like a plate, whose
+     * stiffness is (k h)^4 of the entries it is the difference of, and an
+     * incompressible layer's entries are differences of order 1 - 2 nu
+     * (doc/soil-models.md, "The surface compliance"). The condensation is a
+     * small part of the tabulation's time.
+     */
+    using Real    = long double;
+    using Matrix2 = Tensor<2, 2, Real>;
 
     /**
      * The static plane-strain stiffness of a layer (doc/soil-models.md,
@@ -36,30 +47,30 @@ namespace PlateOnHalfspace
     };
 
     LayerStiffness
-    layer_stiffness(const SoilLayer &layer, const double k)
+    layer_stiffness(const SoilLayer &layer, const Real k)
     {
-      const double nu = layer.poissons_ratio;
-      const double mu = layer.youngs_modulus / (2. * (1. + nu));
-      const double c  = 3. - 4. * nu;
-      const double m  = (1. - 2. * nu) * c;
-      const double s  = k * layer.thickness;
-      const double E  = std::exp(-s);
-      const double E2 = E * E;
+      const Real nu = layer.poissons_ratio;
+      const Real mu = layer.youngs_modulus / (2. * (1. + nu));
+      // c - 1 and m - 1 in the entries below cancel at nu -> 1/2: computed
+      // from 1 - 2 nu, which is exact.
+      const Real one_minus_2nu = 1. - 2. * nu;
+      const Real c             = 1. + 2. * one_minus_2nu;
+      const Real m             = one_minus_2nu * c;
+      const Real s             = k * layer.thickness;
+      const Real E             = std::exp(-s);
+      const Real E2            = E * E;
       // 1 - E^2 and 1 - E^4 without cancellation at small k h.
-      const double one_minus_E2 = -std::expm1(-2. * s);
-      const double one_minus_E4 = -std::expm1(-4. * s);
-      const double d = c * c * one_minus_E2 * one_minus_E2 - 4. * E2 * s * s;
-      const double f = mu * k / d;
+      const Real one_minus_E2 = -std::expm1(-2 * s);
+      const Real one_minus_E4 = -std::expm1(-4 * s);
+      const Real d = c * c * one_minus_E2 * one_minus_E2 - 4 * E2 * s * s;
+      const Real f = mu * k / d;
 
-      const double xx = 4. * (1. - nu) * (c * one_minus_E4 - 4. * E2 * s);
-      const double zz = 4. * (1. - nu) * (c * one_minus_E4 + 4. * E2 * s);
-      const double xz =
-        2. * (m * one_minus_E2 * one_minus_E2 - 4. * E2 * s * s);
-      const double far_xx =
-        8. * E * (1. - nu) * (s * (1. + E2) - c * one_minus_E2);
-      const double far_xz = 8. * E * s * one_minus_E2 * (1. - nu);
-      const double far_zz =
-        -8. * E * (1. - nu) * (c * one_minus_E2 + s * (1. + E2));
+      const Real xx = 4 * (1 - nu) * (c * one_minus_E4 - 4 * E2 * s);
+      const Real zz = 4 * (1 - nu) * (c * one_minus_E4 + 4 * E2 * s);
+      const Real xz = 2 * (m * one_minus_E2 * one_minus_E2 - 4 * E2 * s * s);
+      const Real far_xx = 8 * E * (1 - nu) * (s * (1 + E2) - c * one_minus_E2);
+      const Real far_xz = 8 * E * s * one_minus_E2 * (1 - nu);
+      const Real far_zz = -8 * E * (1 - nu) * (c * one_minus_E2 + s * (1 + E2));
 
       LayerStiffness K;
       K.tt[0][0] = f * xx;
@@ -79,16 +90,16 @@ namespace PlateOnHalfspace
     /** The surface stiffness of a half-space (the layer's top block as
      *  k h -> infinity). */
     Matrix2
-    half_space_stiffness(const double youngs_modulus,
-                         const double poissons_ratio,
-                         const double k)
+    half_space_stiffness(const Real youngs_modulus,
+                         const Real poissons_ratio,
+                         const Real k)
     {
-      const double nu = poissons_ratio;
-      const double mu = youngs_modulus / (2. * (1. + nu));
-      const double f  = 2. * mu * k / (3. - 4. * nu);
-      Matrix2      K;
-      K[0][0] = K[1][1] = f * 2. * (1. - nu);
-      K[0][1] = K[1][0] = f * (1. - 2. * nu);
+      const Real nu = poissons_ratio;
+      const Real mu = youngs_modulus / (2 * (1 + nu));
+      const Real f  = 2 * mu * k / (3 - 4 * nu);
+      Matrix2    K;
+      K[0][0] = K[1][1] = f * 2 * (1 - nu);
+      K[0][1] = K[1][0] = f * (1 - 2 * nu);
       return K;
     }
 
@@ -143,7 +154,7 @@ namespace PlateOnHalfspace
         rigid = false;
       }
     // The surface is free of shear: the vertical compliance.
-    return below[0][0] / determinant(below);
+    return static_cast<double>(below[0][0] / determinant(below));
   }
 
   double

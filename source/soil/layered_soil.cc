@@ -28,7 +28,7 @@ namespace PlateOnHalfspace
   struct TabulatedLayeredRemainder::Implementation
   {
     double top_thickness = 0, span = 0, achieved = 0;
-    /** The closed-form far field: (C_b - C1)/(2 pi) and D^2. */
+    /** The closed-form far field: (C_b - C1)/(2 pi) and (2 D)^2. */
     double far_coefficient = 0, depth_squared = 0;
     /** The Hankel integral's nodes and weighted integrand over 2 pi. */
     std::vector<double>                                         nodes, weighted;
@@ -101,15 +101,48 @@ namespace PlateOnHalfspace
   namespace
   {
     /**
-     * The nodes and weights (over 2 pi) of the Hankel integral on panels
-     * of width @p panel up to @p k_end, 10 Gauss-Legendre points each.
+     * The panels of the Hankel integral up to @p k_end: [k, k + width(k)],
+     * width(k) = @p scale min(pi / range, max(w0, k / 2)), w0 = @p
+     * tolerance min(pi / range, 1 / D). J0(k r) turns by at most half a
+     * period per panel at scale 1 up to the range. The compliance changes
+     * on scales down to the smallest of its stiffness ratios: a stiff
+     * bonded layer restrains the layers below it in plane over a length
+     * E1 h1 / mu_below, which can exceed the plate by orders of magnitude
+     * (doc/soil-models.md, "The kernel"). Panels growing geometrically
+     * from w0 resolve every such scale at a cost of log(1/w0) panels; what
+     * lies below w0 weighs at most about w0 times the range relative to R.
+     * Stops early, short of k_end, at more than @p most_panels panels.
+     */
+    std::vector<double>
+    panel_ends(const double      scale,
+               const double      tolerance,
+               const double      range,
+               const double      depth,
+               const double      k_end,
+               const std::size_t most_panels)
+    {
+      const double        widest = numbers::PI / range;
+      const double        finest = tolerance * std::min(widest, 1. / depth);
+      std::vector<double> ends{0.};
+      while (ends.back() < k_end && ends.size() <= most_panels)
+        {
+          const double k = ends.back();
+          ends.push_back(
+            std::min(k_end,
+                     k + scale * std::min(widest, std::max(finest, 0.5 * k))));
+        }
+      return ends;
+    }
+
+    /**
+     * The nodes and weights (over 2 pi) of the Hankel integral on the
+     * panels @p ends, 10 Gauss-Legendre points each.
      */
     void
-    make_rule(const LayeredProfile &profile,
-              const double          panel,
-              const double          k_end,
-              std::vector<double>  &nodes,
-              std::vector<double>  &weighted)
+    make_rule(const LayeredProfile      &profile,
+              const std::vector<double> &ends,
+              std::vector<double>       &nodes,
+              std::vector<double>       &weighted)
     {
       const SoilLayer &top = profile.layers.front();
       const double C1 = 2. * (1. - top.poissons_ratio * top.poissons_ratio) /
@@ -117,8 +150,7 @@ namespace PlateOnHalfspace
       const double      far = profile.far_field_coefficient() - C1;
       const double      D   = profile.depth();
       const QGauss<1>   gauss(10);
-      const std::size_t n_panels =
-        static_cast<std::size_t>(std::ceil(k_end / panel));
+      const std::size_t n_panels = ends.size() - 1;
       nodes.resize(n_panels * gauss.size());
       weighted.resize(nodes.size());
       parallel::apply_to_subranges(
@@ -128,12 +160,13 @@ namespace PlateOnHalfspace
           for (std::size_t p = begin; p < end; ++p)
             for (unsigned int q = 0; q < gauss.size(); ++q)
               {
-                const double      k = (p + gauss.point(q)[0]) * panel;
-                const std::size_t j = p * gauss.size() + q;
-                nodes[j]            = k;
-                weighted[j] =
-                  gauss.weight(q) * panel / (2. * numbers::PI) *
-                  (profile.compliance_remainder(k) - far * std::exp(-k * D));
+                const double      width = ends[p + 1] - ends[p];
+                const double      k     = ends[p] + gauss.point(q)[0] * width;
+                const std::size_t j     = p * gauss.size() + q;
+                nodes[j]                = k;
+                weighted[j] = gauss.weight(q) * width / (2. * numbers::PI) *
+                              (profile.compliance_remainder(k) -
+                               far * std::exp(-2. * k * D));
               }
         },
         64);
@@ -157,28 +190,30 @@ namespace PlateOnHalfspace
     data->span          = range;
     data->far_coefficient =
       (profile.far_field_coefficient() - C1) / (2. * numbers::PI);
-    data->depth_squared = D * D;
+    data->depth_squared = 4. * D * D;
 
-    // The integrand decays like (k h1)^2 exp(-2 k h1) and exp(-k D): both
-    // are below 1e-15 of their scale at k_end.
-    const double k_end = std::max(20. / top.thickness, 40. / D);
-    double       panel = std::min(numbers::PI / range, 1. / D);
+    // The integrand decays like (k h1)^2 exp(-2 k h1) and exp(-2 k D)
+    // (h1 <= D): both are below 1e-15 of their scale at k_end.
+    const double k_end       = 20. / top.thickness;
+    double       scale       = 1.;
+    const auto   most_panels = static_cast<std::size_t>(most_wave_numbers / 10);
     // About a second of Bessel functions per 10^5 wave numbers and 100
     // knots; beyond this the top layer is too thin for the plate.
-    const double n_wave_numbers = 20. * std::ceil(k_end / panel);
-    if (n_wave_numbers > most_wave_numbers)
+    const std::vector<double> first_panels =
+      panel_ends(scale, tolerance, range, D, k_end, most_panels);
+    if (first_panels.back() < k_end)
       {
         std::ostringstream message;
         message << "Foundation/Layers: the top layer (" << top.thickness
                 << " thick) is too thin for distances up to " << range
                 << " on the plate, on layers " << D
-                << " deep: the layered kernel would need " << n_wave_numbers
-                << " wave numbers, at most " << most_wave_numbers
-                << ". Merge the thin top layer into the plate or the layer "
-                   "below, or make it thicker.";
+                << " deep: the layered kernel would need more than "
+                << most_wave_numbers
+                << " wave numbers. Merge the thin top layer into the plate "
+                   "or the layer below, or make it thicker.";
         AssertThrow(false, ExcMessage(message.str()));
       }
-    make_rule(profile, panel, k_end, data->nodes, data->weighted);
+    make_rule(profile, first_panels, data->nodes, data->weighted);
 
     // The quadrature's error: the same integral on panels half as wide, at
     // the ends and the middle of the range. Panels are halved until that
@@ -186,8 +221,23 @@ namespace PlateOnHalfspace
     // the difference bounds its error.
     while (true)
       {
+        const std::vector<double> fine_panels =
+          panel_ends(scale / 2., tolerance, range, D, k_end, most_panels);
+        if (fine_panels.back() < k_end)
+          {
+            std::ostringstream message;
+            message << "Foundation/Layers: the layered kernel's wave-number "
+                       "integral could not be brought to "
+                    << tolerance << " with " << most_wave_numbers
+                    << " wave numbers";
+            if (data->achieved > 0)
+              message << " (it reached " << data->achieved << ")";
+            message << "; the layers' stiffness contrast or the ratio of "
+                       "the plate to the top layer's thickness is too large.";
+            AssertThrow(false, ExcMessage(message.str()));
+          }
         std::vector<double> fine_nodes, fine_weighted;
-        make_rule(profile, panel / 2., k_end, fine_nodes, fine_weighted);
+        make_rule(profile, fine_panels, fine_nodes, fine_weighted);
         Implementation fine;
         fine.far_coefficient = data->far_coefficient;
         fine.depth_squared   = data->depth_squared;
@@ -201,23 +251,10 @@ namespace PlateOnHalfspace
                                    std::abs(fine.integral(r))));
         data->nodes    = std::move(fine.nodes);
         data->weighted = std::move(fine.weighted);
-        panel /= 2.;
+        scale /= 2.;
+        data->achieved = difference;
         if (difference <= tolerance)
-          {
-            data->achieved = difference;
-            break;
-          }
-        if (2. * static_cast<double>(data->nodes.size()) > most_wave_numbers)
-          {
-            std::ostringstream message;
-            message << "Foundation/Layers: the layered kernel's wave-number "
-                       "integral could not be brought to "
-                    << tolerance << " with " << most_wave_numbers
-                    << " wave numbers (it reached " << difference
-                    << "); the layers' stiffness contrast or the ratio of "
-                       "the plate to the top layer's thickness is too large.";
-            AssertThrow(false, ExcMessage(message.str()));
-          }
+          break;
       }
 
     // The spline: knots doubled until every midpoint agrees.
@@ -305,7 +342,9 @@ namespace PlateOnHalfspace
     const auto   spline_at = [&](const double s) -> std::array<double, 2> {
       // R and dR/ds at s = sqrt(r / h1): t = asinh(s^2), dt/ds = 2 s /
       // sqrt(1 + s^4).
-      const double t = std::min(std::asinh(s * s), data->t_end);
+      // Boost's own end of the range, which can be an ulp below t_end.
+      const double t =
+        std::min(std::asinh(s * s), data->hermite->domain().second);
       return {
         {(*data->hermite)(t),
          data->hermite->prime(t) * 2. * s / std::sqrt(1. + s * s * s * s)}};
@@ -447,30 +486,51 @@ namespace PlateOnHalfspace
                 ExcMessage("The flexural rigidity must be > 0."));
     // log(D k^4 G(k)) at k = exp(-s), s = log(l): decreasing in s, from +inf
     // (G ~ C1/k as k -> inf) to -inf (G bounded, or ~ C_b/k, as k -> 0).
-    const auto excess = [&](const double s) {
-      const double k = std::exp(-s);
-      return std::log(flexural_rigidity) - 4. * s +
-             std::log(profile.surface_compliance(k));
+    const double log_rigidity = std::log(flexural_rigidity);
+    const auto   excess       = [&](const double s) {
+      return log_rigidity - 4. * s +
+             std::log(profile.surface_compliance(std::exp(-s)));
     };
-    // The top layer's own half-space radius as the first guess.
+    // The top layer's own half-space radius as the first guess, and a
+    // bracket widened additively in s (a multiplicative step on s would
+    // stall at s = 0, l = 1 in whatever unit the scene uses).
     const SoilLayer &top = profile.layers.front();
     const double     guess =
-      std::log(flexural_rigidity * 2. *
-               (1. - top.poissons_ratio * top.poissons_ratio) /
-               top.youngs_modulus) /
+      (log_rigidity +
+       std::log(2. * (1. - top.poissons_ratio * top.poissons_ratio) /
+                top.youngs_modulus)) /
       3.;
+    double lower = guess - 1., upper = guess + 1., step = 1.;
+    double f_lower = excess(lower), f_upper = excess(upper);
+    for (unsigned int i = 0; i < 60 && !(f_lower >= 0. && f_upper <= 0.); ++i)
+      {
+        step *= 2.;
+        if (f_lower < 0.)
+          f_lower = excess(lower -= step);
+        if (f_upper > 0.)
+          f_upper = excess(upper += step);
+      }
+    AssertThrow(std::isfinite(f_lower) && std::isfinite(f_upper) &&
+                  f_lower >= 0. && f_upper <= 0.,
+                ExcMessage("The radius of relative stiffness on the layered "
+                           "soil was not found: D k^4 G(k) = 1 has no root "
+                           "for the plate's D = " +
+                           std::to_string(flexural_rigidity) +
+                           "; check the plate's and the layers' moduli."));
     std::uintmax_t iterations = 200;
-    const auto     bracket    = boost::math::tools::bracket_and_solve_root(
+    const auto     root       = boost::math::tools::toms748_solve(
       excess,
-      guess,
-      2.,
-      false,
+      lower,
+      upper,
+      f_lower,
+      f_upper,
       boost::math::tools::eps_tolerance<double>(40),
       iterations);
-    AssertThrow(iterations < 200,
+    const double s = 0.5 * (root.first + root.second);
+    AssertThrow(iterations < 200 && std::abs(excess(s)) < 1e-6,
                 ExcMessage("The radius of relative stiffness on the layered "
                            "soil was not found."));
-    return std::exp(0.5 * (bracket.first + bracket.second));
+    return std::exp(s);
   }
 
   std::string
@@ -486,5 +546,21 @@ namespace PlateOnHalfspace
            << " of alpha1/r + |R(r)| (tolerance " << kernel_tolerance << ") in "
            << table_seconds << " s";
     return report.str();
+  }
+
+  std::string
+  LayeredSoil::definiteness_advice() const
+  {
+    // Over cells much wider than h1, alpha1/r and R(r) nearly cancel
+    // (a thin layer on a stiff base) and their integrals' errors are not
+    // small against the difference (doc/soil-models.md, "Limits").
+    std::ostringstream advice;
+    advice << "On the layered soil, cells much wider than the top layer ("
+           << profile.layers.front().thickness
+           << " thick) lose it too: refine the mesh (Discretization/Initial "
+              "refinements) until the cells are at most about 3 times as "
+              "wide as the top layer, or merge a thin top layer into the "
+              "plate or the layer below.";
+    return advice.str();
   }
 } // namespace PlateOnHalfspace

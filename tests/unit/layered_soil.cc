@@ -10,7 +10,12 @@
 //  - a thin layer on a rough rigid base has G -> h / E_oed as k h -> 0;
 //  - the tabulated remainder agrees with the same Hankel integral
 //    integrated independently (30-point Gauss-Legendre per half period, no
-//    far-field subtraction, no spline);
+//    far-field subtraction, no spline), also for profiles at the ends of
+//    the accepted range: stiffness contrasts of 1e4 and 1e6 either way, a
+//    nearly incompressible layer and a buried layer 1e-6 thick (there the
+//    reference resolves the compliance's small-k scales, down to the
+//    in-plane length E1 h1 / mu of a stiff bonded layer, by Gauss-Legendre
+//    on thirds of decades of k);
 //  - through the whole program: such layers give the half-space's
 //    deflections, pressures and moments to 1e-10; a plate on a two-layer
 //    soil matches the infinite plate's Hankel integral
@@ -77,6 +82,36 @@ namespace
         f, k0, std::min(k0 + period, k_end));
     // The integrand at k = 0 is finite (C_b - C1): the rule never samples
     // the end point.
+    return sum / (2. * numbers::PI);
+  }
+
+  /**
+   * The same R(r), the small wave numbers resolved on their own: 30-point
+   * Gauss-Legendre on each third of a decade of k from 1e-16/h1 up to
+   * min(1/h1, pi/(2 r)), then remainder_by_quadrature()'s panels. The
+   * piece below 1e-16/h1 is below rounding.
+   */
+  double
+  remainder_resolving_small_k(const LayeredProfile &profile, const double r)
+  {
+    const double h1    = profile.layers.front().thickness;
+    const double k_end = 40. / h1;
+    const double split =
+      std::min(1. / h1, numbers::PI / (2. * std::max(r, h1)));
+    const auto f = [&](const double k) {
+      return profile.compliance_remainder(k) *
+             boost::math::cyl_bessel_j(0, k * r);
+    };
+    double       sum   = 0;
+    const double ratio = std::cbrt(10.);
+    for (double k0 = 1e-16 * split; k0 < split; k0 *= ratio)
+      sum += boost::math::quadrature::gauss<double, 30>::integrate(
+        f, k0, std::min(ratio * k0, split));
+    const double period =
+      std::min(numbers::PI / std::max(r, h1), 1. / profile.depth());
+    for (double k0 = split; k0 < k_end; k0 += period)
+      sum += boost::math::quadrature::gauss<double, 30>::integrate(
+        f, k0, std::min(k0 + period, k_end));
     return sum / (2. * numbers::PI);
   }
 
@@ -247,6 +282,60 @@ main()
                 "estimate",
                 table.error(),
                 1e-9);
+  }
+
+  {
+    // The ends of the accepted range (doc/soil-models.md, "Limits"), each
+    // tabulated for a 6 m plate and checked against the independent
+    // quadrature that resolves the small wave numbers.
+    struct Case
+    {
+      std::string    name;
+      LayeredProfile profile;
+    };
+    std::vector<Case> cases(6);
+    cases[0].name           = "stiff layer 1e4 times its half-space";
+    cases[0].profile.layers = {{1., 1e9, 0.3}};
+    cases[1].name           = "stiff layer 1e6 times its half-space";
+    cases[1].profile.layers = {{0.3, 1e11, 0.3}};
+    cases[2].name           = "soft layer on a half-space 1e6 times stiffer";
+    cases[2].profile.layers = {{0.5, 1e5, 0.3}};
+    cases[3].name           = "nearly incompressible layer, nu = 0.4999999";
+    cases[3].profile.layers = {{1., 1e5, 0.4999999}};
+    cases[4].name           = "buried layer 1e-6 thick";
+    cases[4].profile.layers = {{1., 1e5, 0.3},
+                               {1e-6, 1e4, 0.3},
+                               {1., 1e5, 0.3}};
+    cases[5].name           = "stiff layer 1e4 times the layer on a rigid base";
+    cases[5].profile.layers = {{0.2, 1e9, 0.2}, {2., 1e5, 0.3}};
+    cases[5].profile.base   = LayeredProfile::Base::rigid;
+    for (Case &c : cases)
+      {
+        c.profile.base_youngs_modulus = 1e5;
+        c.profile.base_poissons_ratio = 0.3;
+      }
+    cases[2].profile.base_youngs_modulus = 1e11;
+    for (const Case &c : cases)
+      {
+        const SoilLayer &top = c.profile.layers.front();
+        const double alpha   = (1. - top.poissons_ratio * top.poissons_ratio) /
+                             (numbers::PI * top.youngs_modulus);
+        const TabulatedLayeredRemainder table(c.profile, 6.3, 1e-9);
+        double                          worst = 0;
+        for (const double r : {0., 0.07, 0.6, 2.1, 6.3})
+          {
+            const double independent =
+              remainder_resolving_small_k(c.profile, r);
+            worst = std::max(worst,
+                             std::abs(table.value(r) - independent) /
+                               (alpha / std::max(r, top.thickness) +
+                                std::abs(independent)));
+          }
+        check_below(c.name + ": tabulated R against the small-k resolving "
+                             "quadrature, over alpha/r + |R|",
+                    worst,
+                    1e-8);
+      }
   }
 
   // Through the whole program.

@@ -95,6 +95,10 @@ namespace PlateOnHalfspace
       unsigned int leaf_size = 48;
       /** Hackbusch's eta: admissible when min diameter <= eta distance. */
       double eta = 2.;
+      /** Appended to the message of a factorisation that fails at every
+       *  tolerance: what else the soil says can cost definiteness
+       *  (SoilModel::definiteness_advice()). */
+      std::string definiteness_advice;
     };
 
     explicit HierarchicalFlexibility(const Settings &settings);

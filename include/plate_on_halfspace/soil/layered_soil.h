@@ -24,13 +24,14 @@ namespace PlateOnHalfspace
    * @p tolerance times alpha / r + |R(r)| there (alpha / r the top layer's
    * point-load settlement).
    *
-   * The integral: R = (C_b - C1) / (2 pi sqrt(r^2 + D^2)) + 1/(2 pi) Int
-   * [k G - C1 - (C_b - C1) exp(-k D)] J0(k r) dk, C_b the base's k G(0),
+   * The integral: R = (C_b - C1) / (2 pi sqrt(r^2 + 4 D^2)) + 1/(2 pi) Int
+   * [k G - C1 - (C_b - C1) exp(-2 k D)] J0(k r) dk, C_b the base's k G(0),
    * D the depth of the layers: the subtracted term carries the 1/r far
    * field in closed form, so that the rest vanishes at k = 0 and decays
-   * like exp(-2 k h1) or exp(-k D). It is integrated by 10-point
-   * Gauss-Legendre panels no wider than pi / range and 1 / D; halving the
-   * panels bounds that quadrature's error, which is part of error().
+   * like exp(-2 k h1). It is integrated by 10-point Gauss-Legendre panels
+   * no wider than pi / range, growing geometrically from k = 0 so that
+   * every small-k scale of G is resolved; halving the panels bounds that
+   * quadrature's error, which is part of error().
    */
   class TabulatedLayeredRemainder : public SmoothRadialFunction
   {
@@ -107,6 +108,10 @@ namespace PlateOnHalfspace
      */
     std::string
     kernel_report() const override;
+
+    /** Cells much wider than the top layer (doc/soil-models.md, "Limits"). */
+    std::string
+    definiteness_advice() const override;
 
   private:
     const LayeredProfile                                     profile;

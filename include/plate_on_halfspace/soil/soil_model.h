@@ -139,6 +139,17 @@ namespace PlateOnHalfspace
     {
       return {};
     }
+
+    /**
+     * What besides the singular quadrature can make this soil's Galerkin
+     * matrix lose its positive definiteness in floating point, for the
+     * message that stops such a run; empty where nothing else can.
+     */
+    virtual std::string
+    definiteness_advice() const
+    {
+      return {};
+    }
   };
 
   /** A continuum soil, given by its point-load kernel (SurfaceKernel). */
