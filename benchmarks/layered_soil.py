@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """What a layered soil costs against the homogeneous half-space.
 
-    python3 benchmarks/layered_soil.py build/plate-on-halfspace [MAX_REFINEMENTS [DENSE_MAX_REFINEMENTS]]
+    python3 benchmarks/layered_soil.py build/plate-on-halfspace [MAX_REFINEMENTS [DENSE_MAX_REFINEMENTS [BONDED_REFINEMENTS]]]
 
 1. The kernel table: the slab below on 1, 3 and 10 layers over a
    half-space (one coarse cycle); the wall seconds of the tabulation and
@@ -18,7 +18,14 @@
    and factorisation seconds, the contact solve and the whole run; and the
    ratio layered / homogeneous of the integration (without the layered
    kernel's tabulation, given apart) and of the whole run, and the
-   conjugate gradient iterations of the contact solve in all.
+   conjugate gradient iterations of the contact solve in all, and the
+   active-set steps: the soils differ in where the slab lifts off, so
+   these runs compare two contact problems as well as two operators.
+3. The same operator on the same contact problem: the slab bonded (the
+   whole plate in contact, one solve), hierarchical storage, at the
+   comma-separated BONDED_REFINEMENTS (default 4; 5 gives 9.3e4 nodes),
+   layered against homogeneous: integration, compression, factorisation,
+   CG iterations and the whole run.
 Prints markdown tables. A benchmark, not a test: timings depend on the
 machine and its load.
 """
@@ -44,7 +51,7 @@ subsection Plate
 end
 subsection Foundation
 {foundation}
-  set Contact = tensionless
+  set Contact = {contact}
 end
 subsection Loads
   set Circular patches = 0,1.65,0.15,700
@@ -83,12 +90,14 @@ def ten_layers(n):
             + SUBGRADE)
 
 
-def run(program, work, foundation, refinements, storage):
+def run(program, work, foundation, refinements, storage,
+        contact="tensionless"):
     out = os.path.join(work, "out")
     scene = os.path.join(work, "scene.prm")
     with open(scene, "w") as f:
         f.write(SLAB.format(out=out, foundation=foundation,
-                            refinements=refinements, storage=storage))
+                            refinements=refinements, storage=storage,
+                            contact=contact))
     start = time.time()
     log = subprocess.run([program, scene], check=True, capture_output=True,
                          text=True, cwd=ROOT).stdout
@@ -102,6 +111,8 @@ def main():
                               os.path.join(ROOT, "build/plate-on-halfspace"))
     max_refinements = int(sys.argv[2]) if len(sys.argv) > 2 else 4
     dense_max = int(sys.argv[3]) if len(sys.argv) > 3 else 3
+    bonded = [int(r) for r in (sys.argv[4] if len(sys.argv) > 4 else
+                               "4").split(",") if r]
     with tempfile.TemporaryDirectory() as work:
         print("| layers | knots | range [m] | error | tabulation [s] |")
         print("|---|---|---|---|---|")
@@ -115,9 +126,9 @@ def main():
         print()
         print("| storage | nodes | soil | tabulation [s] | integration [s] "
               "| compression [s] | factorisation [s] | contact solve [s] "
-              "| CG iterations | total [s] | integration ratio "
-              "| total ratio |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+              "| CG iterations | active-set steps | total [s] "
+              "| integration ratio | total ratio |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         for storage, top in (("dense", dense_max),
                              ("hierarchical", max_refinements)):
             for r in range(1, top + 1):
@@ -129,26 +140,62 @@ def main():
                     tabulation = float(m.group(1)) if m else 0.
                     cg = sum(int(n) for n in re.findall(
                         r"conjugate gradients (\d+) iterations", log))
-                    rows[soil] = (c, total, tabulation, cg)
+                    steps = max([int(n) for n in re.findall(
+                        r"contact iteration (\d+):", log)] or [1])
+                    rows[soil] = (c, total, tabulation, cg, steps)
                 for soil in ("homogeneous", "layered"):
-                    c, total, tabulation, cg = rows[soil]
+                    c, total, tabulation, cg, steps = rows[soil]
                     integration = (c["foundation_integration_time_s"] -
                                    tabulation)
                     ratio = ("", "")
                     if soil == "layered":
-                        h, h_total, _, _ = rows["homogeneous"]
+                        h, h_total, _, _, _ = rows["homogeneous"]
                         ratio = ("%.2f" % (integration /
                                            h["foundation_integration_time_s"]),
                                  "%.2f" % (total / h_total))
                     print("| %s | %d | %s | %.2f | %.2f | %.2f | %.2f | %.2f "
-                          "| %s | %.1f | %s | %s |" % (
+                          "| %s | %d | %.1f | %s | %s |" % (
                               storage, c["n_foundation_dofs"], soil,
                               tabulation, integration,
                               c["foundation_compression_time_s"],
                               c["foundation_factorization_time_s"],
-                              c["solve_time_s"], cg if cg else "-", total,
-                              ratio[0], ratio[1]))
+                              c["solve_time_s"], cg if cg else "-", steps,
+                              total, ratio[0], ratio[1]))
                 sys.stdout.flush()
+        print()
+        print("Bonded, hierarchical storage:")
+        print()
+        print("| nodes | soil | integration [s] | compression [s] "
+              "| factorisation [s] | contact solve [s] | CG iterations "
+              "| total [s] | integration ratio | total ratio |")
+        print("|---|---|---|---|---|---|---|---|---|---|")
+        for r in bonded:
+            rows = {}
+            for soil, foundation in (("homogeneous", SUBGRADE),
+                                     ("layered", PAVEMENT)):
+                log, c, total = run(program, work, foundation, r,
+                                    "hierarchical", "bonded")
+                m = re.search(r"kernel tabulated on .* in (\S+) s", log)
+                tabulation = float(m.group(1)) if m else 0.
+                cg = sum(int(n) for n in re.findall(
+                    r"conjugate gradients (\d+) iterations", log))
+                rows[soil] = (c, total, tabulation, cg)
+            for soil in ("homogeneous", "layered"):
+                c, total, tabulation, cg = rows[soil]
+                integration = c["foundation_integration_time_s"] - tabulation
+                ratio = ("", "")
+                if soil == "layered":
+                    h, h_total, _, _ = rows["homogeneous"]
+                    ratio = ("%.2f" % (integration /
+                                       h["foundation_integration_time_s"]),
+                             "%.2f" % (total / h_total))
+                print("| %d | %s | %.2f | %.2f | %.2f | %.2f | %d | %.1f "
+                      "| %s | %s |" % (
+                          c["n_foundation_dofs"], soil, integration,
+                          c["foundation_compression_time_s"],
+                          c["foundation_factorization_time_s"],
+                          c["solve_time_s"], cg, total, ratio[0], ratio[1]))
+            sys.stdout.flush()
 
 
 if __name__ == "__main__":

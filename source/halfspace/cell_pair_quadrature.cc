@@ -176,35 +176,40 @@ namespace PlateOnHalfspace
   {
     const unsigned int n_p = outer.x.size(), n_q = inner.x.size();
     const unsigned int na = outer.n_functions, nb = inner.n_functions;
-    // G(p, q) = alpha / |x_p - y_q| (at most 25 x 25 points); a plain loop
-    // over flat arrays, which the compiler vectorises; then the remainder.
+    // G(p, q) = alpha / |x_p - y_q| (at most 25 x 25 points); plain loops
+    // over flat arrays, which the compiler vectorises; the remainder adds
+    // R at the same distances.
     std::array<double, 625> G;
     Assert(n_p * n_q <= G.size(), ExcInternalError());
     const double alpha = kernel.alpha;
-    for (unsigned int p = 0; p < n_p; ++p)
-      {
-        const double  xp = outer.x[p], yp = outer.y[p];
-        double *const g = G.data() + p * n_q;
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            const double dx = xp - inner.x[q], dy = yp - inner.y[q];
-            g[q] = alpha / std::sqrt(dx * dx + dy * dy);
-          }
-      }
     if (kernel.remainder)
       {
-        std::array<double, 625> squared;
+        std::array<double, 625> distance;
         for (unsigned int p = 0; p < n_p; ++p)
           {
-            const double xp = outer.x[p], yp = outer.y[p];
+            const double  xp = outer.x[p], yp = outer.y[p];
+            double *const d = distance.data() + p * n_q;
+            double *const g = G.data() + p * n_q;
             for (unsigned int q = 0; q < n_q; ++q)
               {
                 const double dx = xp - inner.x[q], dy = yp - inner.y[q];
-                squared[p * n_q + q] = dx * dx + dy * dy;
+                d[q] = std::sqrt(dx * dx + dy * dy);
+                g[q] = alpha / d[q];
               }
           }
-        kernel.remainder->add_values(squared.data(), G.data(), n_p * n_q);
+        kernel.remainder->add_values(distance.data(), G.data(), n_p * n_q);
       }
+    else
+      for (unsigned int p = 0; p < n_p; ++p)
+        {
+          const double  xp = outer.x[p], yp = outer.y[p];
+          double *const g = G.data() + p * n_q;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const double dx = xp - inner.x[q], dy = yp - inner.y[q];
+              g[q] = alpha / std::sqrt(dx * dx + dy * dy);
+            }
+        }
     std::array<unsigned int, 9> a_list, b_list;
     unsigned int                n_a = 0, n_b = 0;
     for (unsigned int a = 0; a < na; ++a)

@@ -69,7 +69,9 @@ namespace PlateOnHalfspace
                   AssertThrow(false,
                               ExcMessage("Entry <" + entry_name + ">: <" +
                                          field + "> in <" + item +
-                                         "> is not a number."));
+                                         "> is not a number (a decimal "
+                                         "number of magnitude 1e-307 to "
+                                         "1e308, or 0)."));
                 }
               AssertThrow(std::isfinite(value),
                           ExcMessage("Entry <" + entry_name + ">: <" + field +

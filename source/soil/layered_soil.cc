@@ -393,13 +393,13 @@ namespace PlateOnHalfspace
   }
 
   void
-  TabulatedLayeredRemainder::add_values(const double      *squared_distances,
+  TabulatedLayeredRemainder::add_values(const double      *distances,
                                         double            *values,
                                         const unsigned int n) const
   {
     const Implementation &table = *data;
     for (unsigned int i = 0; i < n; ++i)
-      values[i] += table.fast_value(std::sqrt(std::sqrt(squared_distances[i])));
+      values[i] += table.fast_value(std::sqrt(distances[i]));
   }
 
   double

@@ -45,7 +45,7 @@ namespace PlateOnHalfspace
     value(const double r) const override;
 
     void
-    add_values(const double      *squared_distances,
+    add_values(const double      *distances,
                double            *values,
                const unsigned int n) const override;
 

@@ -39,17 +39,17 @@ namespace PlateOnHalfspace
     value(const double r) const = 0;
 
     /**
-     * values[i] += value(sqrt(squared_distances[i])) for i < n: one call
-     * per cell pair of the operator's integration, whose inner loop this is
-     * (a variant may evaluate faster in bulk).
+     * values[i] += value(distances[i]) for i < n: one call per cell pair
+     * of the operator's integration, whose inner loop this is (a variant
+     * may evaluate faster in bulk).
      */
     virtual void
-    add_values(const double      *squared_distances,
+    add_values(const double      *distances,
                double            *values,
                const unsigned int n) const
     {
       for (unsigned int i = 0; i < n; ++i)
-        values[i] += value(std::sqrt(squared_distances[i]));
+        values[i] += value(distances[i]);
     }
 
     /**
