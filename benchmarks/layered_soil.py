@@ -106,6 +106,31 @@ def run(program, work, foundation, refinements, storage,
     return log, cycle, total
 
 
+def measure(program, work, foundation, refinements, storage,
+            contact="tensionless"):
+    """summary.json's last cycle, the wall seconds, the tabulation seconds,
+    the CG iterations and the active-set steps of one run."""
+    log, c, total = run(program, work, foundation, refinements, storage,
+                        contact)
+    m = re.search(r"kernel tabulated on .* in (\S+) s", log)
+    tabulation = float(m.group(1)) if m else 0.
+    cg = sum(int(n) for n in re.findall(
+        r"conjugate gradients (\d+) iterations", log))
+    steps = max([int(n) for n in re.findall(
+        r"contact iteration (\d+):", log)] or [1])
+    return c, total, tabulation, cg, steps
+
+
+def ratios(rows):
+    """Layered over homogeneous: integration (less the tabulation) and
+    whole run."""
+    c, total, tabulation = rows["layered"][:3]
+    h, h_total = rows["homogeneous"][:2]
+    return ("%.2f" % ((c["foundation_integration_time_s"] - tabulation) /
+                      h["foundation_integration_time_s"]),
+            "%.2f" % (total / h_total))
+
+
 def main():
     program = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else
                               os.path.join(ROOT, "build/plate-on-halfspace"))
@@ -135,24 +160,13 @@ def main():
                 rows = {}
                 for soil, foundation in (("homogeneous", SUBGRADE),
                                          ("layered", PAVEMENT)):
-                    log, c, total = run(program, work, foundation, r, storage)
-                    m = re.search(r"kernel tabulated on .* in (\S+) s", log)
-                    tabulation = float(m.group(1)) if m else 0.
-                    cg = sum(int(n) for n in re.findall(
-                        r"conjugate gradients (\d+) iterations", log))
-                    steps = max([int(n) for n in re.findall(
-                        r"contact iteration (\d+):", log)] or [1])
-                    rows[soil] = (c, total, tabulation, cg, steps)
+                    rows[soil] = measure(program, work, foundation, r,
+                                         storage)
                 for soil in ("homogeneous", "layered"):
                     c, total, tabulation, cg, steps = rows[soil]
                     integration = (c["foundation_integration_time_s"] -
                                    tabulation)
-                    ratio = ("", "")
-                    if soil == "layered":
-                        h, h_total, _, _, _ = rows["homogeneous"]
-                        ratio = ("%.2f" % (integration /
-                                           h["foundation_integration_time_s"]),
-                                 "%.2f" % (total / h_total))
+                    ratio = ratios(rows) if soil == "layered" else ("", "")
                     print("| %s | %d | %s | %.2f | %.2f | %.2f | %.2f | %.2f "
                           "| %s | %d | %.1f | %s | %s |" % (
                               storage, c["n_foundation_dofs"], soil,
@@ -173,22 +187,12 @@ def main():
             rows = {}
             for soil, foundation in (("homogeneous", SUBGRADE),
                                      ("layered", PAVEMENT)):
-                log, c, total = run(program, work, foundation, r,
-                                    "hierarchical", "bonded")
-                m = re.search(r"kernel tabulated on .* in (\S+) s", log)
-                tabulation = float(m.group(1)) if m else 0.
-                cg = sum(int(n) for n in re.findall(
-                    r"conjugate gradients (\d+) iterations", log))
-                rows[soil] = (c, total, tabulation, cg)
+                rows[soil] = measure(program, work, foundation, r,
+                                     "hierarchical", "bonded")
             for soil in ("homogeneous", "layered"):
-                c, total, tabulation, cg = rows[soil]
+                c, total, tabulation, cg, _ = rows[soil]
                 integration = c["foundation_integration_time_s"] - tabulation
-                ratio = ("", "")
-                if soil == "layered":
-                    h, h_total, _, _ = rows["homogeneous"]
-                    ratio = ("%.2f" % (integration /
-                                       h["foundation_integration_time_s"]),
-                             "%.2f" % (total / h_total))
+                ratio = ratios(rows) if soil == "layered" else ("", "")
                 print("| %d | %s | %.2f | %.2f | %.2f | %.2f | %d | %.1f "
                       "| %s | %s |" % (
                           c["n_foundation_dofs"], soil, integration,
