@@ -149,17 +149,18 @@ namespace PlateOnHalfspace
       log << "symmetry " << symmetry.name() << ": computing "
           << (symmetry.n_copies() == 2 ? "half" : "a quarter")
           << " of the plate" << std::endl;
-    if (parameters.output.verbosity > 0)
-      {
-        // Computed before the line is begun, so that a failure leaves no
-        // half-written line in the log.
-        const double l = soil->radius_of_relative_stiffness(
-          parameters.plate.flexural_rigidity());
+    {
+      // Computed at every verbosity, so that a soil whose compliance cannot
+      // be evaluated stops the run alike, and before the line is begun, so
+      // that a failure leaves no half-written line in the log.
+      const double l = soil->radius_of_relative_stiffness(
+        parameters.plate.flexural_rigidity());
+      if (parameters.output.verbosity > 0)
         log << "radius of relative stiffness on the " << soil->name()
             << " soil: l = " << l
             << " for the plate's D = " << parameters.plate.flexural_rigidity()
             << " (doc/soil-models.md)" << std::endl;
-      }
+    }
     mindlin_plate = std::make_unique<MindlinPlate>(parameters.plate,
                                                    parameters.discretization);
     mindlin_plate->set_mirror_symmetry(symmetry);

@@ -111,18 +111,26 @@ namespace PlateOnHalfspace
      * (doc/soil-models.md, "The kernel"). Panels growing geometrically
      * from w0 resolve every such scale at a cost of log(1/w0) panels; what
      * lies below w0 weighs at most about w0 times the range relative to R.
-     * Stops early, short of k_end, at more than @p most_panels panels.
+     * Frictionless interfaces pass no shear, so no such length arises:
+     * there w0 = 1e-3 min(pi / range, 1 / D), which also keeps k h of thin
+     * layers above where their (k h)^2 horizontal stiffness is lost to
+     * rounding. Stops early, short of k_end, at more than @p most_panels
+     * panels.
      */
     std::vector<double>
-    panel_ends(const double      scale,
-               const double      tolerance,
-               const double      range,
-               const double      depth,
-               const double      k_end,
-               const std::size_t most_panels)
+    panel_ends(const LayeredProfile &profile,
+               const double          scale,
+               const double          tolerance,
+               const double          range,
+               const double          k_end,
+               const std::size_t     most_panels)
     {
-      const double        widest = numbers::PI / range;
-      const double        finest = tolerance * std::min(widest, 1. / depth);
+      const double widest = numbers::PI / range;
+      const double finest =
+        (profile.interfaces == LayeredProfile::Interfaces::frictionless ?
+           1e-3 :
+           tolerance) *
+        std::min(widest, 1. / profile.depth());
       std::vector<double> ends{0.};
       while (ends.back() < k_end && ends.size() <= most_panels)
         {
@@ -132,6 +140,14 @@ namespace PlateOnHalfspace
                      k + scale * std::min(widest, std::max(finest, 0.5 * k))));
         }
       return ends;
+    }
+
+    /** The larger of @p a and @p b, NaN if either is (std::max keeps its
+     *  first argument against a NaN). */
+    double
+    worse(const double a, const double b)
+    {
+      return (std::isnan(b) || b > a) ? b : a;
     }
 
     /**
@@ -147,8 +163,11 @@ namespace PlateOnHalfspace
       const SoilLayer &top = profile.layers.front();
       const double C1 = 2. * (1. - top.poissons_ratio * top.poissons_ratio) /
                         top.youngs_modulus;
-      const double      far = profile.far_field_coefficient() - C1;
-      const double      D   = profile.depth();
+      const double far       = profile.far_field_coefficient() - C1;
+      const double D         = profile.depth();
+      const auto   integrand = [&](const double k) {
+        return profile.compliance_remainder(k) - far * std::exp(-2. * k * D);
+      };
       const QGauss<1>   gauss(10);
       const std::size_t n_panels = ends.size() - 1;
       nodes.resize(n_panels * gauss.size());
@@ -164,9 +183,8 @@ namespace PlateOnHalfspace
                 const double      k     = ends[p] + gauss.point(q)[0] * width;
                 const std::size_t j     = p * gauss.size() + q;
                 nodes[j]                = k;
-                weighted[j] = gauss.weight(q) * width / (2. * numbers::PI) *
-                              (profile.compliance_remainder(k) -
-                               far * std::exp(-2. * k * D));
+                weighted[j] =
+                  gauss.weight(q) * width / (2. * numbers::PI) * integrand(k);
               }
         },
         64);
@@ -200,7 +218,7 @@ namespace PlateOnHalfspace
     // About a second of Bessel functions per 10^5 wave numbers and 100
     // knots; beyond this the top layer is too thin for the plate.
     const std::vector<double> first_panels =
-      panel_ends(scale, tolerance, range, D, k_end, most_panels);
+      panel_ends(profile, scale, tolerance, range, k_end, most_panels);
     if (first_panels.back() < k_end)
       {
         std::ostringstream message;
@@ -222,7 +240,7 @@ namespace PlateOnHalfspace
     while (true)
       {
         const std::vector<double> fine_panels =
-          panel_ends(scale / 2., tolerance, range, D, k_end, most_panels);
+          panel_ends(profile, scale / 2., tolerance, range, k_end, most_panels);
         if (fine_panels.back() < k_end)
           {
             std::ostringstream message;
@@ -232,8 +250,11 @@ namespace PlateOnHalfspace
                     << " wave numbers";
             if (data->achieved > 0)
               message << " (it reached " << data->achieved << ")";
-            message << "; the layers' stiffness contrast or the ratio of "
-                       "the plate to the top layer's thickness is too large.";
+            message << "; the layers' stiffness contrast, a Poisson's "
+                       "ratio very close to 0.5 (above about 0.4999 with "
+                       "layers much thinner than the plate), or the ratio "
+                       "of the plate to the top layer's thickness is too "
+                       "large.";
             AssertThrow(false, ExcMessage(message.str()));
           }
         std::vector<double> fine_nodes, fine_weighted;
@@ -245,14 +266,19 @@ namespace PlateOnHalfspace
         fine.weighted        = std::move(fine_weighted);
         double difference    = 0;
         for (const double r : {0., 0.01 * range, 0.5 * range, range})
-          difference = std::max(difference,
-                                std::abs(fine.integral(r) - data->integral(r)) /
-                                  (alpha / std::max(r, top.thickness) +
-                                   std::abs(fine.integral(r))));
+          difference = worse(difference,
+                             std::abs(fine.integral(r) - data->integral(r)) /
+                               (alpha / std::max(r, top.thickness) +
+                                std::abs(fine.integral(r))));
         data->nodes    = std::move(fine.nodes);
         data->weighted = std::move(fine.weighted);
         scale /= 2.;
         data->achieved = difference;
+        AssertThrow(std::isfinite(difference),
+                    ExcMessage("Foundation/Layers: the layered kernel's "
+                               "wave-number integral is not a finite number; "
+                               "check the layers' moduli and Poisson's "
+                               "ratios."));
         if (difference <= tolerance)
           break;
       }
@@ -292,9 +318,9 @@ namespace PlateOnHalfspace
         for (unsigned int i = 0; i < n; ++i)
           {
             const double t = (i + 0.5) * h, r = data->distance(t);
-            worst = std::max(worst,
-                             std::abs(data->spline(t) - midpoints[i]) /
-                               (alpha / r + std::abs(midpoints[i])));
+            worst = worse(worst,
+                          std::abs(data->spline(t) - midpoints[i]) /
+                            (alpha / r + std::abs(midpoints[i])));
           }
         if (worst <= tolerance || 2 * n > most_knots)
           {
@@ -365,9 +391,9 @@ namespace PlateOnHalfspace
           {
             const double s = (i + 0.5) * ds, r = h1 * s * s;
             const double exact = spline_at(s)[0];
-            worst              = std::max(worst,
-                             std::abs(data->fast_value(std::sqrt(r)) - exact) /
-                               (alpha / r + std::abs(exact)));
+            worst              = worse(worst,
+                          std::abs(data->fast_value(std::sqrt(r)) - exact) /
+                            (alpha / r + std::abs(exact)));
           }
         if (worst <= 0.1 * tolerance)
           {
