@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -131,6 +132,11 @@ namespace PlateOnHalfspace
         text.append(buffer, static_cast<std::size_t>(n));
       close(reader);
       reader = -1;
+      // One line for the message that quotes it: no trailing blanks or
+      // line breaks.
+      while (!text.empty() &&
+             std::isspace(static_cast<unsigned char>(text.back())))
+        text.pop_back();
       return text;
     }
 

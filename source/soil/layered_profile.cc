@@ -28,8 +28,7 @@ namespace PlateOnHalfspace
      * difference of; a layer on a frictionless interface keeps a horizontal
      * stiffness of order (k h)^2; a nearly incompressible layer's entries
      * are differences of order 1 - 2 nu (doc/soil-models.md, "The surface
-     * compliance"). The same condensation in double estimates the error
-     * (compliance_is_accurate()).
+     * compliance").
      */
     template <typename Real>
     using Matrix2 = Tensor<2, 2, Real>;
@@ -125,7 +124,8 @@ namespace PlateOnHalfspace
   namespace
   {
     /** The condensation of @p profile's layers onto the surface at wave
-     *  number @p k in the arithmetic Real (see surface_compliance()). */
+     *  number @p k in the arithmetic Real (surface_compliance() takes long
+     *  double). */
     template <typename Real>
     Real
     condensed_compliance(const LayeredProfile &profile, const Real k)
@@ -178,25 +178,6 @@ namespace PlateOnHalfspace
                 ExcMessage("LayeredProfile: wave numbers must be > 0."));
     AssertThrow(!layers.empty(), ExcMessage("LayeredProfile: no layers."));
     return static_cast<double>(condensed_compliance<long double>(*this, k));
-  }
-
-  bool
-  LayeredProfile::compliance_is_accurate(const double k,
-                                         const double tolerance) const
-  {
-    // The condensation's rounding grows the same way in both arithmetics;
-    // long double's is 2^-11 of double's. Their difference therefore
-    // bounds long double's error by about 1/2048 of itself.
-    const long double precise = condensed_compliance<long double>(*this, k);
-    const double      rough   = condensed_compliance<double>(*this, k);
-    const SoilLayer  &top     = layers.front();
-    const double      C1 =
-      2. * (1. - top.poissons_ratio * top.poissons_ratio) / top.youngs_modulus;
-    const double scale = std::max(static_cast<double>(k * precise), C1);
-    return std::isfinite(rough) &&
-           std::isfinite(static_cast<double>(precise)) && precise > 0 &&
-           std::abs(k * (rough - static_cast<double>(precise))) <=
-             2048. * tolerance * scale;
   }
 
   double

@@ -49,16 +49,6 @@ namespace PlateOnHalfspace
     double
     surface_compliance(const double k) const;
 
-    /**
-     * Whether surface_compliance(@p k) is accurate to @p tolerance of the
-     * larger of k G(k) and C1 = 2 (1 - nu1^2) / E1: the condensation
-     * cancels at small k h for thin, frictionless and nearly
-     * incompressible layers, and its error is estimated from the same
-     * condensation in double (doc/soil-models.md, "The surface
-     * compliance").
-     */
-    bool
-    compliance_is_accurate(const double k, const double tolerance) const;
 
     /**
      * k G(k) - 2 (1 - nu1^2) / E1: the compliance less the top layer's
