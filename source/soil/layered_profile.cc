@@ -20,8 +20,8 @@ namespace PlateOnHalfspace
   namespace
   {
     /**
-     * The condensation runs in x87 extended precision (long double, 64-bit
-     * significands, 3 digits more than double; surface_compliance()).
+     * The arithmetic of the condensation: x87 extended precision (64-bit
+     * significands, 3 digits more than double).
      * Stiffness condensed from a layer onto its top cancels where the layer
      * is thin against the wavelength: a stiff layer over a soft one bends
      * like a plate, whose stiffness is (k h)^4 of the entries it is the
@@ -30,7 +30,7 @@ namespace PlateOnHalfspace
      * are differences of order 1 - 2 nu (doc/soil-models.md, "The surface
      * compliance").
      */
-    template <typename Real>
+    using Real    = long double;
     using Matrix2 = Tensor<2, 2, Real>;
 
     /**
@@ -42,14 +42,12 @@ namespace PlateOnHalfspace
      * exp(-k h), so that it stays finite for any k h; the four 2 x 2
      * blocks top-top, top-bottom, bottom-top, bottom-bottom.
      */
-    template <typename Real>
     struct LayerStiffness
     {
-      Matrix2<Real> tt, tb, bt, bb;
+      Matrix2 tt, tb, bt, bb;
     };
 
-    template <typename Real>
-    LayerStiffness<Real>
+    LayerStiffness
     layer_stiffness(const SoilLayer &layer, const Real k)
     {
       const Real nu = layer.poissons_ratio;
@@ -75,7 +73,7 @@ namespace PlateOnHalfspace
       const Real far_xz = 8 * E * s * one_minus_E2 * (1 - nu);
       const Real far_zz = -8 * E * (1 - nu) * (c * one_minus_E2 + s * (1 + E2));
 
-      LayerStiffness<Real> K;
+      LayerStiffness K;
       K.tt[0][0] = f * xx;
       K.tt[0][1] = K.tt[1][0] = f * xz;
       K.tt[1][1]              = f * zz;
@@ -92,16 +90,15 @@ namespace PlateOnHalfspace
 
     /** The surface stiffness of a half-space (the layer's top block as
      *  k h -> infinity). */
-    template <typename Real>
-    Matrix2<Real>
+    Matrix2
     half_space_stiffness(const Real youngs_modulus,
                          const Real poissons_ratio,
                          const Real k)
     {
-      const Real    nu = poissons_ratio;
-      const Real    mu = youngs_modulus / (2 * (1 + nu));
-      const Real    f  = 2 * mu * k / (3 - 4 * nu);
-      Matrix2<Real> K;
+      const Real nu = poissons_ratio;
+      const Real mu = youngs_modulus / (2 * (1 + nu));
+      const Real f  = 2 * mu * k / (3 - 4 * nu);
+      Matrix2    K;
       K[0][0] = K[1][1] = f * 2 * (1 - nu);
       K[0][1] = K[1][0] = f * (1 - 2 * nu);
       return K;
@@ -111,63 +108,12 @@ namespace PlateOnHalfspace
      * What a frictionless interface passes up: the vertical stiffness of
      * the structure below with its top free of shear, no shear coupling.
      */
-    template <typename Real>
-    Matrix2<Real>
-    vertical_only(const Matrix2<Real> &below)
+    Matrix2
+    vertical_only(const Matrix2 &below)
     {
-      Matrix2<Real> seen;
+      Matrix2 seen;
       seen[1][1] = below[1][1] - below[1][0] * below[0][1] / below[0][0];
       return seen;
-    }
-  } // namespace
-
-  namespace
-  {
-    /** The condensation of @p profile's layers onto the surface at wave
-     *  number @p k in the arithmetic Real (surface_compliance() takes long
-     *  double). */
-    template <typename Real>
-    Real
-    condensed_compliance(const LayeredProfile &profile, const Real k)
-    {
-      const bool frictionless =
-        profile.interfaces == LayeredProfile::Interfaces::frictionless;
-      // The stiffness seen at the top of what lies below the current
-      // layer, condensed upwards: K_top = K_tt - K_tb (K_bb + S)^-1 K_bt.
-      // A rigid base fixes the bottom of the last layer (bonded) or only
-      // its u_z (frictionless): an infinite S in those entries.
-      Matrix2<Real> below;
-      bool          rigid = (profile.base == LayeredProfile::Base::rigid);
-      if (!rigid)
-        below = half_space_stiffness<Real>(profile.base_youngs_modulus,
-                                           profile.base_poissons_ratio,
-                                           k);
-      for (auto layer = profile.layers.rbegin(); layer != profile.layers.rend();
-           ++layer)
-        {
-          const LayerStiffness<Real> K = layer_stiffness<Real>(*layer, k);
-          Matrix2<Real>              top;
-          if (rigid && !frictionless)
-            top = K.tt;
-          else if (rigid)
-            {
-              // u_z = 0 and no shear at the bottom: condense u_x there.
-              top = K.tt;
-              for (unsigned int i = 0; i < 2; ++i)
-                for (unsigned int j = 0; j < 2; ++j)
-                  top[i][j] -= K.tb[i][0] * K.bt[0][j] / K.bb[0][0];
-            }
-          else
-            {
-              const Matrix2<Real> seen =
-                frictionless ? vertical_only(below) : below;
-              top = K.tt - K.tb * invert(K.bb + seen) * K.bt;
-            }
-          below = top;
-          rigid = false;
-        }
-      // The surface is free of shear: the vertical compliance.
-      return below[0][0] / determinant(below);
     }
   } // namespace
 
@@ -177,7 +123,39 @@ namespace PlateOnHalfspace
     AssertThrow(k > 0 && std::isfinite(k),
                 ExcMessage("LayeredProfile: wave numbers must be > 0."));
     AssertThrow(!layers.empty(), ExcMessage("LayeredProfile: no layers."));
-    return static_cast<double>(condensed_compliance<long double>(*this, k));
+    const bool frictionless = interfaces == Interfaces::frictionless;
+    // The stiffness seen at the top of what lies below the current layer,
+    // condensed upwards: K_top = K_tt - K_tb (K_bb + S)^-1 K_bt. A rigid
+    // base fixes the bottom of the last layer (bonded) or only its u_z
+    // (frictionless): an infinite S in those entries.
+    Matrix2 below;
+    bool    rigid = (base == Base::rigid);
+    if (!rigid)
+      below = half_space_stiffness(base_youngs_modulus, base_poissons_ratio, k);
+    for (auto layer = layers.rbegin(); layer != layers.rend(); ++layer)
+      {
+        const LayerStiffness K = layer_stiffness(*layer, k);
+        Matrix2              top;
+        if (rigid && !frictionless)
+          top = K.tt;
+        else if (rigid)
+          {
+            // u_z = 0 and no shear at the bottom: condense u_x there.
+            top = K.tt;
+            for (unsigned int i = 0; i < 2; ++i)
+              for (unsigned int j = 0; j < 2; ++j)
+                top[i][j] -= K.tb[i][0] * K.bt[0][j] / K.bb[0][0];
+          }
+        else
+          {
+            const Matrix2 seen = frictionless ? vertical_only(below) : below;
+            top                = K.tt - K.tb * invert(K.bb + seen) * K.bt;
+          }
+        below = top;
+        rigid = false;
+      }
+    // The surface is free of shear: the vertical compliance.
+    return static_cast<double>(below[0][0] / determinant(below));
   }
 
   double
