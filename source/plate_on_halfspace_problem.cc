@@ -139,11 +139,21 @@ namespace PlateOnHalfspace
     make_coarse_plate_mesh(parameters.plate,
                            parameters.discretization,
                            triangulation);
-    symmetry       = choose_mirror_symmetry(parameters, triangulation);
-    computed_loads = loads_on_computed_part(parameters.loads, symmetry);
+    // the plate's weight is uniform: symmetric about both planes
+    symmetry = choose_mirror_symmetry(
+      parameters,
+      triangulation,
+      [this](const unsigned int axis, const double tolerance) {
+        return reason_loads_not_symmetric(make_loads(parameters.loads, 0.),
+                                          axis,
+                                          tolerance);
+      });
+    computed_loads = loads_at(Tensor<1, 2>(), true);
     cut_to_computed_part(symmetry, triangulation);
     slab_grid = std::make_unique<SlabGrid>(parameters.plate, parameters.joints);
     slab_grid->mark_joint_faces(triangulation);
+    if (parameters.output.verbosity > 0 && !parameters.refinement_note.empty())
+      log << parameters.refinement_note << std::endl;
     triangulation.refine_global(parameters.discretization.initial_refinements);
     if (parameters.output.verbosity > 0 && symmetry.n_copies() > 1)
       log << "symmetry " << symmetry.name() << ": computing "
@@ -206,9 +216,7 @@ namespace PlateOnHalfspace
         const Point<2> offset = loads.sweep_position(step);
         try
           {
-            mindlin_plate->assemble_loads(
-              computed_loads.with_axles_moved(offset),
-              parameters.plate.unit_weight * parameters.plate.thickness);
+            mindlin_plate->assemble_loads(loads_at(offset, true));
           }
         catch (const ExceptionBase &e)
           {
@@ -220,16 +228,26 @@ namespace PlateOnHalfspace
         std::ostringstream where;
         where << "Loads/Sweep: at position " << step << " (offset " << offset[0]
               << ", " << offset[1] << "): ";
-        check_loads_on_plate(parameters.loads.with_axles_moved(offset),
-                             where.str(),
-                             true,
-                             false);
+        check_loads_on_plate(loads_at(offset, false), where.str(), true, false);
       }
   }
 
+  LoadList
+  PlateOnHalfspaceProblem::loads_at(const Tensor<1, 2> &offset,
+                                    const bool          computed_part) const
+  {
+    const LoadList whole =
+      make_loads(parameters.loads.with_axles_moved(offset),
+                 parameters.plate.unit_weight * parameters.plate.thickness);
+    return computed_part ? loads_on_computed_part(whole,
+                                                  {{symmetry.x, symmetry.y}},
+                                                  symmetry.tolerance) :
+                           whole;
+  }
+
   void
-  PlateOnHalfspaceProblem::check_loads_on_plate(const Parameters::Loads &loads,
-                                                const std::string       &where,
+  PlateOnHalfspaceProblem::check_loads_on_plate(const LoadList    &loads,
+                                                const std::string &where,
                                                 const bool warn_off_plate,
                                                 const bool warn_resultant)
   {
@@ -278,11 +296,21 @@ namespace PlateOnHalfspace
     std::vector<bool> everywhere(space.n_nodes(), true);
     const double      area  = copies * space.area_in_contact(everywhere).first;
     const auto       &plate = parameters.plate;
-    double            patches = std::abs(parameters.loads.uniform_pressure);
-    for (const auto &p : parameters.loads.rectangular_patches)
-      patches = std::max(patches, std::abs(p.pressure));
-    for (const auto &p : parameters.loads.circular_patches)
-      patches = std::max(patches, std::abs(p.pressure));
+    double            patches = 0;
+    for (const auto &cell : space.cells)
+      for (const auto &load : computed_loads)
+        for (const double p : load->on_cell(cell.geometry).pressure)
+          patches = std::max(patches, std::abs(p));
+    // the entries take decimal numbers from 1e-307: a function may give
+    // less, where the solvers' arithmetic loses its digits
+    if (patches > 0 && patches < 1e-307)
+      {
+        std::ostringstream message;
+        message << "Loads: the largest pressure on the plate is " << patches
+                << ", below 1e-307, where the arithmetic loses its digits "
+                   "(Loads/Pressure function); scale the scene's units.";
+        AssertThrow(false, ExcMessage(message.str()));
+      }
     const double thermal = std::abs(mindlin_plate->get_thermal_load().moment);
     const double settlement = soil->typical_settlement(force, area);
     const std::vector<std::pair<std::string, double>> scales = {
@@ -452,9 +480,7 @@ namespace PlateOnHalfspace
   {
     cycle_timer.restart();
     Timer phase;
-    mindlin_plate->assemble_loads(computed_loads,
-                                  parameters.plate.unit_weight *
-                                    parameters.plate.thickness);
+    mindlin_plate->assemble_loads(computed_loads);
     // Sums over the computed part times the copies that make the plate.
     summary                   = CycleSummary();
     summary.cycle             = cycle;
@@ -464,7 +490,27 @@ namespace PlateOnHalfspace
     summary.applied_load = symmetry.n_copies() * mindlin_plate->applied_load();
     // before anything is computed on these loads: what they put on the
     // plate, whether it has an answer, and whether that fits the files
-    check_loads_on_plate(parameters.loads, "", cycle == 0, cycle == 0);
+    check_loads_on_plate(loads_at(Tensor<1, 2>(), false),
+                         "",
+                         cycle == 0,
+                         cycle == 0);
+    summary.load_integration_error =
+      load_integration_error(mindlin_plate->get_foundation_space(),
+                             computed_loads);
+    // said once: a later cycle's finer mesh usually brings it down
+    if (summary.load_integration_error > 1e-4 && !integration_error_warned)
+      {
+        std::ostringstream w;
+        w << "Loads: the applied load of cycle " << cycle
+          << " is integrated to a relative error of about "
+          << std::setprecision(2) << summary.load_integration_error
+          << " (load_integration_error in summary.json): a pressure with a "
+             "jump, a peak or a pole inside the cells. Raise Loads/Pressure "
+             "function points, refine, or give a jump as a region "
+             "(doc/loads.md).";
+        warn(w.str());
+        integration_error_warned = true;
+      }
     if (cycle == 0)
       check_result_magnitudes();
     const unsigned int owned_nodes = static_cast<unsigned int>(
@@ -595,10 +641,7 @@ namespace PlateOnHalfspace
       contact,
       pressure_field,
       *contact_solver,
-      GoalEstimateScene{computed_loads,
-                        parameters.plate.unit_weight *
-                          parameters.plate.thickness,
-                        *foundation_operator});
+      GoalEstimateScene{computed_loads, *foundation_operator});
     summary.has_goal             = true;
     summary.goal.quantity        = goal->name();
     summary.goal.value           = value.value;
@@ -640,34 +683,25 @@ namespace PlateOnHalfspace
     if (slab_grid->get_joints().empty())
       return;
     // Without moving loads the plate's state is the standing one.
-    if (computed_loads.rectangular_patches.empty() &&
-        computed_loads.circular_patches.empty() &&
-        computed_loads.point_loads.empty())
+    const LoadList standing = standing_loads(computed_loads);
+    if (standing.size() == computed_loads.size())
       {
         standing_solution = contact.plate_solution;
         return;
       }
-    Parameters::Loads standing = computed_loads;
-    standing.rectangular_patches.clear();
-    standing.circular_patches.clear();
-    standing.axles.clear();
-    standing.point_loads.clear();
-    standing.sweep_steps = 0;
-    const double self_weight =
-      parameters.plate.unit_weight * parameters.plate.thickness;
-    const bool has_load   = standing.uniform_pressure + self_weight != 0;
+    const bool has_load   = !standing.empty();
     const bool has_moment = mindlin_plate->get_thermal_load().moment != 0;
     // A weightless curled plate on a tensionless soil is not held: the
     // moving loads alone hold it, and its deflections are theirs.
     if (!has_load && (!has_moment || parameters.foundation.tensionless))
       return;
-    mindlin_plate->assemble_loads(standing, self_weight);
+    mindlin_plate->assemble_loads(standing);
     const auto solver = create_contact_solver(
       parameters, parameters.contact_solver(summary.n_foundation_dofs), 0, log);
     standing_solution =
       solver->solve(*mindlin_plate, *foundation_operator, contact.active_set)
         .plate_solution;
-    mindlin_plate->assemble_loads(computed_loads, self_weight);
+    mindlin_plate->assemble_loads(computed_loads);
   }
 
   void
@@ -716,19 +750,16 @@ namespace PlateOnHalfspace
     // solver solves each load on its factorisation, a tensionless one
     // starts each position's active set from the last.
     TimerOutput::Scope       scope(timer_output, "sweep");
-    const Parameters::Loads &loads = parameters.loads;
-    const double             self_weight =
-      parameters.plate.unit_weight * parameters.plate.thickness;
-    std::vector<bool>     warm_start = contact.active_set;
-    std::vector<SweepRow> rows;
-    const Vector<double>  scene_load = mindlin_plate->get_load_vector();
+    const Parameters::Loads &loads      = parameters.loads;
+    std::vector<bool>        warm_start = contact.active_set;
+    std::vector<SweepRow>    rows;
+    const Vector<double>     scene_load = mindlin_plate->get_load_vector();
     for (unsigned int step = 0; step < loads.sweep_steps; ++step)
       {
         Interruption::check();
         Timer          phase;
         const Point<2> offset = loads.sweep_position(step);
-        mindlin_plate->assemble_loads(computed_loads.with_axles_moved(offset),
-                                      self_weight);
+        mindlin_plate->assemble_loads(loads_at(offset, true));
         ContactState state;
         if (parameters.foundation.tensionless)
           {

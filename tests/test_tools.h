@@ -203,7 +203,7 @@ namespace TestTools
                                               /*colorize=*/true);
     MindlinPlate plate(p.plate, p.discretization);
     plate.setup(triangulation, hard_simple_support);
-    plate.assemble_loads(p.loads, 0.);
+    plate.assemble_loads(make_loads(p.loads, 0.));
     Vector<double> solution;
     plate.solve_unsupported(solution);
     const auto located = plate.locate(Point<2>(0., 0.));

@@ -176,10 +176,18 @@ namespace PlateOnHalfspace
      * @p warn_resultant). @p where starts every message.
      */
     void
-    check_loads_on_plate(const Parameters::Loads &loads,
-                         const std::string       &where,
-                         const bool               warn_off_plate,
-                         const bool               warn_resultant);
+    check_loads_on_plate(const LoadList    &loads,
+                         const std::string &where,
+                         const bool         warn_off_plate,
+                         const bool         warn_resultant);
+
+    /**
+     * The scene's loads with the axles moved by @p offset (Loads/Sweep),
+     * the plate's weight among them: on the whole plate, or on the
+     * computed part of a symmetric scene if @p computed_part.
+     */
+    LoadList
+    loads_at(const Tensor<1, 2> &offset, const bool computed_part) const;
 
     /**
      * Refuse a scene whose results would not fit the output files, before
@@ -211,7 +219,10 @@ namespace PlateOnHalfspace
     const SceneParameters parameters;
     std::ostream         &log;
     MirrorSymmetry        symmetry;
-    Parameters::Loads     computed_loads;
+    /** The loads on the computed part (loads_at() without an offset). */
+    LoadList computed_loads;
+    /** Whether a cycle has warned about load_integration_error. */
+    bool integration_error_warned = false;
     /** MPI_COMM_WORLD under MPI, else MPI_COMM_SELF: the ranks that
      *  share the mesh (doc/parallel.md). */
     const MPI_Comm   communicator;

@@ -299,6 +299,30 @@ namespace PlateOnHalfspace
 
 
   Quadrature<2>
+  quadrature_on_cell(const BilinearQuadrilateral &cell,
+                     const unsigned int           n_points_1d)
+  {
+    // the rules a load asks for (at most Pressure function points + 3),
+    // made once: a Gauss rule's construction costs more than its use on a
+    // cell
+    static const std::vector<QGauss<2>> rules = [] {
+      std::vector<QGauss<2>> made;
+      for (unsigned int n = 0; n <= 40; ++n)
+        made.emplace_back(std::max(n, 1u));
+      return made;
+    }();
+    AssertThrow(n_points_1d < rules.size(),
+                ExcMessage("quadrature_on_cell(): at most 40 points per "
+                           "direction."));
+    const QGauss<2>    &reference = rules[n_points_1d];
+    std::vector<double> weights(reference.size());
+    for (unsigned int q = 0; q < reference.size(); ++q)
+      weights[q] =
+        reference.weight(q) * cell.jacobian_determinant(reference.point(q));
+    return Quadrature<2>(reference.get_points(), weights);
+  }
+
+  Quadrature<2>
   quadrature_on_rectangle_part(const BilinearQuadrilateral &cell,
                                const Point<2>              &lower,
                                const Point<2>              &upper,

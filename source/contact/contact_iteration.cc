@@ -69,8 +69,9 @@ namespace PlateOnHalfspace
     AssertThrow(plate.get_load_vector().linfty_norm() > 0,
                 ExcMessage("Loads: the total load is zero (Loads/Uniform "
                            "pressure, Rectangular patches, Circular patches, "
-                           "Point loads, Plate/Unit weight and Temperature "
-                           "give no load); set at least one non-zero load."));
+                           "Point loads, Axles, Pressure function, "
+                           "Plate/Unit weight and Temperature give no load); "
+                           "set at least one non-zero load."));
     AssertThrow(!tensionless || plate.applied_load() > 0,
                 ExcMessage("The loads lift the plate off a tensionless "
                            "foundation: their resultant is not downward (a "

@@ -938,6 +938,7 @@ namespace PlateOnHalfspace
         j["contact_nodes"]             = c.contact_nodes;
         j["contact_area_fraction"]     = c.contact_area_fraction;
         j["applied_load"]              = c.applied_load;
+        j["load_integration_error"]    = c.load_integration_error;
         j["contact_force"]             = c.contact_force;
         j["complementarity_violation"] = c.complementarity_violation;
         j["tensile_nodes"]             = c.tensile_nodes;

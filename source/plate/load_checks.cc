@@ -17,19 +17,22 @@ namespace PlateOnHalfspace
   namespace
   {
     /** The covered area of a region on the whole plate. */
-    template <typename RuleOnCell>
-    double
-    area_on_plate(const std::vector<FoundationSpace::Cell> &cells,
-                  const RuleOnCell                         &rule_on)
+    /** The four cells into which the midpoints of its edges and its
+     *  centre cut @p cell. */
+    std::array<BilinearQuadrilateral, 4>
+    quarters(const BilinearQuadrilateral &cell)
     {
-      double area = 0;
-      for (const auto &cell : cells)
-        {
-          const Quadrature<2> rule = rule_on(cell.geometry);
-          for (unsigned int q = 0; q < rule.size(); ++q)
-            area += rule.weight(q);
-        }
-      return area;
+      const auto at = [&](const double s, const double t) {
+        return cell.map(Point<2>(s, t));
+      };
+      const auto quarter = [&](const double s, const double t) {
+        return BilinearQuadrilateral(std::array<Point<2>, 4>{
+          {at(s, t), at(s + 0.5, t), at(s, t + 0.5), at(s + 0.5, t + 0.5)}});
+      };
+      return {{quarter(0., 0.),
+               quarter(0.5, 0.),
+               quarter(0., 0.5),
+               quarter(0.5, 0.5)}};
     }
 
     double
@@ -102,41 +105,68 @@ namespace PlateOnHalfspace
   } // namespace
 
   std::vector<LoadOnPlate>
-  loads_on_plate(const FoundationSpace &space, const Parameters::Loads &loads)
+  loads_on_plate(const FoundationSpace &space, const LoadList &loads)
   {
     std::vector<FoundationSpace::Cell> cells = space.cells;
     for (auto &image : space.mirror_image_cells())
       cells.push_back(std::move(image));
     std::vector<LoadOnPlate> result;
-    for (unsigned int k = 0; k < loads.rectangular_patches.size(); ++k)
-      {
-        const auto  &patch = loads.rectangular_patches[k];
-        const double area =
-          (patch.upper[0] - patch.lower[0]) * (patch.upper[1] - patch.lower[1]);
-        const double covered =
-          area_on_plate(cells, [&](const BilinearQuadrilateral &cell) {
-            return quadrature_on_rectangle_part(cell,
-                                                patch.lower,
-                                                patch.upper,
-                                                2);
-          });
-        result.push_back(
-          {"Loads/Rectangular patches: patch " + std::to_string(k + 1),
-           patch.pressure * area,
-           patch.pressure * std::min(covered, area)});
-      }
-    for (const auto &patch : loads.circular_patches)
-      {
-        const double area = numbers::PI * patch.radius * patch.radius;
-        const double covered =
-          area_on_plate(cells, [&](const BilinearQuadrilateral &cell) {
-            return quadrature_on_disk_part(cell, patch.centre, patch.radius, 2);
-          });
-        result.push_back({patch.label,
-                          patch.pressure * area,
-                          patch.pressure * std::min(covered, area)});
-      }
+    for (const auto &load : loads)
+      if (const auto area = load->region_area())
+        {
+          double applied = 0, covered = 0;
+          for (const auto &cell : cells)
+            {
+              const CellLoad on_cell = load->on_cell(cell.geometry);
+              for (unsigned int q = 0; q < on_cell.rule.size(); ++q)
+                {
+                  applied += on_cell.pressure[q] * on_cell.rule.weight(q);
+                  covered += on_cell.rule.weight(q);
+                }
+            }
+          const auto nominal = load->nominal_force();
+          // the cells' pieces add up to the region to rounding
+          result.push_back(
+            {load->label(),
+             *area,
+             std::min(covered, *area),
+             nominal ? *nominal : std::numeric_limits<double>::quiet_NaN(),
+             applied});
+        }
     return result;
+  }
+
+  double
+  load_integration_error(const FoundationSpace &space, const LoadList &loads)
+  {
+    double largest = 0;
+    for (const auto &load : loads)
+      if (!load->integrated_exactly())
+        {
+          double force = 0, finer = 0, magnitude = 0;
+          for (const auto &cell : space.cells)
+            {
+              const CellLoad given = load->on_cell(cell.geometry);
+              for (unsigned int q = 0; q < given.rule.size(); ++q)
+                force += given.pressure[q] * given.rule.weight(q);
+              // each quarter of the cell (a bilinear cell of its own) by a
+              // rule of 3 more points: a jump or a peak inside the cell,
+              // which a higher order alone can miss, changes the sum
+              for (const auto &quarter : quarters(cell.geometry))
+                {
+                  const CellLoad fine = load->on_cell(quarter, 3);
+                  for (unsigned int q = 0; q < fine.rule.size(); ++q)
+                    {
+                      finer += fine.pressure[q] * fine.rule.weight(q);
+                      magnitude +=
+                        std::abs(fine.pressure[q]) * fine.rule.weight(q);
+                    }
+                }
+            }
+          if (magnitude > 0)
+            largest = std::max(largest, std::abs(force - finer) / magnitude);
+        }
+    return largest;
   }
 
   std::vector<std::string>
@@ -149,24 +179,31 @@ namespace PlateOnHalfspace
         // The overlap's quadrature of a disk's arcs is exact to about 1e-9
         // of its area (a tyre tangent to the edge measured 1.1e-9 off);
         // less than 1e-6 off the plate is a patch that ends on the edge.
-        const double share_off = l.load != 0 ? 1 - l.applied / l.load : 0;
-        if (!(share_off > 1e-6) || l.applied == 0)
+        const double share_off = l.area > 0 ? 1 - l.covered_area / l.area : 0;
+        if (!(share_off > 1e-6) || l.covered_area == 0)
           continue;
         std::ostringstream w;
         w << where << l.entry
           << " lies partly off the plate: " << std::setprecision(3)
-          << 100 * share_off << " % of its load is off the plate, so only "
-          << std::setprecision(6) << l.applied << " of its " << l.load
-          << " is applied (applied_load in summary.json and sweep.csv).";
+          << 100 * share_off;
+        if (std::isfinite(l.load))
+          w << " % of its load is off the plate, so only "
+            << std::setprecision(6) << l.applied << " of its " << l.load
+            << " is applied";
+        else
+          w << " % of its region is off the plate, so only the part on the "
+               "plate, "
+            << std::setprecision(6) << l.applied << ", is applied";
+        w << " (applied_load in summary.json and sweep.csv).";
         warnings.push_back(w.str());
       }
     return warnings;
   }
 
   ResultantVerdict
-  check_load_resultant(const MindlinPlate      &plate,
-                       const Parameters::Loads &loads,
-                       const bool               has_weight)
+  check_load_resultant(const MindlinPlate &plate,
+                       const LoadList     &loads,
+                       const bool          has_weight)
   {
     ResultantVerdict       verdict;
     const FoundationSpace &space = plate.get_foundation_space();
@@ -321,10 +358,11 @@ namespace PlateOnHalfspace
           {
             // name the point loads on or beyond the outline
             std::string named;
-            for (const auto &l : loads.point_loads)
-              if (depth_in(hull, l.location) <= 1e-9 * diameter)
-                named +=
-                  std::string(named.empty() ? "" : ", ") + point(l.location);
+            for (const auto &load : loads)
+              if (const auto force = load->concentrated_force())
+                if (depth_in(hull, force->first) <= 1e-9 * diameter)
+                  named += std::string(named.empty() ? "" : ", ") +
+                           point(force->first);
             verdict.error =
               "The loads on a tensionless foundation have no determinate "
               "answer: the resultant of the loads on " +

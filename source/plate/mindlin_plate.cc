@@ -317,65 +317,37 @@ namespace PlateOnHalfspace
   }
 
   void
-  MindlinPlate::assemble_loads(const Parameters::Loads &loads,
-                               const double             self_weight_pressure)
+  MindlinPlate::assemble_loads(const LoadList &loads)
   {
     load                                   = 0;
     const unsigned int                   n = fe.n_dofs_per_cell();
     Vector<double>                       local(n);
     std::vector<types::global_dof_index> dofs(n);
     const QGauss<2>                      cell_rule(3);
-    std::vector<bool> rectangle_used(loads.rectangular_patches.size(), false);
-    std::vector<bool> disk_used(loads.circular_patches.size(), false);
-    FEValues<2>       thermal_values(mapping,
+    std::vector<bool>                    used(loads.size(), false);
+    FEValues<2>                          thermal_values(mapping,
                                fe,
                                cell_rule,
                                update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector beta(1);
-
-    const auto add = [&](const Quadrature<2>         &rule,
-                         const double                 pressure,
-                         const bool                   physical_weights,
-                         const BilinearQuadrilateral &geometry) {
-      for (unsigned int q = 0; q < rule.size(); ++q)
-        {
-          const auto   phi = q2_shape_values(rule.point(q));
-          const double weight =
-            physical_weights ?
-              rule.weight(q) :
-              rule.weight(q) * geometry.jacobian_determinant(rule.point(q));
-          for (unsigned int i = 0; i < 9; ++i)
-            local[fe.component_to_system_index(0, i)] +=
-              pressure * phi[i] * weight;
-        }
-    };
+    const FEValuesExtractors::Vector     beta(1);
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         local                                = 0;
         const BilinearQuadrilateral geometry = cell_geometry(cell);
-        const double uniform = loads.uniform_pressure + self_weight_pressure;
-        if (uniform != 0)
-          add(cell_rule, uniform, false, geometry);
-        for (unsigned int k = 0; k < loads.rectangular_patches.size(); ++k)
+        for (unsigned int k = 0; k < loads.size(); ++k)
           {
-            const auto         &patch = loads.rectangular_patches[k];
-            const Quadrature<2> rule  = quadrature_on_rectangle_part(geometry,
-                                                                    patch.lower,
-                                                                    patch.upper,
-                                                                    4);
-            if (rule.size() > 0)
-              rectangle_used[k] = true;
-            add(rule, patch.pressure, true, geometry);
-          }
-        for (unsigned int k = 0; k < loads.circular_patches.size(); ++k)
-          {
-            const auto         &patch = loads.circular_patches[k];
-            const Quadrature<2> rule =
-              quadrature_on_disk_part(geometry, patch.centre, patch.radius, 8);
-            if (rule.size() > 0)
-              disk_used[k] = true;
-            add(rule, patch.pressure, true, geometry);
+            const CellLoad on_cell = loads[k]->on_cell(geometry);
+            if (on_cell.empty())
+              continue;
+            used[k] = true;
+            for (unsigned int q = 0; q < on_cell.rule.size(); ++q)
+              {
+                const auto   phi = q2_shape_values(on_cell.rule.point(q));
+                const double pq  = on_cell.pressure[q] * on_cell.rule.weight(q);
+                for (unsigned int i = 0; i < 9; ++i)
+                  local[fe.component_to_system_index(0, i)] += pq * phi[i];
+              }
           }
         if (thermal.moment != 0)
           {
@@ -392,37 +364,35 @@ namespace PlateOnHalfspace
         constraints.distribute_local_to_global(local, dofs, load);
       }
 
-    for (unsigned int k = 0; k < rectangle_used.size(); ++k)
-      AssertThrow(rectangle_used[k],
-                  ExcMessage("Loads/Rectangular patches: patch " +
-                             std::to_string(k + 1) +
-                             " does not overlap the plate."));
-    for (unsigned int k = 0; k < disk_used.size(); ++k)
-      AssertThrow(disk_used[k],
-                  ExcMessage(loads.circular_patches[k].label +
-                             " does not overlap the plate."));
-
-    for (const auto &point_load : loads.point_loads)
+    for (unsigned int k = 0; k < loads.size(); ++k)
       {
+        const auto force = loads[k]->concentrated_force();
+        if (!force)
+          {
+            AssertThrow(used[k],
+                        ExcMessage(loads[k]->label() +
+                                   " does not overlap the plate."));
+            continue;
+          }
+        const auto &[location, value] = *force;
         std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
           located;
         try
           {
-            located = locate(point_load.location);
+            located = locate(location);
           }
         catch (...)
           {
             AssertThrow(false,
-                        ExcMessage("Loads/Point loads: the point (" +
-                                   std::to_string(point_load.location[0]) +
-                                   ", " +
-                                   std::to_string(point_load.location[1]) +
+                        ExcMessage(loads[k]->label() + ": the point (" +
+                                   std::to_string(location[0]) + ", " +
+                                   std::to_string(location[1]) +
                                    ") is not on the plate."));
           }
         local          = 0;
         const auto phi = q2_shape_values(located.second);
         for (unsigned int i = 0; i < 9; ++i)
-          local[fe.component_to_system_index(0, i)] = point_load.force * phi[i];
+          local[fe.component_to_system_index(0, i)] = value * phi[i];
         located.first->get_dof_indices(dofs);
         constraints.distribute_local_to_global(local, dofs, load);
       }

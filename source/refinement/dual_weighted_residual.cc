@@ -184,8 +184,7 @@ namespace PlateOnHalfspace
                       const Vector<double>         &pressure_field,
                       const Vector<double>         &adjoint_solution,
                       const FoundationResidualData &foundation,
-                      const Parameters::Loads      &loads,
-                      const double                  self_weight_pressure)
+                      const LoadList               &loads)
   {
     const DoFHandler<2>    &dof_handler   = plate.get_dof_handler();
     const Triangulation<2> &triangulation = dof_handler.get_triangulation();
@@ -275,7 +274,6 @@ namespace PlateOnHalfspace
 
     const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio(),
                  Ds             = plate.shear_rigidity();
-    const double uniform        = loads.uniform_pressure + self_weight_pressure;
     const double thermal_moment = plate.get_thermal_load().moment;
 
     // Bending, pressure and load terms: 5 x 5 Gauss points (exact for the
@@ -299,10 +297,9 @@ namespace PlateOnHalfspace
     Vector<double>                       node_estimates(hat_dofs.n_dofs());
 
     // psi_w * chi_v at the points of a load quadrature (reference points,
-    // physical weights) times the pressure.
-    const auto add_load = [&](const CellIterator  &cell,
-                              const Quadrature<2> &load_rule,
-                              const double         pressure) {
+    // physical weights) times the pressure there.
+    const auto add_load = [&](const CellIterator &cell, const CellLoad &load) {
+      const Quadrature<2> &load_rule = load.rule;
       if (load_rule.size() == 0)
         return;
       FEValues<2> w_values(weight_fe, load_rule, update_values);
@@ -313,8 +310,8 @@ namespace PlateOnHalfspace
       w_values.get_function_values(weight, values);
       for (unsigned int p = 0; p < load_rule.size(); ++p)
         for (unsigned int v = 0; v < 4; ++v)
-          local[v] += pressure * values[p][0] * v_values.shape_value(v, p) *
-                      load_rule.weight(p);
+          local[v] += load.pressure[p] * values[p][0] *
+                      v_values.shape_value(v, p) * load_rule.weight(p);
     };
 
     unsigned int cell_index = 0;
@@ -350,7 +347,7 @@ namespace PlateOnHalfspace
         plate_values[FEValuesExtractors::Scalar(0)].get_function_values(
           pressure_field, q);
 
-        // (uniform - q_h) psi chi - (m(u_h) - M_T I) : kappa(psi chi), the
+        // - q_h psi chi - (m(u_h) - M_T I) : kappa(psi chi), the
         // thermal moment M_T's work as in MindlinPlate::assemble_loads()
         for (unsigned int p = 0; p < rule.size(); ++p)
           {
@@ -363,7 +360,7 @@ namespace PlateOnHalfspace
                 const double          chi = hat_values.shape_value(v, p);
                 product_strains(
                   psi[p], chi, hat_values.shape_grad(v, p), kappa, gamma);
-                local[v] += ((uniform - q[p]) * psi[p].value[0] * chi -
+                local[v] += (-q[p] * psi[p].value[0] * chi -
                              ((r.moment[0] - thermal_moment) * kappa[0] +
                               (r.moment[1] - thermal_moment) * kappa[1] +
                               r.moment[2] * kappa[2])) *
@@ -392,22 +389,15 @@ namespace PlateOnHalfspace
               }
           }
 
-        // the patches, integrated over the part of the cell they cover
+        // the loads, by the rules with which the plate's load vector
+        // integrates them (Load::on_cell())
         const BilinearQuadrilateral geometry(
           std::array<Point<2>, 4>{{cell->vertex(0),
                                    cell->vertex(1),
                                    cell->vertex(2),
                                    cell->vertex(3)}});
-        for (const auto &patch : loads.rectangular_patches)
-          add_load(
-            cell,
-            quadrature_on_rectangle_part(geometry, patch.lower, patch.upper, 5),
-            patch.pressure);
-        for (const auto &patch : loads.circular_patches)
-          add_load(
-            cell,
-            quadrature_on_disk_part(geometry, patch.centre, patch.radius, 8),
-            patch.pressure);
+        for (const auto &load : loads)
+          add_load(cell, load->on_cell(geometry));
 
         hat_cell->get_dof_indices(hat_indices);
         hat_constraints.distribute_local_to_global(local,
@@ -416,14 +406,17 @@ namespace PlateOnHalfspace
       }
 
     // point loads: F psi_w(x) chi(x)
-    for (const auto &point_load : loads.point_loads)
+    for (const auto &load : loads)
       {
-        const auto located = plate.locate(point_load.location);
+        const auto force = load->concentrated_force();
+        if (!force)
+          continue;
+        const auto located = plate.locate(force->first);
         local              = 0;
         add_load(located.first,
-                 Quadrature<2>(std::vector<Point<2>>{located.second},
-                               std::vector<double>{1.}),
-                 point_load.force);
+                 CellLoad{Quadrature<2>(std::vector<Point<2>>{located.second},
+                                        std::vector<double>{1.}),
+                          {force->second}});
         same_cell(located.first, hat_dofs)->get_dof_indices(hat_indices);
         hat_constraints.distribute_local_to_global(local,
                                                    hat_indices,
@@ -539,7 +532,6 @@ namespace PlateOnHalfspace
                                pressure_field,
                                adjoint.plate_solution,
                                soil,
-                               scene.loads,
-                               scene.self_weight_pressure);
+                               scene.loads);
   }
 } // namespace PlateOnHalfspace

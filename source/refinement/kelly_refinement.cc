@@ -17,55 +17,17 @@ namespace PlateOnHalfspace
 {
   namespace
   {
-    /**
-     * The load that a load discontinuity puts on @p cell: for each patch
-     * whose edge crosses the cell (the patch covers part of it, not all),
-     * |pressure| times the cell's area; for each point load on the cell,
-     * its |force|.
-     */
+    /** The load that the loads' jumps put on @p cell (Load::jump_on()). */
     double
     load_edge_indicator(const Triangulation<2>::active_cell_iterator &cell,
-                        const Parameters::Loads                      &loads)
+                        const LoadList                               &loads)
     {
-      const BoundingBox<2> box   = cell->bounding_box();
-      const double         area  = cell->measure();
-      double               value = 0;
-      for (const auto &patch : loads.rectangular_patches)
-        {
-          const BoundingBox<2> patch_box({patch.lower, patch.upper});
-          const double         overlap_x =
-                         std::min(box.upper_bound(0), patch.upper[0]) -
-                         std::max(box.lower_bound(0), patch.lower[0]),
-                       overlap_y =
-                         std::min(box.upper_bound(1), patch.upper[1]) -
-                         std::max(box.lower_bound(1), patch.lower[1]);
-          if (overlap_x <= 0 || overlap_y <= 0)
-            continue; // apart, or touching along an edge
-          bool all_inside = true;
-          for (const unsigned int v : cell->vertex_indices())
-            all_inside = all_inside && patch_box.point_inside(cell->vertex(v));
-          if (!all_inside)
-            value += std::abs(patch.pressure) * area;
-        }
-      for (const auto &patch : loads.circular_patches)
-        {
-          unsigned int inside = 0;
-          for (const unsigned int v : cell->vertex_indices())
-            inside += cell->vertex(v).distance(patch.centre) <= patch.radius;
-          // the rim crosses the cell: some vertices inside, or none while
-          // the circle reaches into the cell's box
-          const Point<2> nearest(std::clamp(patch.centre[0],
-                                            box.lower_bound(0),
-                                            box.upper_bound(0)),
-                                 std::clamp(patch.centre[1],
-                                            box.lower_bound(1),
-                                            box.upper_bound(1)));
-          if (inside < 4 && nearest.distance(patch.centre) < patch.radius)
-            value += std::abs(patch.pressure) * area;
-        }
-      for (const auto &point_load : loads.point_loads)
-        if (box.point_inside(point_load.location))
-          value += std::abs(point_load.force);
+      const std::array<Point<2>, 4> vertices = {
+        {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}};
+      const double area  = cell->measure();
+      double       value = 0;
+      for (const auto &load : loads)
+        value += load->jump_on(vertices, area);
       return value;
     }
   } // namespace
@@ -88,7 +50,7 @@ namespace PlateOnHalfspace
   }
 
   KellyRefinement::KellyRefinement(const Parameters::Adaptivity &adaptivity,
-                                   const Parameters::Loads      &loads)
+                                   const LoadList               &loads)
     : adaptivity(adaptivity)
     , loads(loads)
   {}
@@ -208,8 +170,10 @@ namespace PlateOnHalfspace
     switch (parameters.adaptivity.refinement)
       {
         case Parameters::Adaptivity::Refinement::adaptive:
+          // the plate's weight is uniform: it has no jump
           return std::make_unique<KellyRefinement>(parameters.adaptivity,
-                                                   parameters.loads);
+                                                   make_loads(parameters.loads,
+                                                              0.));
         case Parameters::Adaptivity::Refinement::goal:
           return std::make_unique<GoalOrientedRefinement>(
             parameters.adaptivity);

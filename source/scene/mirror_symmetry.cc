@@ -106,42 +106,16 @@ namespace PlateOnHalfspace
     }
 
     /**
-     * Whether the loads come in mirror pairs across the plane normal to
-     * @p axis (each patch and point load, or an equal one, has its image
-     * in the list as often as itself).
-     */
-    template <typename Load, typename Same, typename Mirror>
-    bool
-    loads_mirror_symmetric(const std::vector<Load> &loads,
-                           const Same              &same,
-                           const Mirror            &mirror)
-    {
-      for (const Load &load : loads)
-        {
-          const Load image = mirror(load);
-          const auto n_same =
-            std::count_if(loads.begin(), loads.end(), [&](const Load &l) {
-              return same(l, load);
-            });
-          const auto n_image =
-            std::count_if(loads.begin(), loads.end(), [&](const Load &l) {
-              return same(l, image);
-            });
-          if (n_same != n_image)
-            return false;
-        }
-      return true;
-    }
-
-    /**
      * Why the scene is not symmetric about the plane normal to @p axis, or
      * an empty string if it is.
      */
     std::string
-    reason_against_plane(const SceneParameters  &parameters,
-                         const Triangulation<2> &mesh,
-                         const unsigned int      axis,
-                         const double            tolerance)
+    reason_against_plane(
+      const SceneParameters                                  &parameters,
+      const Triangulation<2>                                 &mesh,
+      const unsigned int                                      axis,
+      const double                                            tolerance,
+      const std::function<std::string(unsigned int, double)> &loads_reason)
     {
       const std::string plane = (axis == 0 ? "x = 0" : "y = 0");
       for (const auto &cell : mesh.active_cell_iterators())
@@ -167,51 +141,7 @@ namespace PlateOnHalfspace
           !mirror_closed(centres, axis, tolerance))
         return "the mesh is not mirror symmetric about " + plane;
 
-      const auto close = [tolerance](const Point<2> &a, const Point<2> &b) {
-        return a.distance(b) <= tolerance;
-      };
-      const auto same_value = [](const double a, const double b) {
-        return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b));
-      };
-      const auto &loads = parameters.loads;
-      using Parameters::CircularPatch;
-      using Parameters::PointLoad;
-      using Parameters::RectangularPatch;
-      const bool patches_symmetric = loads_mirror_symmetric(
-        loads.rectangular_patches,
-        [&](const RectangularPatch &a, const RectangularPatch &b) {
-          return close(a.lower, b.lower) && close(a.upper, b.upper) &&
-                 same_value(a.pressure, b.pressure);
-        },
-        [&](RectangularPatch p) {
-          const double low = p.lower[axis];
-          p.lower[axis]    = -p.upper[axis];
-          p.upper[axis]    = -low;
-          return p;
-        });
-      const bool disks_symmetric = loads_mirror_symmetric(
-        loads.circular_patches,
-        [&](const CircularPatch &a, const CircularPatch &b) {
-          return close(a.centre, b.centre) &&
-                 std::abs(a.radius - b.radius) <= tolerance &&
-                 same_value(a.pressure, b.pressure);
-        },
-        [&](CircularPatch p) {
-          p.centre = mirrored(p.centre, axis);
-          return p;
-        });
-      const bool points_symmetric = loads_mirror_symmetric(
-        loads.point_loads,
-        [&](const PointLoad &a, const PointLoad &b) {
-          return close(a.location, b.location) && same_value(a.force, b.force);
-        },
-        [&](PointLoad p) {
-          p.location = mirrored(p.location, axis);
-          return p;
-        });
-      if (!patches_symmetric || !disks_symmetric || !points_symmetric)
-        return "the loads are not mirror symmetric about " + plane;
-      return "";
+      return loads_reason(axis, tolerance);
     }
 
     double
@@ -225,8 +155,10 @@ namespace PlateOnHalfspace
   } // namespace
 
   MirrorSymmetry
-  choose_mirror_symmetry(const SceneParameters  &parameters,
-                         const Triangulation<2> &coarse_mesh)
+  choose_mirror_symmetry(
+    const SceneParameters                                  &parameters,
+    const Triangulation<2>                                 &coarse_mesh,
+    const std::function<std::string(unsigned int, double)> &loads_reason)
   {
     const std::string &requested = parameters.discretization.symmetry;
     MirrorSymmetry     symmetry;
@@ -250,8 +182,8 @@ namespace PlateOnHalfspace
           requested.find(axis == 0 ? 'x' : 'y') != std::string::npos;
         if (requested != "auto" && !wanted)
           continue;
-        const std::string reason =
-          reason_against_plane(parameters, coarse_mesh, axis, tolerance);
+        const std::string reason = reason_against_plane(
+          parameters, coarse_mesh, axis, tolerance, loads_reason);
         AssertThrow(reason.empty() || requested == "auto",
                     ExcMessage("Discretization/Symmetry = " + requested +
                                ": the scene is not symmetric, " + reason +
@@ -348,42 +280,4 @@ namespace PlateOnHalfspace
           }
   }
 
-  Parameters::Loads
-  loads_on_computed_part(const Parameters::Loads &loads,
-                         const MirrorSymmetry    &symmetry)
-  {
-    const double      tolerance = symmetry.tolerance;
-    Parameters::Loads part      = loads;
-    const bool        planes[2] = {symmetry.x, symmetry.y};
-    part.rectangular_patches.clear();
-    part.circular_patches.clear();
-    part.point_loads.clear();
-    for (const auto &patch : loads.rectangular_patches)
-      if ((!planes[0] || patch.upper[0] > tolerance) &&
-          (!planes[1] || patch.upper[1] > tolerance))
-        part.rectangular_patches.push_back(patch);
-    for (const auto &patch : loads.circular_patches)
-      if ((!planes[0] || patch.centre[0] + patch.radius > tolerance) &&
-          (!planes[1] || patch.centre[1] + patch.radius > tolerance))
-        part.circular_patches.push_back(patch);
-    for (auto point_load : loads.point_loads)
-      {
-        bool dropped = false;
-        for (const unsigned int axis : {0u, 1u})
-          if (planes[axis])
-            {
-              if (point_load.location[axis] < -tolerance)
-                dropped = true;
-              else if (point_load.location[axis] <= tolerance)
-                {
-                  // on the plane: the computed part carries its half
-                  point_load.location[axis] = 0;
-                  point_load.force /= 2;
-                }
-            }
-        if (!dropped)
-          part.point_loads.push_back(point_load);
-      }
-    return part;
-  }
 } // namespace PlateOnHalfspace

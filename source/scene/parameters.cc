@@ -9,6 +9,7 @@
 
 #include <boost/algorithm/string/join.hpp>
 
+#include <plate_on_halfspace/base/number_list.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
 #include <algorithm>
@@ -19,70 +20,9 @@
 
 namespace PlateOnHalfspace
 {
+
   namespace
   {
-    /**
-     * Split a list entry "a,b,c ; d,e,f" into items of exactly @p n_fields
-     * numbers each (any number if @p n_fields is 0). Errors name the
-     * section and entry.
-     */
-    std::vector<std::vector<double>>
-    parse_number_list(const std::string &text,
-                      const unsigned int n_fields,
-                      const std::string &entry_name,
-                      const std::string &field_names)
-    {
-      std::vector<std::vector<double>> items;
-      for (const std::string &item : Utilities::split_string_list(text, ';'))
-        {
-          if (item.empty())
-            continue;
-          const std::vector<std::string> fields =
-            Utilities::split_string_list(item, ',');
-          // split_string_list() drops a trailing empty field: a comma
-          // with nothing after it is a malformed item, not a shorter one.
-          AssertThrow(static_cast<std::size_t>(
-                        std::count(item.begin(), item.end(), ',')) +
-                          1 ==
-                        fields.size(),
-                      ExcMessage("Entry <" + entry_name + ">: the item <" +
-                                 item + "> has an empty field."));
-          AssertThrow(n_fields == 0 || fields.size() == n_fields,
-                      ExcMessage("Entry <" + entry_name + ">: the item <" +
-                                 item + "> must have " +
-                                 std::to_string(n_fields) + " fields (" +
-                                 field_names + ")."));
-          std::vector<double> numbers;
-          for (const std::string &field : fields)
-            {
-              // A decimal number: strtod alone would also take the
-              // hexadecimal 0x10 as 16 (and 0x1p4).
-              double value = 0;
-              try
-                {
-                  AssertThrow(field.find_first_of("xXpP") == std::string::npos,
-                              ExcInternalError());
-                  value = Utilities::string_to_double(field);
-                }
-              catch (...)
-                {
-                  AssertThrow(false,
-                              ExcMessage("Entry <" + entry_name + ">: <" +
-                                         field + "> in <" + item +
-                                         "> is not a number (a decimal "
-                                         "number of magnitude 1e-307 to "
-                                         "1e308, or 0)."));
-                }
-              AssertThrow(std::isfinite(value),
-                          ExcMessage("Entry <" + entry_name + ">: <" + field +
-                                     "> is not a finite number."));
-              numbers.push_back(value);
-            }
-          items.push_back(numbers);
-        }
-      return items;
-    }
-
     void
     require(const bool condition, const std::string &message)
     {
@@ -701,6 +641,8 @@ namespace PlateOnHalfspace
         "the offsets from (x1,y1) to (x2,y2) in steps >= 2 equal steps on "
         "the last mesh and report the envelope (sweep.csv, summary.json "
         "\"sweep\"); empty: no sweep. Needs Loads/Axles.");
+      for (const LoadKind &kind : registered_load_kinds())
+        kind.declare_parameters(prm);
       prm.leave_subsection();
     }
 
@@ -814,6 +756,10 @@ namespace PlateOnHalfspace
                                            5,
                                            "Loads/Sweep",
                                            "x1,y1,x2,y2,steps");
+      registered_kinds.clear();
+      for (const LoadKind &kind : registered_load_kinds())
+        for (auto &load : kind.parse_parameters(prm))
+          registered_kinds.push_back(std::move(load));
       prm.leave_subsection();
       require(sweep.size() <= 1,
               "Loads/Sweep takes one path x1,y1,x2,y2,steps (got " +

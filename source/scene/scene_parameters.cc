@@ -222,10 +222,18 @@ namespace PlateOnHalfspace
                 "Adaptivity/Goal needs the symmetric half-space operator, "
                 "Discretization/Flexibility = galerkin (the error estimate "
                 "solves the adjoint problem with the same operator).");
-        require(discretization.initial_refinements >= 1,
-                "Adaptivity/Goal needs Discretization/Initial refinements "
-                ">= 1: the error estimate reconstructs the dual solution "
-                "on patches of 2 x 2 cells of a refined mesh.");
+        // The estimate reconstructs the dual solution on patches of 2 x 2
+        // cells of a refined mesh: a goal on the coarse mesh refines it
+        // once, which the log says (refinement_note).
+        if (discretization.initial_refinements == 0)
+          {
+            discretization.initial_refinements = 1;
+            refinement_note =
+              "Adaptivity/Goal: the coarse mesh is refined once "
+              "(Discretization/Initial refinements = 1, not 0), since the "
+              "error estimate reconstructs the dual solution on patches "
+              "of 2 x 2 cells of a refined mesh.";
+          }
       }
     if (contact.solver == Parameters::Contact::Solver::iterative)
       {

@@ -12,7 +12,9 @@ values, lost lines and misspelt names, the perturbations also take
   a cycle of two files, a chain nested 40 deep, a missing file, a
   directory, a FIFO, a UTF-16 file, a UTF-8 file with a byte-order mark;
 - load sizes: pressures and forces from 1e-300 to 1e300, patches far
-  larger than the plate.
+  larger than the plate;
+- pressure functions: malformed, unknown names, NaN or infinite values,
+  regions off the plate, and their constants and quadrature.
 Every run must either succeed (status 0, summary.json without NaN or
 infinity and without null except a goal's "change" on the first cycle and
 "dwr" of the contact area, "converged": true, every number of the CSV
@@ -75,6 +77,10 @@ subsection Loads
   set Rectangular patches = 0,0,1,0.75,100
   set Circular patches    =
   set Point loads         = -0.5,0,20
+  set Pressure function   =
+  set Function constants  =
+  set Pressure function region =
+  set Pressure function points = 6
 end
 subsection Discretization
   set Element           = serendipity
@@ -143,6 +149,14 @@ choices = {
     "Circular patches": ["", "0,0,0.3,50", "0,0,0,50", "0,0,-1,50", "9,9,1,1", "0,0,5,10"],
     "Point loads": ["", "0,0,10", "1,0.75,10", "0,0,-10", "3,0,10", "0,0", "0,0,inf",
                     "0.3333,0.25,1e9", "-1,-0.75,1e-6"],
+    "Pressure function": ["", "5*(y+1)^2", "p0*(1-x/a)", "sin(", "z", "sqrt(x)",
+                          "exp(1000*x)", "1/x", "x*y*1e300", "-10", "10,20", "x=3",
+                          "1e-320", "1 + if(x>0.9, 1000, 0)"],
+    "Function constants": ["", "p0=5, a=2", "p0=5, p0=6", "x=1", "p0", "p0=nan", "1a=2",
+                           "_pi=3", "a=1;b=2", "a=3,"],
+    "Pressure function region": ["", "0,0,0.5", "-1,-0.5,0.5,0.5", "0,0,-1", "1,1,0,0",
+                                 "0,0", "9,9,1", "0,0,1;1,1,1"],
+    "Pressure function points": ["6", "1", "30", "0", "31", "x"],
     "Probe points": ["", "0,0", "1,0.75", "9,9", "0", "nan,0"],
     "Mesh file": ["", "no-such.msh", "triangles.msh", "."],
     "Refinement": ["global", "adaptive", "goal", "kelly", ""],

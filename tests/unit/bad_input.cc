@@ -93,8 +93,6 @@ main()
   check("target error of 1 or more",
         "subsection Adaptivity\n set Goal = mean w\n"
         " set Target error = 1\nend\n");
-  check("goal on the unrefined mesh",
-        "subsection Adaptivity\n set Goal = mean w\nend\n");
   check("goal with the collocation operator",
         "subsection Discretization\n set Flexibility = collocation\n"
         " set Initial refinements = 1\nend\n"

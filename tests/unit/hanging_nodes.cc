@@ -45,7 +45,7 @@ namespace
     result.plate = std::make_unique<MindlinPlate>(parameters.plate,
                                                   parameters.discretization);
     result.plate->setup(mesh);
-    result.plate->assemble_loads(parameters.loads, 0.);
+    result.plate->assemble_loads(make_loads(parameters.loads, 0.));
     result.foundation = create_foundation_operator(
       parameters,
       create_soil_model(parameters),

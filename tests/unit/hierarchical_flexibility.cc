@@ -63,7 +63,12 @@ namespace
                                 extra);
     Triangulation<2> mesh;
     make_coarse_plate_mesh(parameters.plate, parameters.discretization, mesh);
-    const MirrorSymmetry symmetry = choose_mirror_symmetry(parameters, mesh);
+    const MirrorSymmetry symmetry = choose_mirror_symmetry(
+      parameters, mesh, [&](const unsigned int axis, const double tolerance) {
+        return reason_loads_not_symmetric(make_loads(parameters.loads, 0.),
+                                          axis,
+                                          tolerance);
+      });
     cut_to_computed_part(symmetry, mesh);
     mesh.refine_global(parameters.discretization.initial_refinements);
     MindlinPlate plate(parameters.plate, parameters.discretization);

@@ -92,6 +92,15 @@ namespace PlateOnHalfspace
    * biquadratic shape functions of an affine cell are integrated exactly for
    * n_points_1d >= 3). Returns an empty quadrature if the two do not overlap.
    */
+  /**
+   * The Gauss rule of @p n_points_1d (at most 40) points per direction on
+   * the whole of @p cell: points in reference coordinates, weights
+   * physical areas (as below).
+   */
+  Quadrature<2>
+  quadrature_on_cell(const BilinearQuadrilateral &cell,
+                     const unsigned int           n_points_1d);
+
   Quadrature<2>
   quadrature_on_rectangle_part(const BilinearQuadrilateral &cell,
                                const Point<2>              &lower,

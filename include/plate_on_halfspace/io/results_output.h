@@ -39,6 +39,8 @@ namespace PlateOnHalfspace
     unsigned int contact_iterations = 0, contact_nodes = 0;
     double       contact_area_fraction = 0;
     double       applied_load = 0, contact_force = 0;
+    /** The applied load's quadrature error (load_integration_error()). */
+    double       load_integration_error    = 0;
     double       complementarity_violation = 0;
     unsigned int tensile_nodes             = 0;
     double       max_penetration           = 0;

@@ -8,6 +8,7 @@
 #ifndef plate_on_halfspace_plate_load_checks_h
 #define plate_on_halfspace_plate_load_checks_h
 
+#include <plate_on_halfspace/loads/load.h>
 #include <plate_on_halfspace/plate/foundation_space.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
@@ -23,19 +24,38 @@ namespace PlateOnHalfspace
   {
     /** How messages name it ("Loads/Axles: group 1 (tandem), tyre 3"). */
     std::string entry;
-    /** pressure x area of the whole patch */
+    /** The area of its region, and the part of it on the plate. */
+    double area = 0, covered_area = 0;
+    /** Its load as given (pressure x area of a patch), if its pressure is
+     *  uniform; otherwise NaN. */
     double load = 0;
-    /** pressure x the area of the patch on the plate */
+    /** Its load on the plate. */
     double applied = 0;
   };
 
   /**
-   * Every rectangular and circular patch of @p loads (the tyres of the
-   * axles among them): its load and the part on the plate, integrated over
-   * the cells of @p space and their mirror images, i.e. the whole plate.
+   * Every load of @p loads that covers a region of its own (patches, the
+   * tyres of the axles, a pressure function's region): its area and load
+   * (Load::region_area(), nominal_force()) and their parts on the plate,
+   * integrated over the
+   * cells of @p space and their mirror images, i.e. the whole plate.
    */
   std::vector<LoadOnPlate>
-  loads_on_plate(const FoundationSpace &space, const Parameters::Loads &loads);
+  loads_on_plate(const FoundationSpace &space, const LoadList &loads);
+
+  /**
+   * The largest relative difference, over @p loads, between a load's
+   * force on the cells of @p space by its own rule (Load::on_cell()) and by
+   * a rule of 3 more Gauss points per direction on each quarter of each
+   * cell, relative to the integral of its |p|: how well the applied load
+   * is integrated (summary.json's load_integration_error): the
+   * quadrature's error for a pressure function, a jump or a peak inside a
+   * cell included; the loads integrated exactly (Load::
+   * integrated_exactly(): uniform pressures, patches, point loads) are
+   * not checked and count as 0.
+   */
+  double
+  load_integration_error(const FoundationSpace &space, const LoadList &loads);
 
   /**
    * A warning for each patch of @p loads partly off the plate: it names the
@@ -74,9 +94,9 @@ namespace PlateOnHalfspace
    * weight is among the loads, so that the advice does not ask for it.
    */
   ResultantVerdict
-  check_load_resultant(const MindlinPlate      &plate,
-                       const Parameters::Loads &loads,
-                       const bool               has_weight);
+  check_load_resultant(const MindlinPlate &plate,
+                       const LoadList     &loads,
+                       const bool          has_weight);
 } // namespace PlateOnHalfspace
 
 #endif

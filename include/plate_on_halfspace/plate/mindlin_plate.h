@@ -27,6 +27,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <plate_on_halfspace/base/sparse_cholesky.h>
+#include <plate_on_halfspace/loads/load.h>
 #include <plate_on_halfspace/plate/foundation_space.h>
 #include <plate_on_halfspace/plate/joints.h>
 #include <plate_on_halfspace/plate/slab_grid.h>
@@ -190,13 +191,13 @@ namespace PlateOnHalfspace
     }
 
     /**
-     * Assemble the load vector of a scene's loads (downward positive) and
-     * of the thermal moment: M_T ∫ div(beta_v) (doc/formulation.md,
-     * "Temperature").
+     * Assemble the load vector of @p loads (downward positive; each
+     * integrated by its own rule, Load::on_cell()) and of the thermal
+     * moment: M_T ∫ div(beta_v) (doc/formulation.md, "Temperature").
+     * Throws if a load misses the plate.
      */
     void
-    assemble_loads(const Parameters::Loads &loads,
-                   const double             self_weight_pressure);
+    assemble_loads(const LoadList &loads);
 
     /** Total applied vertical load (force). */
     double

@@ -60,7 +60,7 @@ namespace PlateOnHalfspace
    *  - the residual of the plate equation, rho(v) = (p - q_h, v_w) -
    *    a_h(u_h, v), of the cycle (@p solution, the pressure @p
    *    pressure_field in the w-space, the scene's @p loads on the computed
-   *    part plus the uniform @p self_weight_pressure), a_h integrating the
+   *    part, the plate's weight among them), a_h integrating the
    *    shear term like the element does, and
    *  - the residual of the foundation's equation, rho_F(mu) = (mu, u(q_h)
    *    - w_h) with u(q_h) the settlement of q_h (FoundationOperator::
@@ -101,8 +101,7 @@ namespace PlateOnHalfspace
                       const Vector<double>         &pressure_field,
                       const Vector<double>         &adjoint_solution,
                       const FoundationResidualData &foundation,
-                      const Parameters::Loads      &loads,
-                      const double                  self_weight_pressure);
+                      const LoadList               &loads);
   /**
    * The contact area's error, which no adjoint problem describes (the area
    * is not differentiable in the solution): the contact boundary lies
@@ -119,9 +118,8 @@ namespace PlateOnHalfspace
   /** What a cycle's goal estimate needs of the scene beyond the solution. */
   struct GoalEstimateScene
   {
-    /** The loads on the computed part and the self weight's pressure. */
-    const Parameters::Loads &loads;
-    double                   self_weight_pressure;
+    /** The loads on the computed part, the plate's weight among them. */
+    const LoadList &loads;
     /** The cycle's foundation operator (its settlement law). */
     const FoundationOperator &foundation;
   };

@@ -70,7 +70,7 @@ namespace PlateOnHalfspace
   public:
     /** @p loads are the scene's (whole-plate) loads. */
     KellyRefinement(const Parameters::Adaptivity &adaptivity,
-                    const Parameters::Loads      &loads);
+                    const LoadList               &loads);
 
     bool
     mark(const MindlinPlate      &plate,
@@ -80,7 +80,7 @@ namespace PlateOnHalfspace
 
   private:
     const Parameters::Adaptivity adaptivity;
-    const Parameters::Loads      loads;
+    const LoadList               loads;
   };
 
   /**

@@ -23,6 +23,7 @@
 #include <plate_on_halfspace/scene/parameters.h>
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -89,13 +90,17 @@ namespace PlateOnHalfspace
    * The mirror planes to use for a scene (Discretization/Symmetry) on its
    * coarse, whole-plate mesh: a plane is used if the mesh's vertices and
    * cells are mirror images of each other across it, no cell straddles it,
-   * and the loads (patches and point loads) come in mirror pairs. With
+   * and @p loads_reason(axis, tolerance), why the loads are not mirror
+   * symmetric across the plane normal to axis, is empty (the load family's
+   * reason_loads_not_symmetric(), which lies below this family). With
    * Symmetry = x, y or xy, a plane that fails throws a message naming the
    * reason.
    */
   MirrorSymmetry
-  choose_mirror_symmetry(const SceneParameters  &parameters,
-                         const Triangulation<2> &coarse_mesh);
+  choose_mirror_symmetry(
+    const SceneParameters                                  &parameters,
+    const Triangulation<2>                                 &coarse_mesh,
+    const std::function<std::string(unsigned int, double)> &loads_reason);
 
   /**
    * Replace the coarse (unrefined) @p triangulation by its cells in the
@@ -107,16 +112,6 @@ namespace PlateOnHalfspace
   cut_to_computed_part(const MirrorSymmetry &symmetry,
                        Triangulation<2>     &triangulation);
 
-  /**
-   * The loads acting on the computed part: patches and point loads in the
-   * mirrored-away part are dropped (their images are kept), a point load on
-   * a plane carries its share (1/2, or 1/4 at the origin of xy). Patches
-   * that cross a plane are kept whole; the plate's load quadrature clips
-   * them to the computed cells.
-   */
-  Parameters::Loads
-  loads_on_computed_part(const Parameters::Loads &loads,
-                         const MirrorSymmetry    &symmetry);
 } // namespace PlateOnHalfspace
 
 #endif

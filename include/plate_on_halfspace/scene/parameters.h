@@ -14,6 +14,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <plate_on_halfspace/loads/load.h>
 #include <plate_on_halfspace/scene/axles.h>
 
 #include <string>
@@ -202,6 +203,9 @@ namespace PlateOnHalfspace
       /** Loads/Axles as written (their tyres are in circular_patches). */
       std::vector<AxleGroup> axles;
       std::vector<PointLoad> point_loads;
+      /** The loads of the kinds that declare their own entries
+       *  (LoadKind, e.g. Loads/Pressure function). */
+      LoadList registered_kinds;
       /** Loads/Sweep: the axles move along [sweep_start, sweep_end] in
        *  sweep_steps positions (0: no sweep). */
       Point<2>     sweep_start, sweep_end;
@@ -433,6 +437,10 @@ namespace PlateOnHalfspace
     Parameters::Output             output;
     Parameters::Verification       verification;
 
+    /** What parse_parameters() chose for an entry the user left alone,
+     *  for the log; empty if nothing. */
+    std::string refinement_note;
+
     static void
     declare_parameters(ParameterHandler &prm);
     void
@@ -462,6 +470,14 @@ namespace PlateOnHalfspace
     void
     read_from_string(const std::string &text);
   };
+  /**
+   * The loads of the scene's subsection Loads: Uniform pressure, the
+   * patches, the axles' tyres, the point loads and the loads of the
+   * registered kinds, and the plate's own weight as a uniform pressure
+   * @p self_weight_pressure (none if zero).
+   */
+  LoadList
+  make_loads(const Parameters::Loads &loads, const double self_weight_pressure);
 } // namespace PlateOnHalfspace
 
 #endif
