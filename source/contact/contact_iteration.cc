@@ -70,8 +70,9 @@ namespace PlateOnHalfspace
                 ExcMessage("Loads: the total load is zero (Loads/Uniform "
                            "pressure, Rectangular patches, Circular patches, "
                            "Point loads, Axles, Pressure function, "
-                           "Plate/Unit weight and Temperature give no load); "
-                           "set at least one non-zero load."));
+                           "Plate/Unit weight and Temperature give no load; a "
+                           "Pressure function counts at its quadrature points "
+                           "only); set at least one non-zero load."));
     AssertThrow(!tensionless || plate.applied_load() > 0,
                 ExcMessage("The loads lift the plate off a tensionless "
                            "foundation: their resultant is not downward (a "

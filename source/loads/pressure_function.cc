@@ -78,12 +78,28 @@ namespace PlateOnHalfspace
           if (c == ',' && depth == 0)
             return "a comma outside parentheses would separate several "
                    "expressions";
+          if (c == ';')
+            return "a ; would separate several expressions";
           const char before = i > 0 ? expression[i - 1] : ' ';
           const char after =
             i + 1 < expression.size() ? expression[i + 1] : ' ';
           if (c == '=' && before != '=' && before != '<' && before != '>' &&
               before != '!' && after != '=')
             return "a single = would assign to a variable (compare with ==)";
+        }
+      // rand() draws anew at every evaluation: the load vector, the
+      // checks and the goal estimate would each see another pressure
+      for (std::size_t at = expression.find("rand"); at != std::string::npos;
+           at             = expression.find("rand", at + 1))
+        {
+                      const auto part_of_name = [&](const std::size_t i) {
+            return i < expression.size() &&
+                   (std::isalnum(static_cast<unsigned char>(expression[i])) ||
+                    expression[i] == '_');
+          };
+                      if ((at == 0 || !part_of_name(at - 1)) && !part_of_name(at + 4))
+            return "rand() gives another pressure at every evaluation (use "
+                               "rand_seed(seed), which repeats)";
         }
       return "";
     }
@@ -97,10 +113,10 @@ namespace PlateOnHalfspace
                   ExcMessage(entry + ": " + quoted(settings.expression) +
                              " is not one expression in x and y: " + misuse +
                              "."));
-      // pi as deal.II's ParsedFunction knows it, unless a constant says
-      // otherwise
+      // pi as deal.II's ParsedFunction knows it (no constant may take
+      // its name)
       std::map<std::string, double> constants = settings.constants;
-      constants.emplace("pi", numbers::PI);
+      constants["pi"]                         = numbers::PI;
       auto function = std::make_shared<FunctionParser<2>>(1);
       // deal.II prints muparser's own report on std::cerr before it
       // throws: keep it out of the terminal, the message below says it
@@ -122,6 +138,11 @@ namespace PlateOnHalfspace
       catch (const std::exception &e)
         {
           reason = e.what();
+        }
+      catch (...)
+        {
+          // muparser's own errors are no std::exception
+          reason = "muparser refused it";
         }
       std::cerr.rdbuf(terminal);
       std::replace(reason.begin(), reason.end(), '\n', ' ');
@@ -281,8 +302,9 @@ namespace PlateOnHalfspace
                       Patterns::Anything(),
                       "Named constants of Pressure function: name=value, ... "
                       "(e.g. p0=5, a=2); names are letters, digits and _, "
-                      "starting with a letter, neither x nor y nor one of "
-                      "muparser's functions. pi is known unless given.");
+                      "starting with a letter, at most 100 characters, "
+                      "neither x nor y nor pi nor one of muparser's "
+                      "functions (pi is known).");
     prm.declare_entry("Pressure function region",
                       "",
                       Patterns::Anything(),
@@ -325,7 +347,7 @@ namespace PlateOnHalfspace
       "tanh", "asinh", "acosh", "atanh",     "log2",  "log10", "log",  "ln",
       "exp",  "sqrt",  "sign",  "rint",      "abs",   "min",   "max",  "sum",
       "avg",  "if",    "int",   "ceil",      "floor", "cot",   "csc",  "sec",
-      "pow",  "erfc",  "rand",  "rand_seed", "atan2", "fmod"};
+      "pow",  "erfc",  "rand",  "rand_seed", "atan2", "fmod",  "pi"};
     for (const std::string &item : items)
       {
         const auto equals = item.find('=');
@@ -345,7 +367,11 @@ namespace PlateOnHalfspace
                       "Entry <Loads/Function constants>: " + quoted(name) +
                       " is not a constant's name (letters, digits "
                       "and _, starting with a letter, neither x nor "
-                      "y nor a function of muparser)."));
+                      "y nor pi nor a function of muparser)."));
+        AssertThrow(name.size() <= 100,
+                    ExcMessage(
+                      "Entry <Loads/Function constants>: " + quoted(name) +
+                      " is longer than muparser's 100 characters."));
         AssertThrow(constants.count(name) == 0,
                     ExcMessage("Entry <Loads/Function constants>: <" + name +
                                "> is given twice."));
