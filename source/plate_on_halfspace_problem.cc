@@ -216,7 +216,7 @@ namespace PlateOnHalfspace
         const Point<2> offset = loads.sweep_position(step);
         try
           {
-            mindlin_plate->assemble_loads(loads_at(offset, true));
+            mindlin_plate->load_vector(loads_at(offset, true));
           }
         catch (const ExceptionBase &e)
           {
@@ -617,7 +617,10 @@ namespace PlateOnHalfspace
                                              summary.n_foundation_dofs),
                                            parameters.output.verbosity,
                                            log);
-    contact = contact_solver->solve(*mindlin_plate, *foundation_operator, seed);
+    contact        = contact_solver->solve(*mindlin_plate,
+                                    *foundation_operator,
+                                    mindlin_plate->get_load_vector(),
+                                    seed);
     pressure_field = mindlin_plate->foundation_field_to_solution(contact.q);
     // The solver's factorisation of the flexibility belongs to the
     // foundation's time (doc/outputs.md, the time split).
@@ -700,13 +703,14 @@ namespace PlateOnHalfspace
     // moving loads alone hold it, and its deflections are theirs.
     if (!has_load && (!has_moment || parameters.foundation.tensionless))
       return;
-    mindlin_plate->assemble_loads(standing);
     const auto solver = create_contact_solver(
       parameters, parameters.contact_solver(summary.n_foundation_dofs), 0, log);
-    standing_solution =
-      solver->solve(*mindlin_plate, *foundation_operator, contact.active_set)
-        .plate_solution;
-    mindlin_plate->assemble_loads(computed_loads);
+    standing_solution = solver
+                          ->solve(*mindlin_plate,
+                                  *foundation_operator,
+                                  mindlin_plate->load_vector(standing),
+                                  contact.active_set)
+                          .plate_solution;
   }
 
   void
@@ -758,18 +762,19 @@ namespace PlateOnHalfspace
     const Parameters::Loads &loads      = parameters.loads;
     std::vector<bool>        warm_start = contact.active_set;
     std::vector<SweepRow>    rows;
-    const Vector<double>     scene_load = mindlin_plate->get_load_vector();
     for (unsigned int step = 0; step < loads.sweep_steps; ++step)
       {
         Interruption::check();
-        Timer          phase;
-        const Point<2> offset = loads.sweep_position(step);
-        mindlin_plate->assemble_loads(loads_at(offset, true));
+        Timer                phase;
+        const Point<2>       offset = loads.sweep_position(step);
+        const Vector<double> load =
+          mindlin_plate->load_vector(loads_at(offset, true));
         ContactState state;
         if (parameters.foundation.tensionless)
           {
             state = contact_solver->solve(*mindlin_plate,
                                           *foundation_operator,
+                                          load,
                                           warm_start);
             AssertThrow(state.converged,
                         ExcMessage("Loads/Sweep: the contact set did not "
@@ -780,13 +785,12 @@ namespace PlateOnHalfspace
           }
         else
           {
-            state = contact_solver->solve_linearised(
-              mindlin_plate->get_load_vector());
+            state            = contact_solver->solve_linearised(load);
             state.in_contact = contact.in_contact;
           }
         SweepRow row;
         row.position     = offset;
-        row.applied_load = symmetry.n_copies() * mindlin_plate->applied_load();
+        row.applied_load = symmetry.n_copies() * mindlin_plate->resultant(load);
         const FieldExtremum w =
           field_maximum(*mindlin_plate, state.plate_solution, PlateQuantity::w);
         const FieldExtremum bottom =
@@ -831,7 +835,6 @@ namespace PlateOnHalfspace
               << row.max_stress_top << ", " << row.contact_iterations
               << " contact iterations" << std::endl;
       }
-    mindlin_plate->set_load_vector(scene_load);
     // no NaN or infinity reaches sweep.csv (doc/errors-and-limits.md)
     for (unsigned int k = 0; k < rows.size(); ++k)
       for (const double value : {rows[k].applied_load,

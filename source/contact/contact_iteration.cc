@@ -55,10 +55,12 @@ namespace PlateOnHalfspace
   ContactState
   ContactIteration::solve(MindlinPlate            &plate,
                           FoundationOperator      &foundation,
+                          const Vector<double>    &load,
                           const std::vector<bool> &seed)
   {
     this->plate      = &plate;
     this->foundation = &foundation;
+    final_contact_set.clear();
     ContactState state;
     state.cell_in_foundation.assign(plate.get_foundation_space().cells.size(),
                                     true);
@@ -66,20 +68,21 @@ namespace PlateOnHalfspace
     // Without any load the answer is w = q = 0 whatever the scene: a user
     // who asks for it has forgotten a load (or put every load off the
     // plate, which the load assembly refuses first).
-    AssertThrow(plate.get_load_vector().linfty_norm() > 0,
+    AssertThrow(load.linfty_norm() > 0,
                 ExcMessage("Loads: the total load is zero (Loads/Uniform "
                            "pressure, Rectangular patches, Circular patches, "
                            "Point loads, Axles, Pressure function, "
                            "Plate/Unit weight and Temperature give no load; a "
                            "Pressure function counts at its quadrature points "
                            "only); set at least one non-zero load."));
-    AssertThrow(!tensionless || plate.applied_load() > 0,
+    AssertThrow(!tensionless || plate.resultant(load) > 0,
                 ExcMessage("The loads lift the plate off a tensionless "
                            "foundation: their resultant is not downward (a "
                            "temperature difference alone does not hold a "
                            "plate down: give it its Plate/Unit weight)."));
 
     prepare(plate, foundation, state);
+    prepare_load(load);
     if (!tensionless)
       solve_bonded(state);
     else if (contact.method == Parameters::Contact::Method::element_exclusion)
@@ -91,29 +94,16 @@ namespace PlateOnHalfspace
   }
 
   ContactState
-  ContactIteration::solve_linearised(const Vector<double> &plate_load)
+  ContactIteration::solve_linearised(const Vector<double> &load)
   {
     AssertThrow(plate != nullptr && !final_contact_set.empty(),
                 ExcMessage("ContactSolver::solve_linearised() needs a "
                            "solve() first."));
-    const Vector<double> scene_load = plate->get_load_vector();
-    plate->set_load_vector(plate_load);
-    load_changed();
+    prepare_load(load);
     ContactState state;
     state.cell_in_foundation.assign(plate->get_foundation_space().cells.size(),
                                     true);
-    try
-      {
-        solve_on_set(final_contact_set, final_tolerance(), state);
-      }
-    catch (...)
-      {
-        plate->set_load_vector(scene_load);
-        load_changed();
-        throw;
-      }
-    plate->set_load_vector(scene_load);
-    load_changed();
+    solve_on_set(final_contact_set, final_tolerance(), state);
     state.iterations = 1;
     state.converged  = true;
     express_in_nodal_values(*foundation, state);

@@ -56,7 +56,7 @@ namespace PlateOnHalfspace
                                FoundationOperator &,
                                ContactState &)
   {
-    plate.condense(plate_stiffness, plate_load);
+    plate.condense(plate_stiffness);
     rigid_motions.clear();
     for (const Vector<double> &motion : rigid_body_motions(plate))
       rigid_motions.push_back(plate.restrict_to_foundation(motion));
@@ -65,9 +65,10 @@ namespace PlateOnHalfspace
   }
 
   void
-  DirectContactSolver::load_changed()
+  DirectContactSolver::prepare_load(const Vector<double> &new_load)
   {
-    plate_load = plate->condensed_load();
+    load       = new_load;
+    plate_load = plate->condensed_load(load);
   }
 
   void
@@ -205,7 +206,7 @@ namespace PlateOnHalfspace
     for (const unsigned int i : contact_index)
       state.in_contact[i] = true;
     foundation->gap(state.w, state.q, state.gap);
-    plate->expand(state.w, state.plate_solution);
+    plate->expand(state.w, load, state.plate_solution);
     Vector<double> plate_settlement;
     foundation->plate_settlement(state.w, plate_settlement);
     return plate_settlement;

@@ -403,18 +403,15 @@ namespace PlateOnHalfspace
         test_coupling.vmult(column, plate.restrict_to_foundation(motions[j]));
         tested_motions.push_back(column);
       }
-    this->plate      = &plate;
-    this->foundation = &foundation;
-    load_changed();
   }
 
   void
-  IterativeContactSolver::load_changed()
+  IterativeContactSolver::prepare_load(const Vector<double> &load)
   {
     // B N K^+ P and R^T P: the parts of the contact-set problem that
     // depend on the load.
-    const Vector<double> &load = plate->get_load_vector();
-    Vector<double>        plate_response;
+    plate_load = load;
+    Vector<double> plate_response;
     inverse->solve(load, plate_response);
     tested_plate_load.reinit(foundation->n_nodes());
     foundation->test_coupling().vmult(
@@ -490,7 +487,7 @@ namespace PlateOnHalfspace
     const auto          &motions         = inverse->rigid_motions();
     const Vector<double> alpha           = problem.rigid_motion_amplitudes(q);
     state.q                              = problem.extend_by_zero(q);
-    Vector<double> forces(n), f(plate->get_load_vector()), u;
+    Vector<double> forces(n), f(plate_load), u;
     foundation->force_coupling().vmult(forces, state.q);
     for (unsigned int i = 0; i < n; ++i)
       f[foundation_dofs[i]] -= forces[i];

@@ -25,20 +25,6 @@ namespace PlateOnHalfspace
       return BilinearQuadrilateral(std::array<Point<2>, 4>{
         {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}});
     }
-
-    /**
-     * The resultant of @p load: the w-shape functions are a partition of
-     * unity, also after the constraints, so it is the sum of the w-loads.
-     */
-    double
-    resultant(const Vector<double>                       &load,
-              const std::vector<types::global_dof_index> &w_dofs)
-    {
-      double sum = 0;
-      for (const auto dof : w_dofs)
-        sum += load[dof];
-      return sum;
-    }
   } // namespace
 
   MindlinPlate::MindlinPlate(const Parameters::Plate          &plate,
@@ -316,10 +302,26 @@ namespace PlateOnHalfspace
       }
   }
 
+  double
+  MindlinPlate::resultant(const Vector<double> &load) const
+  {
+    double sum = 0;
+    for (const auto dof : foundation_dofs)
+      sum += load[dof];
+    return sum;
+  }
+
   void
   MindlinPlate::assemble_loads(const LoadList &loads)
   {
-    load                                   = 0;
+    load       = load_vector(loads);
+    total_load = resultant(load);
+  }
+
+  Vector<double>
+  MindlinPlate::load_vector(const LoadList &loads) const
+  {
+    Vector<double>                       load(dof_handler.n_dofs());
     const unsigned int                   n = fe.n_dofs_per_cell();
     Vector<double>                       local(n);
     std::vector<types::global_dof_index> dofs(n);
@@ -396,7 +398,7 @@ namespace PlateOnHalfspace
         located.first->get_dof_indices(dofs);
         constraints.distribute_local_to_global(local, dofs, load);
       }
-    total_load = resultant(load, foundation_dofs);
+    return load;
   }
 
   double
@@ -432,8 +434,7 @@ namespace PlateOnHalfspace
   }
 
   void
-  MindlinPlate::condense(LAPACKFullMatrix<double> &condensed,
-                         Vector<double>           &condensed_load)
+  MindlinPlate::condense(LAPACKFullMatrix<double> &condensed)
   {
     // r: every unconstrained DoF that is not a foundation node (rotations,
     // and w-DoFs a test may have supported).
@@ -498,13 +499,12 @@ namespace PlateOnHalfspace
               }
           }
       }
-
-    condensed_load = this->condensed_load();
   }
 
   Vector<double>
-  MindlinPlate::condensed_load() const
+  MindlinPlate::condensed_load(const Vector<double> &load) const
   {
+    AssertThrow(load.size() == dof_handler.n_dofs(), ExcInternalError());
     // P̄ = P_f - K_fr K_rr^{-1} P_r
     const unsigned int  nf = foundation_dofs.size(), nr = rest_dofs.size();
     std::vector<double> rest_load(nr);
@@ -523,17 +523,11 @@ namespace PlateOnHalfspace
   }
 
   void
-  MindlinPlate::set_load_vector(const Vector<double> &new_load)
-  {
-    AssertThrow(new_load.size() == dof_handler.n_dofs(), ExcInternalError());
-    load       = new_load;
-    total_load = resultant(load, foundation_dofs);
-  }
-
-  void
   MindlinPlate::expand(const Vector<double> &foundation_w,
+                       const Vector<double> &load,
                        Vector<double>       &solution) const
   {
+    AssertThrow(load.size() == dof_handler.n_dofs(), ExcInternalError());
     const unsigned int n = dof_handler.n_dofs();
     Vector<double>     known(n), rhs(n);
     for (unsigned int i = 0; i < foundation_dofs.size(); ++i)

@@ -53,7 +53,10 @@ namespace
     result.foundation->build(result.plate->get_foundation_space(), {});
     std::ostringstream  log;
     DirectContactSolver solver(parameters.contact, false, 0, log);
-    result.state    = solver.solve(*result.plate, *result.foundation, {});
+    result.state    = solver.solve(*result.plate,
+                                *result.foundation,
+                                result.plate->get_load_vector(),
+                                {});
     result.solution = result.state.plate_solution;
     return result;
   }

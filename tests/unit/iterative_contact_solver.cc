@@ -59,7 +59,10 @@ namespace
     contact.tolerance      = 1e-10;
     std::ostringstream     log;
     IterativeContactSolver solver(contact, tensionless, control, 0, log);
-    return solver.solve(problem.plate(), problem.foundation(), {});
+    return solver.solve(problem.plate(),
+                        problem.foundation(),
+                        problem.plate().get_load_vector(),
+                        {});
   }
 
   void

@@ -32,10 +32,11 @@ namespace PlateOnHalfspace
     ContactState
     solve(MindlinPlate            &plate,
           FoundationOperator      &foundation,
+          const Vector<double>    &load,
           const std::vector<bool> &seed) final;
 
     ContactState
-    solve_linearised(const Vector<double> &plate_load) final;
+    solve_linearised(const Vector<double> &load) final;
 
   protected:
     /**
@@ -49,11 +50,12 @@ namespace PlateOnHalfspace
             ContactState       &state) = 0;
 
     /**
-     * The plate's load vector has changed (solve_linearised()): update
-     * what prepare() derived from it.
+     * Before the contact sets of a solve() or solve_linearised(), after
+     * prepare(): derive what the solves need from the load vector @p load,
+     * which solve_on_set() then solves for.
      */
     virtual void
-    load_changed() = 0;
+    prepare_load(const Vector<double> &load) = 0;
 
     /**
      * The coupled problem with the gap closed on @p contact_set (a subset
@@ -86,7 +88,7 @@ namespace PlateOnHalfspace
     const bool                tensionless;
     const unsigned int        verbosity;
     std::ostream             &log;
-    /** The problem of the current solve() (set for its duration). */
+    /** The problem of the last solve(). */
     MindlinPlate       *plate      = nullptr;
     FoundationOperator *foundation = nullptr;
 

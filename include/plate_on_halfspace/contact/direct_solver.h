@@ -39,7 +39,7 @@ namespace PlateOnHalfspace
             ContactState       &state) override;
 
     void
-    load_changed() override;
+    prepare_load(const Vector<double> &load) override;
 
     Vector<double>
     solve_on_set(const std::vector<bool> &contact_set,
@@ -68,6 +68,7 @@ namespace PlateOnHalfspace
     correct_rigid_body_equilibrium(ContactState &state) const;
 
     LAPACKFullMatrix<double> plate_stiffness; ///< K̄
+    Vector<double>           load;            ///< P of the current solve
     Vector<double>           plate_load;      ///< P̄
     /** The rigid-body motions of the free plate at the foundation nodes. */
     std::vector<Vector<double>> rigid_motions;

@@ -99,29 +99,30 @@ namespace PlateOnHalfspace
     virtual ~ContactSolver() = default;
 
     /**
-     * Solve for @p plate (set up, loads assembled) on @p foundation (built
-     * on the plate's foundation space with every cell in the foundation).
-     * @p seed (may be empty) seeds the contact set, e.g. transferred from
-     * the previous cycle. Throws ExcMessage naming the reason if the scene
-     * has no load, lifts off as a whole, leaves the plate a mechanism or
-     * cannot be solved to the solver's tolerance.
+     * Solve @p plate (set up) under the load vector @p load
+     * (MindlinPlate::load_vector()) on @p foundation (built on the plate's
+     * foundation space with every cell in the foundation). @p seed (may be
+     * empty) seeds the contact set, e.g. transferred from the previous
+     * cycle. Throws ExcMessage naming the reason if the load is zero, lifts
+     * the plate off as a whole, leaves it a mechanism or cannot be solved
+     * to the solver's tolerance.
      */
     virtual ContactState
     solve(MindlinPlate            &plate,
           FoundationOperator      &foundation,
+          const Vector<double>    &load,
           const std::vector<bool> &seed) = 0;
 
     /**
-     * After solve(): the coupled problem linearised on solve()'s final
-     * contact set (the gap closed there, no pressure elsewhere) under the
-     * plate load @p plate_load instead of the scene's, a DoF vector
-     * assembled like MindlinPlate's load vector. The operator is symmetric
-     * for the Galerkin half-space, so this is the adjoint problem of a goal
-     * whose derivative @p plate_load is (doc/formulation.md, "Goal-oriented
-     * refinement"). The plate's own load is left as it was.
+     * After solve(): the coupled problem linearised on the last solve()'s
+     * final contact set (the gap closed there, no pressure elsewhere) under
+     * the load vector @p load. The operator is symmetric for the Galerkin
+     * half-space, so this is the adjoint problem of a goal whose derivative
+     * @p load is (doc/formulation.md, "Goal-oriented refinement"); a bonded
+     * scene's solver solves a new load on its factorisation this way.
      */
     virtual ContactState
-    solve_linearised(const Vector<double> &plate_load) = 0;
+    solve_linearised(const Vector<double> &load) = 0;
   };
 
   /**

@@ -115,15 +115,15 @@ namespace PlateOnHalfspace
             FoundationOperator &foundation,
             ContactState       &state) override;
 
+    void
+    prepare_load(const Vector<double> &load) override;
+
     /**
      * Projected conjugate gradients on the pressures of @p contact_set;
      * throws ExcMessage if they do not reach @p tolerance within
      * ConjugateGradientControl::max_iterations (never a silently
      * inaccurate answer).
      */
-    void
-    load_changed() override;
-
     Vector<double>
     solve_on_set(const std::vector<bool> &contact_set,
                  const double             tolerance,
@@ -139,7 +139,9 @@ namespace PlateOnHalfspace
     const ConjugateGradientControl           control;
     std::unique_ptr<ApproximateInverse>      preconditioner;
     std::unique_ptr<PlateGeneralizedInverse> inverse;
-    /** B N K^+ P, the columns B N R, and R^T P (see the file doc). */
+    /** The load P of the current solve, B N K^+ P, the columns B N R,
+     *  and R^T P (see the file doc). */
+    Vector<double>              plate_load;
     Vector<double>              tested_plate_load;
     std::vector<Vector<double>> tested_motions;
     Vector<double>              motion_loads;

@@ -191,15 +191,27 @@ namespace PlateOnHalfspace
     }
 
     /**
-     * Assemble the load vector of @p loads (downward positive; each
-     * integrated by its own rule, Load::on_cell()) and of the thermal
-     * moment: M_T ∫ div(beta_v) (doc/formulation.md, "Temperature").
-     * Throws if a load misses the plate.
+     * The load vector of @p loads (downward positive; each integrated by
+     * its own rule, Load::on_cell()) and of the thermal moment:
+     * M_T ∫ div(beta_v) (doc/formulation.md, "Temperature"), a DoF vector
+     * with the constraints applied. Throws if a load misses the plate.
      */
+    Vector<double>
+    load_vector(const LoadList &loads) const;
+
+    /** The scene's load vector: load_vector(@p loads), kept by the plate. */
     void
     assemble_loads(const LoadList &loads);
 
-    /** Total applied vertical load (force). */
+    /**
+     * The vertical resultant (force) of the load vector @p load: the
+     * w-shape functions are a partition of unity, also after the
+     * constraints, so it is the sum of the w-entries.
+     */
+    double
+    resultant(const Vector<double> &load) const;
+
+    /** The resultant of the scene's load vector. */
     double
     applied_load() const
     {
@@ -214,37 +226,34 @@ namespace PlateOnHalfspace
     solve_unsupported(Vector<double> &solution) const;
 
     /**
-     * The plate condensed onto the foundation nodes (P18)-(P19):
-     * K̄ = K_ff - K_fr K_rr^{-1} K_rf and P̄ = P_f - K_fr K_rr^{-1} P_r,
-     * with f the foundation nodes (unconstrained w-DOFs) and r all other
-     * unconstrained DOFs. Only this Schur complement, of the size of the
-     * foundation block, is dense; K itself stays sparse and K_rr is
-     * factorised by CHOLMOD (sparse_cholesky.h).
+     * The plate's stiffness condensed onto the foundation nodes (P18):
+     * K̄ = K_ff - K_fr K_rr^{-1} K_rf, with f the foundation nodes
+     * (unconstrained w-DOFs) and r all other unconstrained DOFs. Only this
+     * Schur complement, of the size of the foundation block, is dense; K
+     * itself stays sparse and K_rr is factorised by CHOLMOD
+     * (sparse_cholesky.h).
      */
     void
-    condense(LAPACKFullMatrix<double> &stiffness, Vector<double> &load);
+    condense(LAPACKFullMatrix<double> &stiffness);
 
     /**
-     * P̄ of the current load vector, after condense() (the factor of K_rr
-     * it made is reused).
+     * The load vector @p load condensed likewise (P19),
+     * P̄ = P_f - K_fr K_rr^{-1} P_r, after condense() (its factor of K_rr
+     * is reused).
      */
     Vector<double>
-    condensed_load() const;
+    condensed_load(const Vector<double> &load) const;
 
     /**
-     * Replace the load vector by @p load (a DoF vector assembled with the
-     * constraints, as assemble_loads() makes it): the adjoint problem of
-     * goal-oriented estimation is the plate under the goal's load.
+     * Full solution vector under the load vector @p load from the
+     * foundation deflections (recovers the rotations,
+     * r = K_rr^{-1}(P_r - K_rf w_f), and the constrained values), after
+     * condense().
      */
     void
-    set_load_vector(const Vector<double> &load);
-
-    /**
-     * Full solution vector from the foundation deflections (recovers the
-     * rotations, r = K_rr^{-1}(P_r - K_rf w_f), and the constrained values).
-     */
-    void
-    expand(const Vector<double> &foundation_w, Vector<double> &solution) const;
+    expand(const Vector<double> &foundation_w,
+           const Vector<double> &load,
+           Vector<double>       &solution) const;
 
     /** Foundation values (w-DOFs) from a full solution vector. */
     Vector<double>
