@@ -131,7 +131,7 @@ namespace PlateOnHalfspace
   {
     // The goal's error estimate reconstructs on patches of 2 x 2 cells
     // (refinement/dual_weighted_residual.h): keep every cell's siblings.
-    if (parameters.adaptivity.goal.kind != Parameters::Goal::Kind::none)
+    if (parameters.adaptivity.goal.functional)
       triangulation.set_mesh_smoothing(Triangulation<2>::patch_level_1);
     // A symmetric scene is solved on the part x >= 0 and/or y >= 0 of the
     // plate (mirror_symmetry.h), cut from the coarse mesh so that its
@@ -178,9 +178,7 @@ namespace PlateOnHalfspace
     mindlin_plate->set_slab_grid(*slab_grid);
     mindlin_plate->set_thermal_load(
       thermal_load(parameters.plate, parameters.temperature));
-    if (parameters.adaptivity.goal.kind != Parameters::Goal::Kind::none)
-      goal =
-        std::make_unique<GoalFunctional>(parameters.adaptivity.goal, symmetry);
+    goal = parameters.adaptivity.goal.functional;
   }
 
   void
@@ -293,10 +291,9 @@ namespace PlateOnHalfspace
     double                 force  = 0;
     for (const auto dof : mindlin_plate->get_foundation_dofs())
       force += copies * std::abs(mindlin_plate->get_load_vector()[dof]);
-    std::vector<bool> everywhere(space.n_nodes(), true);
-    const double      area  = copies * space.area_in_contact(everywhere).first;
-    const auto       &plate = parameters.plate;
-    double            patches = 0;
+    const double area    = copies * space.area();
+    const auto  &plate   = parameters.plate;
+    double       patches = 0;
     for (const auto &load : computed_loads)
       {
         double peak = 0;
@@ -801,16 +798,15 @@ namespace PlateOnHalfspace
           field_maximum(*mindlin_plate,
                         state.plate_solution,
                         PlateQuantity::principal_stress_top);
-        row.max_w                     = w.value;
-        row.max_w_at                  = w.location;
-        row.max_stress_bottom         = bottom.value;
-        row.max_stress_bottom_at      = bottom.location;
-        row.max_stress_top            = top.value;
-        row.max_stress_top_at         = top.location;
-        const FoundationSpace &space  = mindlin_plate->get_foundation_space();
-        const auto [area, in_contact] = space.area_in_contact(state.in_contact);
-        row.contact_area_fraction     = in_contact / area;
-        row.min_lte = std::numeric_limits<double>::quiet_NaN();
+        row.max_w                    = w.value;
+        row.max_w_at                 = w.location;
+        row.max_stress_bottom        = bottom.value;
+        row.max_stress_bottom_at     = bottom.location;
+        row.max_stress_top           = top.value;
+        row.max_stress_top_at        = top.location;
+        const FoundationSpace &space = mindlin_plate->get_foundation_space();
+        row.contact_area_fraction    = contact_area(state) / space.area();
+        row.min_lte                  = std::numeric_limits<double>::quiet_NaN();
         const std::vector<JointResponse> joints =
           mindlin_plate->joint_responses(state.plate_solution,
                                          standing_solution);

@@ -234,8 +234,8 @@ namespace PlateOnHalfspace
     /** The cycle's contact solver (the adjoint problem reuses it). */
     std::unique_ptr<ContactSolver> contact_solver;
     /** Adaptivity/Goal (none: no estimate) and the cycle's estimate. */
-    std::unique_ptr<GoalFunctional> goal;
-    GoalErrorEstimate               goal_estimate;
+    std::shared_ptr<const GoalFunctional> goal;
+    GoalErrorEstimate                     goal_estimate;
     /** The soil (Foundation/Model), made once per run. */
     std::shared_ptr<const SoilModel> soil;
     /** What the log last said of the soil's kernel (said once). */

@@ -187,6 +187,16 @@ namespace PlateOnHalfspace
     return determinant(jacobian(p));
   }
 
+  double
+  BilinearQuadrilateral::area() const
+  {
+    // the shoelace formula, vertices counterclockwise 0, 1, 3, 2
+    const Point<2> &a = vertices[0], &b = vertices[1], &c = vertices[3],
+                   &d = vertices[2];
+    return 0.5 * ((a[0] * b[1] - b[0] * a[1]) + (b[0] * c[1] - c[0] * b[1]) +
+                  (c[0] * d[1] - d[0] * c[1]) + (d[0] * a[1] - a[0] * d[1]));
+  }
+
 
 
   /**

@@ -3,6 +3,7 @@
 #include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/contact_iteration.h>
+#include <plate_on_halfspace/contact/contact_region.h>
 #include <plate_on_halfspace/halfspace/interface.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
@@ -90,6 +91,10 @@ namespace PlateOnHalfspace
     else
       solve_by_active_set(seed, state);
     express_in_nodal_values(foundation, state);
+    measure_contact_region(plate.get_foundation_space(),
+                           foundation,
+                           tensionless,
+                           state);
     return state;
   }
 
@@ -107,6 +112,10 @@ namespace PlateOnHalfspace
     state.iterations = 1;
     state.converged  = true;
     express_in_nodal_values(*foundation, state);
+    measure_contact_region(plate->get_foundation_space(),
+                           *foundation,
+                           tensionless,
+                           state);
     return state;
   }
 

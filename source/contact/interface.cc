@@ -3,8 +3,18 @@
 #include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/contact/iterative_solver.h>
 
+#include <numeric>
+
 namespace PlateOnHalfspace
 {
+  double
+  contact_area(const ContactState &state)
+  {
+    return std::accumulate(state.cell_contact_area.begin(),
+                           state.cell_contact_area.end(),
+                           0.);
+  }
+
   std::unique_ptr<ContactSolver>
   create_contact_solver(const SceneParameters            &parameters,
                         const Parameters::Contact::Solver solver,

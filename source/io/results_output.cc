@@ -858,9 +858,8 @@ namespace PlateOnHalfspace
           }
       }
 
-    const FoundationSpace &space    = plate.get_foundation_space();
-    const auto [area, contact_area] = space.area_in_contact(contact.in_contact);
-    summary.contact_area_fraction   = contact_area / area;
+    const FoundationSpace &space  = plate.get_foundation_space();
+    summary.contact_area_fraction = contact_area(contact) / space.area();
     // Nodes in contact on the whole plate: a node of the computed part
     // stands for its distinct mirror images.
     // The same for the nodes whose pressure coefficient is tensile.

@@ -196,25 +196,12 @@ namespace PlateOnHalfspace
     return result;
   }
 
-  std::pair<double, double>
-  FoundationSpace::area_in_contact(const std::vector<bool> &in_contact) const
+  double
+  FoundationSpace::area() const
   {
-    double          area = 0, contact_area = 0;
-    const QGauss<2> rule(2);
+    double area = 0;
     for (const auto &cell : cells)
-      {
-        double cell_area = 0;
-        for (unsigned int q = 0; q < rule.size(); ++q)
-          cell_area +=
-            rule.weight(q) * cell.geometry.jacobian_determinant(rule.point(q));
-        const std::vector<unsigned int> nodes = cell.nodes();
-        unsigned int                    n_in  = 0;
-        for (const unsigned int i : nodes)
-          n_in += in_contact[i];
-        area += cell_area;
-        contact_area +=
-          cell_area * n_in / std::max<std::size_t>(nodes.size(), 1);
-      }
-    return {area, contact_area};
+      area += cell.geometry.area();
+    return area;
   }
 } // namespace PlateOnHalfspace

@@ -261,7 +261,8 @@ namespace PlateOnHalfspace
     const unsigned int                   n = fe.n_dofs_per_cell();
     FullMatrix<double>                   local(n, n);
     std::vector<types::global_dof_index> dofs(n);
-    std::vector<std::array<double, 3>>   kappa(n);
+    std::vector<Tensor<2, 2>>            grad_beta(n);
+    std::vector<Moments>                 moments(n);
     std::vector<Tensor<1, 2>>            gamma(n);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -271,18 +272,18 @@ namespace PlateOnHalfspace
           {
             for (unsigned int i = 0; i < n; ++i)
               {
-                const Tensor<2, 2> g = bending_values[beta].gradient(i, q);
-                kappa[i]             = {{g[0][0], g[1][1], g[0][1] + g[1][0]}};
+                grad_beta[i] = bending_values[beta].gradient(i, q);
+                moments[i] =
+                  PlateOnHalfspace::bending_moments(D, nu, grad_beta[i]);
               }
+            // the bending energy -M(beta_j) : grad beta_i
             const double JxW = bending_values.JxW(q);
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)
-                local(i, j) +=
-                  D *
-                  (kappa[i][0] * kappa[j][0] + kappa[i][1] * kappa[j][1] +
-                   nu *
-                     (kappa[i][0] * kappa[j][1] + kappa[i][1] * kappa[j][0]) +
-                   0.5 * (1. - nu) * kappa[i][2] * kappa[j][2]) *
+                local(i, j) -=
+                  (moments[j].mx * grad_beta[i][0][0] +
+                   moments[j].my * grad_beta[i][1][1] +
+                   moments[j].mxy * (grad_beta[i][0][1] + grad_beta[i][1][0])) *
                   JxW;
           }
         shear_values.reinit(cell);

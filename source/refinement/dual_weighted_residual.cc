@@ -54,11 +54,13 @@ namespace PlateOnHalfspace
     Resultants
     resultants(const Field &u, const double D, const double nu, const double Ds)
     {
-      const double k0 = u.gradient[1][0], k1 = u.gradient[2][1],
-                   k2 = u.gradient[1][1] + u.gradient[2][0];
+      Tensor<2, 2> grad_beta;
+      grad_beta[0]    = u.gradient[1];
+      grad_beta[1]    = u.gradient[2];
+      const Moments m = bending_moments(D, nu, grad_beta);
+      // the energy form pairs D_b kappa = -M with the curvatures
       Resultants r;
-      r.moment = {
-        {D * (k0 + nu * k1), D * (nu * k0 + k1), D * 0.5 * (1. - nu) * k2}};
+      r.moment = {{-m.mx, -m.my, -m.mxy}};
       for (unsigned int d = 0; d < 2; ++d)
         r.shear[d] = Ds * (u.gradient[0][d] - u.value[1 + d]);
       return r;
@@ -475,25 +477,17 @@ namespace PlateOnHalfspace
   }
 
   GoalErrorEstimate
-  estimate_contact_area_error(const MindlinPlate      &plate,
-                              const std::vector<bool> &in_contact,
-                              const unsigned int       copies)
+  estimate_contact_area_error(const ContactState &contact,
+                              const unsigned int  copies)
   {
-    const FoundationSpace &space = plate.get_foundation_space();
-    GoalErrorEstimate      estimate;
-    estimate.cell_indicators.reinit(space.cells.size());
-    unsigned int c = 0;
-    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+    GoalErrorEstimate estimate;
+    estimate.cell_indicators.reinit(
+      contact.cell_contact_area_uncertainty.size());
+    for (unsigned int c = 0; c < estimate.cell_indicators.size(); ++c)
       {
-        bool in = false, out = false;
-        for (const unsigned int i : space.cells[c].nodes())
-          (in_contact[i] ? in : out) = true;
-        if (in && out)
-          {
-            estimate.cell_indicators[c] = cell->measure();
-            estimate.estimated_error += 0.5 * copies * cell->measure();
-          }
-        ++c;
+        estimate.cell_indicators[c] = contact.cell_contact_area_uncertainty[c];
+        estimate.estimated_error +=
+          copies * contact.cell_contact_area_uncertainty[c];
       }
     return estimate;
   }
@@ -507,17 +501,19 @@ namespace PlateOnHalfspace
                       ContactSolver                    &contact_solver,
                       const GoalEstimateScene          &scene)
   {
-    if (goal.measures_contact_area())
+    if (goal.estimate() == GoalFunctional::Estimate::contact_region)
       return estimate_contact_area_error(
-        plate,
-        contact.in_contact,
-        plate.get_foundation_space().symmetry.n_copies());
-    if (!goal.depends_on_plate_only())
+        contact, plate.get_foundation_space().symmetry.n_copies());
+    if (goal.estimate() != GoalFunctional::Estimate::dual_weighted_residual)
       return GoalErrorEstimate();
     const ContactState adjoint = contact_solver.solve_linearised(
       goal.derivative(plate, contact.plate_solution, value));
+    // the goal's points on the computed part, where the solution is
     std::vector<std::pair<Point<2>, double>> terms = goal.deflection_terms();
-    const Vector<double>                     reaction =
+    for (auto &term : terms)
+      term.first =
+        plate.get_foundation_space().symmetry.to_computed_part(term.first);
+    const Vector<double> reaction =
       remove_carried_goal_density(plate,
                                   scene.foundation.mass_matrix(),
                                   contact.active_set,

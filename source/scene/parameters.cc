@@ -10,6 +10,7 @@
 #include <boost/algorithm/string/join.hpp>
 
 #include <plate_on_halfspace/base/number_list.h>
+#include <plate_on_halfspace/refinement/goal.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
 #include <algorithm>
@@ -997,17 +998,18 @@ namespace PlateOnHalfspace
       require(refine_fraction + coarsen_fraction <= 1,
               "Adaptivity/Refine fraction + Adaptivity/Coarsen fraction must "
               "not exceed 1.");
-      require(goal.kind != Goal::Kind::none || refinement != Refinement::goal,
+      require(goal.functional || refinement != Refinement::goal,
               "Adaptivity/Refinement = goal needs Adaptivity/Goal (the "
               "quantity whose error refinement reduces).");
-      require(refinement != Refinement::goal ||
-                !(goal.kind == Goal::Kind::point_value &&
-                  goal.quantity == Goal::Quantity::q),
-              "Adaptivity/Refinement = goal cannot refine for Goal = q at "
-              "x,y: the pressure's adjoint problem is not solved (its error "
-              "is bounded by the change between cycles); use Refinement = "
-              "adaptive or global.");
-      require(goal.kind != Goal::Kind::none || target_error == 0,
+      require(refinement != Refinement::goal || !goal.functional ||
+                goal.functional->estimate() !=
+                  GoalFunctional::Estimate::change_only,
+              "Adaptivity/Refinement = goal cannot refine for Goal = " +
+                goal.text + ": " +
+                (goal.functional ? goal.functional->no_estimate_reason() :
+                                   std::string()) +
+                "; use Refinement = adaptive or global.");
+      require(goal.functional || target_error == 0,
               "Adaptivity/Target error needs Adaptivity/Goal (the quantity "
               "the target refers to).");
       require(target_error < 1,
@@ -1018,78 +1020,10 @@ namespace PlateOnHalfspace
     Goal
     Goal::parse(const std::string &entry)
     {
-      // "w at 0,0", "Mx at 1.5,-2", "peak Mx", "contact area", "mean w",
-      // "w at x1,y1 minus x2,y2"; words are separated by blanks.
-      const std::string allowed =
-        "Adaptivity/Goal must be one of: "
-        "w|Mx|My|Mxy|q|stress_bottom|stress_top at x,y ; peak "
-        "Mx|My|M1|stress_bottom|stress_top ; contact area ; mean w ; w at "
-        "x1,y1 minus x2,y2 (got <" +
-        entry + ">).";
+      // The goal kinds parse their own syntax (refinement/goals/).
       Goal goal;
-      goal.text = Utilities::trim(entry);
-      // "0, 0" and "0 ,0" are one word
-      std::string compact = goal.text;
-      for (std::size_t at; (at = compact.find(", ")) != std::string::npos;)
-        compact.erase(at + 1, 1);
-      for (std::size_t at; (at = compact.find(" ,")) != std::string::npos;)
-        compact.erase(at, 1);
-      std::istringstream       stream(compact);
-      std::vector<std::string> words;
-      for (std::string word; stream >> word;)
-        words.push_back(word);
-      if (words.empty())
-        return goal;
-      const auto point = [&](const std::string &text) {
-        const std::vector<std::vector<double>> numbers =
-          parse_number_list(text, 2, "Adaptivity/Goal", "x,y");
-        require(numbers.size() == 1, allowed);
-        return Point<2>(numbers[0][0], numbers[0][1]);
-      };
-      const auto field = [&](const std::string &name, const bool peak) {
-        if (name == "w" && !peak)
-          return Quantity::w;
-        if (name == "q" && !peak)
-          return Quantity::q;
-        if (name == "Mx")
-          return Quantity::mx;
-        if (name == "My")
-          return Quantity::my;
-        if (name == "Mxy" && !peak)
-          return Quantity::mxy;
-        if (name == "M1" && peak)
-          return Quantity::principal_moment;
-        if (name == "stress_bottom")
-          return Quantity::stress_bottom;
-        if (name == "stress_top")
-          return Quantity::stress_top;
-        require(false, allowed);
-        return Quantity::w;
-      };
-      if (words.size() == 3 && words[1] == "at")
-        {
-          goal.kind        = Kind::point_value;
-          goal.quantity    = field(words[0], false);
-          goal.first_point = point(words[2]);
-        }
-      else if (words.size() == 5 && words[0] == "w" && words[1] == "at" &&
-               words[3] == "minus")
-        {
-          goal.kind         = Kind::w_difference;
-          goal.first_point  = point(words[2]);
-          goal.second_point = point(words[4]);
-        }
-      else if (words.size() == 2 && words[0] == "peak")
-        {
-          goal.kind     = Kind::peak;
-          goal.quantity = field(words[1], true);
-        }
-      else if (words.size() == 2 && words[0] == "contact" && words[1] == "area")
-        goal.kind = Kind::contact_area;
-      else if (words.size() == 2 && words[0] == "mean" && words[1] == "w")
-        goal.kind = Kind::mean_w;
-      else
-        require(false, allowed);
+      goal.text       = Utilities::trim(entry);
+      goal.functional = create_goal(entry);
       return goal;
     }
 

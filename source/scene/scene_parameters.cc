@@ -212,7 +212,7 @@ namespace PlateOnHalfspace
         const std::string obstacle = hierarchical_storage_obstacle(*this);
         require(obstacle.empty(), obstacle);
       }
-    if (adaptivity.goal.kind != Parameters::Goal::Kind::none)
+    if (adaptivity.goal.functional)
       {
         // doc/formulation.md, "Goal-oriented refinement": the dual problem
         // is the primal one only for a symmetric operator, and the dual

@@ -74,6 +74,12 @@ namespace PlateOnHalfspace
     return force / area / modulus;
   }
 
+  double
+  DenseLiquidSoil::patch_stiffness(const double) const
+  {
+    return modulus;
+  }
+
   unsigned int
   DenseLiquidSoil::largest_goal_estimate() const
   {

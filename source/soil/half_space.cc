@@ -31,6 +31,12 @@ namespace PlateOnHalfspace
   }
 
   double
+  HomogeneousHalfSpace::patch_stiffness(const double size) const
+  {
+    return 1. / (alpha * mean_inverse_distance_over_square * size);
+  }
+
+  double
   HomogeneousHalfSpace::radius_of_relative_stiffness(
     const double flexural_rigidity) const
   {

@@ -505,6 +505,17 @@ namespace PlateOnHalfspace
   }
 
   double
+  LayeredSoil::patch_stiffness(const double size) const
+  {
+    // The top layer's half-space: the limit of a patch small against the
+    // top layer, which is what a cell at the contact boundary should be.
+    const SoilLayer &top   = profile.layers.front();
+    const double alpha_top = (1. - top.poissons_ratio * top.poissons_ratio) /
+                             (M_PI * top.youngs_modulus);
+    return 1. / (alpha_top * mean_inverse_distance_over_square * size);
+  }
+
+  double
   LayeredSoil::radius_of_relative_stiffness(
     const double flexural_rigidity) const
   {

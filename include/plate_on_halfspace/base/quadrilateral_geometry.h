@@ -40,6 +40,10 @@ namespace PlateOnHalfspace
     Tensor<2, 2>
     jacobian(const Point<2> &p) const;
 
+    /** The area: the polygon of the four vertices. */
+    double
+    area() const;
+
     /** Determinant of the Jacobian (positive for a valid cell). */
     double
     jacobian_determinant(const Point<2> &p) const;

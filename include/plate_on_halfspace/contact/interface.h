@@ -53,8 +53,15 @@ namespace PlateOnHalfspace
      */
     std::vector<bool> active_set;
     std::vector<bool> cell_in_foundation; ///< element exclusion's cell set
-    unsigned int      iterations = 0;
-    bool              converged  = false;
+    /**
+     * Per plate cell, the area where the soil carries the plate, located
+     * from the fields inside the cells, and how much that area changes
+     * when the field is interpolated from the cell's vertices alone: the
+     * contact-area goal's error indicator (contact_region.h).
+     */
+    std::vector<double> cell_contact_area, cell_contact_area_uncertainty;
+    unsigned int        iterations = 0;
+    bool                converged  = false;
     /**
      * max of (-min q)+, (-min gap)+, max |q gap|, each relative to the
      * problem's scale (max |q|, max |B w|) (doc/outputs.md).
@@ -91,6 +98,10 @@ namespace PlateOnHalfspace
     /** One entry per contact iteration (iterative solvers only). */
     std::vector<LinearSolve> linear_solves;
   };
+
+  /** The area in contact on the computed part: the sum of the cells'. */
+  double
+  contact_area(const ContactState &state);
 
   /** A contact solver (see the file documentation). */
   class ContactSolver

@@ -94,8 +94,8 @@ namespace PlateOnHalfspace
       bool     has_location = false;
       Point<2> location;
       /** The estimate of |true value - value|: sum of the local
-       *  dual-weighted residuals' magnitudes (the contact area: its half
-       *  band). */
+       *  dual-weighted residuals' magnitudes (the contact area: of the
+       *  cells' location uncertainties, contact_region.h). */
       double estimated_error = 0;
       /** The dual-weighted residual, the signed estimate of true value
        *  minus value (not for the contact area). */

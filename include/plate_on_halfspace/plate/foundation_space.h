@@ -102,13 +102,9 @@ namespace PlateOnHalfspace
       return node_locations.size();
     }
 
-    /**
-     * The area of the cells and the part of it in contact, each cell
-     * counted with the fraction of its nodes that @p in_contact marks (the
-     * contact area of summary.json and of the goal `contact area`).
-     */
-    std::pair<double, double>
-    area_in_contact(const std::vector<bool> &in_contact) const;
+    /** The area of the cells (the computed part). */
+    double
+    area() const;
 
     /**
      * Assemble the consistent mass matrix M_ij = ∫ φ_i φ_j (the paper's E,

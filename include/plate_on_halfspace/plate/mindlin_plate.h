@@ -50,6 +50,27 @@ namespace PlateOnHalfspace
   };
 
   /**
+   * The bending moments of the rotation gradient @p grad_beta
+   * (grad_beta[c][d] = d beta_c / d x_d) of a plate of flexural rigidity
+   * @p D and Poisson's ratio @p nu: M = -D ((1 - nu) sym(grad beta) +
+   * nu tr(grad beta) I), the sign of doc/formulation.md, "Conventions".
+   * The one statement of the plate's moment law: the stiffness, the
+   * moments, the goals' derivatives and the error estimate's residual all
+   * use it.
+   */
+  inline Moments
+  bending_moments(const double        D,
+                  const double        nu,
+                  const Tensor<2, 2> &grad_beta)
+  {
+    Moments m;
+    m.mx  = -D * (grad_beta[0][0] + nu * grad_beta[1][1]);
+    m.my  = -D * (grad_beta[1][1] + nu * grad_beta[0][0]);
+    m.mxy = -D * 0.5 * (1. - nu) * (grad_beta[0][1] + grad_beta[1][0]);
+    return m;
+  }
+
+  /**
    * Bending stresses of the bottom (soil-side) and the top fibre, tension
    * positive (doc/formulation.md, "Stresses"): sxx, syy, sxy of each face
    * and its largest principal stress.
@@ -282,12 +303,20 @@ namespace PlateOnHalfspace
     Moments
     moments_of_rotation_gradient(const Tensor<2, 2> &grad_beta) const
     {
-      const double D = plate.flexural_rigidity(), nu = plate.poissons_ratio;
-      Moments      m;
-      m.mx  = -D * (grad_beta[0][0] + nu * grad_beta[1][1]) + thermal.moment;
-      m.my  = -D * (grad_beta[1][1] + nu * grad_beta[0][0]) + thermal.moment;
-      m.mxy = -D * 0.5 * (1. - nu) * (grad_beta[0][1] + grad_beta[1][0]);
+      Moments m = bending_moments(grad_beta);
+      m.mx += thermal.moment;
+      m.my += thermal.moment;
       return m;
+    }
+
+    /** The plate's bending_moments() of @p grad_beta, without the thermal
+     *  moment: what a change of the solution changes. */
+    Moments
+    bending_moments(const Tensor<2, 2> &grad_beta) const
+    {
+      return PlateOnHalfspace::bending_moments(plate.flexural_rigidity(),
+                                               plate.poissons_ratio,
+                                               grad_beta);
     }
 
     /**

@@ -104,16 +104,16 @@ namespace PlateOnHalfspace
                       const LoadList               &loads);
   /**
    * The contact area's error, which no adjoint problem describes (the area
-   * is not differentiable in the solution): the contact boundary lies
-   * somewhere in the cells that have nodes in and out of contact, and the
-   * reported area counts each with the fraction of its nodes in contact.
-   * The estimate is half the area of those cells (whole plate: @p copies
-   * times the computed part), each cell's indicator its area.
+   * is not differentiable in the solution): in each cell the contact
+   * boundary crosses, how much the located area changes when the
+   * indicator field is interpolated from the cell's vertices alone instead
+   * of its nine nodes (ContactState::cell_contact_area_uncertainty). The
+   * estimate is their sum (whole plate: @p copies times the computed
+   * part), each cell's indicator its own.
    */
   GoalErrorEstimate
-  estimate_contact_area_error(const MindlinPlate      &plate,
-                              const std::vector<bool> &in_contact,
-                              const unsigned int       copies);
+  estimate_contact_area_error(const ContactState &contact,
+                              const unsigned int  copies);
 
   /** What a cycle's goal estimate needs of the scene beyond the solution. */
   struct GoalEstimateScene
@@ -130,8 +130,7 @@ namespace PlateOnHalfspace
    * adjoint problem solved by the cycle's @p contact_solver on the final
    * contact set of @p contact and the goal's carried density removed with
    * the mass matrix of the scene's foundation operator; for the contact
-   * area the half
-   * band of estimate_contact_area_error(); for q at a point none (zero).
+   * area estimate_contact_area_error(); for q at a point none (zero).
    * @p value is the goal on the cycle, @p pressure_field q_h in the
    * plate's w-space.
    */

@@ -1,30 +1,38 @@
 /**
- * The quantity of interest of a scene, Adaptivity/Goal (doc/formulation.md,
- * "Goal-oriented refinement"): its value on a solved cycle and its
- * derivative as a load on the plate, the right-hand side of the adjoint
- * problem. Points refer to the whole plate; in a symmetric scene a point
- * is mirrored onto the computed part, where the solution takes the same
- * value.
+ * The goal family (doc/formulation.md, "Goal-oriented refinement";
+ * doc/architecture.md, "The goal family"): the quantity of interest of a
+ * scene, Adaptivity/Goal. Every goal gives its value on a solved cycle and
+ * says how its error is estimated; a goal of the plate's fields also gives
+ * its derivative as a load on the plate, the adjoint problem's right-hand
+ * side. Points refer to the whole plate; in a symmetric scene a point is
+ * mirrored onto the computed part, where the solution takes the same
+ * value. Each kind is one class in refinement/goals/ that registers its
+ * syntax (GoalKind).
  */
 #ifndef plate_on_halfspace_refinement_goal_h
 #define plate_on_halfspace_refinement_goal_h
+
+#include <deal.II/base/point.h>
 
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/lac/vector.h>
 
-#include <plate_on_halfspace/contact/interface.h>
-#include <plate_on_halfspace/plate/mindlin_plate.h>
-#include <plate_on_halfspace/scene/mirror_symmetry.h>
-#include <plate_on_halfspace/scene/parameters.h>
-
+#include <functional>
+#include <memory>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace PlateOnHalfspace
 {
   using namespace dealii;
 
-  /** See the file documentation. */
+  class MindlinPlate;
+  struct ContactState;
+
+  /** A quantity of interest (see the file documentation). */
   class GoalFunctional
   {
   public:
@@ -41,60 +49,139 @@ namespace PlateOnHalfspace
       Point<2>                                     reference_point;
     };
 
-    GoalFunctional(const Parameters::Goal &goal,
-                   const MirrorSymmetry   &symmetry);
+    /** How the goal's error is estimated. */
+    enum class Estimate
+    {
+      /** An adjoint problem whose load is derivative(): a goal of the
+       *  plate's deflection and rotations only. */
+      dual_weighted_residual,
+      /** The located contact area's uncertainty (contact_region.h). */
+      contact_region,
+      /** None: the change between cycles bounds the error
+       *  (no_estimate_reason() says why). */
+      change_only
+    };
+
+    /** @p text: the entry as the scene wrote it. */
+    explicit GoalFunctional(const std::string &text);
+
+    virtual ~GoalFunctional() = default;
 
     /** The goal as the scene names it. */
     const std::string &
     name() const
     {
-      return goal.text;
+      return text;
+    }
+
+    /** How the error is estimated: by default an adjoint problem, whose
+     *  load derivative() gives. */
+    virtual Estimate
+    estimate() const
+    {
+      return Estimate::dual_weighted_residual;
+    }
+
+    /** For Estimate::change_only: why no estimate is made. */
+    virtual std::string
+    no_estimate_reason() const
+    {
+      return {};
     }
 
     /**
-     * Whether the goal depends on the plate's deflection and rotations
-     * only, so that its adjoint problem has a plate load alone (not the
-     * contact area and not q, which depend on the pressure).
+     * The goal's deflection terms c_k w(x_k) (points on the whole plate),
+     * which the adjoint problem's soil residual treats apart; empty for
+     * goals without such terms.
      */
-    bool
-    depends_on_plate_only() const;
-
-    /** Whether the goal is the contact area. */
-    bool
-    measures_contact_area() const;
-
-    /**
-     * The goal's deflection terms c_k w(x_k) (w at a point: one, a
-     * difference: two), points on the computed part; empty for the other
-     * goals.
-     */
-    std::vector<std::pair<Point<2>, double>>
-    deflection_terms() const;
+    virtual std::vector<std::pair<Point<2>, double>>
+    deflection_terms() const
+    {
+      return {};
+    }
 
     /**
      * The value on the solved cycle: @p solution is the plate's, @p
      * pressure_field q in the plate's w-space.
      */
-    Evaluation
+    virtual Evaluation
     evaluate(const MindlinPlate   &plate,
              const Vector<double> &solution,
              const Vector<double> &pressure_field,
-             const ContactState   &contact) const;
+             const ContactState   &contact) const = 0;
 
     /**
      * The derivative J'(u_h)(phi_i) at @p evaluation for every plate DoF
      * i, assembled with the plate's constraints like its load vector: the
-     * adjoint problem's load. Only for depends_on_plate_only().
+     * adjoint problem's load. Only for Estimate::dual_weighted_residual;
+     * the others throw.
      */
-    Vector<double>
+    virtual Vector<double>
     derivative(const MindlinPlate   &plate,
                const Vector<double> &solution,
                const Evaluation     &evaluation) const;
 
+  protected:
+    /**
+     * The evaluation at the whole-plate point @p x: its image on the
+     * computed part, the cell and reference point there. Throws naming
+     * Adaptivity/Goal if @p x is off the plate.
+     */
+    static Evaluation
+    at_point(const MindlinPlate &plate, const Point<2> &x);
+
+    /** Add the cell vector @p local of @p cell to @p load with the
+     *  plate's constraints. */
+    static void
+    add_cell_vector(const MindlinPlate                                 &plate,
+                    const typename DoFHandler<2>::active_cell_iterator &cell,
+                    const Vector<double>                               &local,
+                    Vector<double>                                     &load);
+
   private:
-    const Parameters::Goal goal;
-    const MirrorSymmetry   symmetry;
+    const std::string text;
   };
+
+  /**
+   * A goal kind: how it is written and how a text of it becomes a goal.
+   * Registered by the kind's own file (register_goal_kind()).
+   */
+  struct GoalKind
+  {
+    /** The syntax, for the message listing the kinds. */
+    std::string syntax;
+    /** Where the syntax stands in that message. */
+    unsigned int position = 0;
+    /**
+     * The goal of the words of an entry (blanks separate them; "x, y" is
+     * one word), or null if they are not of this kind. Throws ExcMessage
+     * for words of this kind that are malformed.
+     */
+    std::function<
+      std::unique_ptr<GoalFunctional>(const std::string              &text,
+                                      const std::vector<std::string> &words)>
+      parse;
+  };
+
+  /** Add @p kind to the goal kinds; returns true (for a static). */
+  bool
+  register_goal_kind(const GoalKind &kind);
+
+  /**
+   * The goal Adaptivity/Goal = @p text names; null for an empty text.
+   * Throws ExcMessage naming the entry and the registered syntaxes
+   * otherwise.
+   */
+  std::shared_ptr<const GoalFunctional>
+  create_goal(const std::string &text);
+
+  /**
+   * The point "x,y" of a word of Adaptivity/Goal; none if the word holds
+   * another count of points. Throws naming the entry for a word that is
+   * not a number list.
+   */
+  std::optional<Point<2>>
+  parse_goal_point(const std::string &word);
 } // namespace PlateOnHalfspace
 
 #endif

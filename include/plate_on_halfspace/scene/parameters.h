@@ -17,11 +17,14 @@
 #include <plate_on_halfspace/loads/load.h>
 #include <plate_on_halfspace/scene/axles.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace PlateOnHalfspace
 {
+  class GoalFunctional;
+
   using namespace dealii;
 
   namespace Parameters
@@ -310,31 +313,9 @@ namespace PlateOnHalfspace
      */
     struct Goal
     {
-      enum class Kind
-      {
-        none,         ///< no goal: no estimate
-        point_value,  ///< quantity at first_point
-        peak,         ///< largest value of quantity over the plate
-        contact_area, ///< area where the soil carries the plate
-        mean_w,       ///< mean deflection over the plate
-        w_difference  ///< w(first_point) - w(second_point)
-      };
-      /** The field a point value or a peak refers to. */
-      enum class Quantity
-      {
-        w,
-        q,
-        mx,
-        my,
-        mxy,
-        principal_moment, ///< the larger principal moment M1
-        stress_bottom,    ///< largest principal stress of the bottom fibre
-        stress_top        ///< largest principal stress of the top fibre
-      };
-      Kind        kind     = Kind::none;
-      Quantity    quantity = Quantity::w;
-      Point<2>    first_point, second_point;
       std::string text; ///< the entry as written, for the outputs
+      /** The goal it names (refinement/goal.h); null for none. */
+      std::shared_ptr<const GoalFunctional> functional;
 
       /** Parse @p text; throws ExcMessage naming Adaptivity/Goal. */
       static Goal

@@ -29,6 +29,9 @@ namespace PlateOnHalfspace
     double
     typical_settlement(const double force, const double area) const override;
 
+    double
+    patch_stiffness(const double size) const override;
+
     unsigned int
     largest_goal_estimate() const override;
 

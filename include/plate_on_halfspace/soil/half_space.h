@@ -26,6 +26,9 @@ namespace PlateOnHalfspace
     typical_settlement(const double force, const double area) const override;
 
     double
+    patch_stiffness(const double size) const override;
+
+    double
     radius_of_relative_stiffness(const double flexural_rigidity) const override;
 
   private:

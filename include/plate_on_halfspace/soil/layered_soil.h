@@ -92,6 +92,9 @@ namespace PlateOnHalfspace
     double
     typical_settlement(const double force, const double area) const override;
 
+    double
+    patch_stiffness(const double size) const override;
+
     /** Where D k^4 G(k) = 1, G the profile's surface compliance. */
     double
     radius_of_relative_stiffness(const double flexural_rigidity) const override;

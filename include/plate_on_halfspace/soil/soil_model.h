@@ -82,6 +82,14 @@ namespace PlateOnHalfspace
     std::shared_ptr<const SmoothRadialFunction> remainder;
   };
 
+  /**
+   * The mean of 1/|x - y| over x and y in the unit square,
+   * 4 ln(1 + sqrt 2) - 4 (sqrt 2 - 1)/3: the mean settlement of a
+   * uniformly loaded square of side a on a half-space is
+   * alpha a p times this (0.9464 p a (1 - nu0^2)/E0).
+   */
+  constexpr double mean_inverse_distance_over_square = 2.9732095982;
+
   /** The soil model (see the file documentation). */
   class SoilModel
   {
@@ -110,6 +118,16 @@ namespace PlateOnHalfspace
      */
     virtual double
     typical_settlement(const double force, const double area) const = 0;
+
+    /**
+     * The soil's stiffness at the scale @p size: the uniform pressure on a
+     * square of side @p size per unit of its mean settlement. It converts
+     * a gap into the pressure that would close it, where the measured
+     * contact region is located between the nodes (doc/outputs.md,
+     * "Contact area").
+     */
+    virtual double
+    patch_stiffness(const double size) const = 0;
 
     /**
      * The most foundation nodes for which a goal's error estimate is

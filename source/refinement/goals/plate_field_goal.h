@@ -1,0 +1,64 @@
+/**
+ * What the goals of a plate field at one point share (the point value and
+ * the peak): the fields, their names, and the derivative of a field at a
+ * point with respect to the plate's DoFs (doc/formulation.md,
+ * "Goal-oriented refinement").
+ */
+#ifndef plate_on_halfspace_refinement_goals_plate_field_goal_h
+#define plate_on_halfspace_refinement_goals_plate_field_goal_h
+
+#include <plate_on_halfspace/plate/field_extrema.h>
+#include <plate_on_halfspace/refinement/goal.h>
+
+#include <optional>
+#include <string>
+
+namespace PlateOnHalfspace
+{
+  /** A goal that is one plate field at one point (see the file doc). */
+  class PlateFieldGoal : public GoalFunctional
+  {
+  public:
+    /** The fields a goal can name. */
+    enum class Field
+    {
+      w,
+      q,
+      mx,
+      my,
+      mxy,
+      principal_moment, ///< the larger principal moment M1
+      stress_bottom,    ///< largest principal stress of the bottom fibre
+      stress_top        ///< largest principal stress of the top fibre
+    };
+
+    /**
+     * The field @p name names (w, q, Mx, My, Mxy, M1, stress_bottom,
+     * stress_top), among those a @p peak may name (not w, q or Mxy) or a
+     * point value may (not M1); none otherwise.
+     */
+    static std::optional<Field>
+    parse_field(const std::string &name, const bool peak);
+
+    PlateFieldGoal(const std::string &text, const Field field);
+
+    /**
+     * The field's derivative at the evaluation's cell and reference point
+     * (the larger principal moment and the fibres' principal stresses
+     * linearised at the solution there).
+     */
+    Vector<double>
+    derivative(const MindlinPlate   &plate,
+               const Vector<double> &solution,
+               const Evaluation     &evaluation) const override;
+
+  protected:
+    /** The field as field_extrema.h evaluates it. */
+    PlateQuantity
+    field_quantity() const;
+
+    const Field field;
+  };
+} // namespace PlateOnHalfspace
+
+#endif
