@@ -162,9 +162,17 @@ namespace PlateOnHalfspace
         const double stiffness =
           foundation.soil().patch_stiffness(std::sqrt(area));
         const std::vector<unsigned int> nodes = cell.nodes();
-        // C = q - factor c g at a node
+        // C = q - factor c g at a node, relative to the cell's largest
+        // |q| and |c g|: the measure is the same at any load scale (the
+        // triangles' products would underflow for tiny loads)
+        double scale = 0;
+        for (const unsigned int i : nodes)
+          scale = std::max(
+            {scale, std::abs(state.q[i]), std::abs(stiffness * gap[i])});
+        if (!(scale > 0))
+          continue;
         const auto at = [&](const unsigned int i, const double factor) {
-          return state.q[i] - factor * stiffness * gap[i];
+          return state.q[i] / scale - factor * (stiffness * gap[i] / scale);
         };
         // The interpolant stays within its nodal values but for an
         // overshoot below their spread, so a cell whose nodal values keep

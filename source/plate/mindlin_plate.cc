@@ -589,7 +589,10 @@ namespace PlateOnHalfspace
         if (distance == 0.)
           break;
       }
-    AssertThrow(best_distance <= 1e-10 * (1. + x.norm()),
+    // a point so far away that its distances overflow is off the plate
+    // too (no cell was nearest)
+    AssertThrow(best_distance < std::numeric_limits<double>::max() &&
+                  best_distance <= 1e-10 * (1. + x.norm()),
                 ExcMessage("The point is not on the plate."));
     return {best, best_point};
   }

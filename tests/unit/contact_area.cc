@@ -14,10 +14,11 @@
 //    error.
 // 2. The same slab in bonded contact carries the plate everywhere:
 //    fraction 1, uncertainty 0.
-// 3. A flexible plate on a tensionless half-space (example 2 on 1281
-//    foundation nodes, Galerkin operator): the stated uncertainty of the
-//    contact area covers its change on the next finer mesh, which halves
-//    the error of a first-order measure.
+// 3. A flexible plate on a tensionless half-space (example 2, Galerkin
+//    operator): the same area under a load 1e-200 times smaller (the
+//    problem is linear in the load), and on 1281 foundation nodes a stated
+//    uncertainty that covers the change on the next finer mesh, which
+//    halves the error of a first-order measure.
 
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 
@@ -35,7 +36,8 @@ namespace
   rigid_slab(std::unique_ptr<PlateOnHalfspaceProblem> &problem,
              const unsigned int                        n,
              const std::string                        &contact,
-             const unsigned int                        refinements)
+             const unsigned int                        refinements,
+             const std::string                        &p0 = "9")
   {
     problem = TestTools::run_scene_text(TestTools::slab_on_dense_liquid(
       4,
@@ -46,7 +48,7 @@ namespace
       8,
       4,
       refinements,
-      "subsection Loads\n set Pressure function = 9*((x+2)/4)^" +
+      "subsection Loads\n set Pressure function = " + p0 + "*((x+2)/4)^" +
         std::to_string(n) +
         "\nend\n"
         "subsection Plate\n set Young's modulus = 3e12\nend\n"
@@ -76,6 +78,29 @@ main()
                 << (ok ? "ok" : "FAILED") << std::endl;
         AssertThrow(ok, ExcMessage("contact area"));
       }
+  {
+    // the problem is linear in the load: the same area at any scale
+    // (example 2 on a tensionless half-space, weightless, its band load
+    // at 300 and at 3e-198 kPa)
+    std::vector<double> area;
+    for (const std::string pressure : {"300", "3e-198"})
+      area.push_back(
+        TestTools::solve_scene(
+          "example2.prm",
+          "subsection Plate\n set Unit weight = 0\nend\n"
+          "subsection Loads\n set Rectangular patches = -2,-4,2,4," +
+            pressure +
+            "\nend\n"
+            "subsection Discretization\n set Flexibility = galerkin\nend\n"
+            "subsection Contact\n set Method = active set\nend\n")
+          ->summaries()
+          .back()
+          .contact_area_fraction);
+    const bool ok = std::abs(area[1] - area[0]) <= 1e-12;
+    deallog << "load x 1e-200: the same contact area (1e-12): "
+            << (ok ? "ok" : "FAILED") << std::endl;
+    AssertThrow(ok, ExcMessage("contact area at a tiny load"));
+  }
   {
     const CycleSummary &s = rigid_slab(problem, 2, "bonded", 1);
     const bool ok = s.contact_area_fraction == 1 && s.goal.estimated_error == 0;
