@@ -46,28 +46,61 @@ namespace PlateOnHalfspace
     }
 
     /**
-     * The area of @p cell where @p value (a function of the reference
-     * point) is positive: its interpolant on the sub-cells' triangles.
+     * A cell's sub-cells: the physical points of their corners and
+     * centres, mapped once for every field measured on the cell.
+     */
+    struct SubCells
+    {
+      static constexpr unsigned int m = subdivisions;
+
+      explicit SubCells(const FoundationSpace::Cell &cell)
+        : area(cell.geometry.area())
+      {
+        for (unsigned int i = 0; i <= m; ++i)
+          for (unsigned int j = 0; j <= m; ++j)
+            corner[i][j] = cell.geometry.map(corner_point(i, j));
+        for (unsigned int i = 0; i < m; ++i)
+          for (unsigned int j = 0; j < m; ++j)
+            centre[i][j] = cell.geometry.map(centre_point(i, j));
+      }
+
+      static Point<2>
+      corner_point(const unsigned int i, const unsigned int j)
+      {
+        return Point<2>(double(i) / m, double(j) / m);
+      }
+
+      static Point<2>
+      centre_point(const unsigned int i, const unsigned int j)
+      {
+        return Point<2>((i + 0.5) / m, (j + 0.5) / m);
+      }
+
+      /** The cell's area, as FoundationSpace::area() sums it. */
+      double                                         area;
+      std::array<std::array<Point<2>, m + 1>, m + 1> corner;
+      std::array<std::array<Point<2>, m>, m>         centre;
+    };
+
+    /**
+     * The area of the cell of @p cells where @p value (a function of the
+     * reference point) is positive: its interpolant on the sub-cells'
+     * triangles.
      */
     template <typename Value>
     double
-    positive_area(const FoundationSpace::Cell &cell, const Value &value)
+    positive_area(const SubCells &cells, const Value &value)
     {
-      constexpr unsigned int                         m = subdivisions;
-      std::array<std::array<double, m + 1>, m + 1>   f;
-      std::array<std::array<Point<2>, m + 1>, m + 1> x;
+      constexpr unsigned int                       m = SubCells::m;
+      std::array<std::array<double, m + 1>, m + 1> f;
       for (unsigned int i = 0; i <= m; ++i)
         for (unsigned int j = 0; j <= m; ++j)
-          {
-            const Point<2> p(double(i) / m, double(j) / m);
-            f[i][j] = value(p);
-            x[i][j] = cell.geometry.map(p);
-          }
-      // wholly in or out: the cell's own area, as FoundationSpace::area()
-      // sums it, so that full contact reads exactly 1
+          f[i][j] = value(SubCells::corner_point(i, j));
+      // wholly in or out: the cell's own area, so that full contact reads
+      // exactly 1
       const auto [low, high] = std::minmax_element(&f[0][0], &f[m][m] + 1);
       if (*low > 0)
-        return cell.geometry.area();
+        return cells.area;
       if (*high <= 0)
         return 0.;
       // four triangles about each sub-cell's centre: the same measure for
@@ -76,9 +109,7 @@ namespace PlateOnHalfspace
       for (unsigned int i = 0; i < m; ++i)
         for (unsigned int j = 0; j < m; ++j)
           {
-            const Point<2> centre_p((i + 0.5) / m, (j + 0.5) / m);
-            const double   f_c = value(centre_p);
-            const Point<2> x_c = cell.geometry.map(centre_p);
+            const double f_c = value(SubCells::centre_point(i, j));
             const std::array<std::pair<unsigned int, unsigned int>, 4> ring = {
               {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
             for (unsigned int k = 0; k < 4; ++k)
@@ -86,7 +117,9 @@ namespace PlateOnHalfspace
                 const auto [a0, a1] = ring[k];
                 const auto [b0, b1] = ring[(k + 1) % 4];
                 area += positive_part({{f[a0][a1], f[b0][b1], f_c}},
-                                      triangle_area(x[a0][a1], x[b0][b1], x_c));
+                                      triangle_area(cells.corner[a0][a1],
+                                                    cells.corner[b0][b1],
+                                                    cells.centre[i][j]));
               }
           }
       return area;
@@ -147,19 +180,20 @@ namespace PlateOnHalfspace
     state.cell_contact_area.assign(n_cells, 0.);
     state.cell_contact_area_uncertainty.assign(n_cells, 0.);
 
+    if (!tensionless)
+      {
+        for (unsigned int c = 0; c < n_cells; ++c)
+          if (state.cell_in_foundation.empty() || state.cell_in_foundation[c])
+            state.cell_contact_area[c] = space.cells[c].geometry.area();
+        return;
+      }
+
     const Vector<double> gap = pointwise_gap(foundation, state.gap);
     for (unsigned int c = 0; c < n_cells; ++c)
       {
         const FoundationSpace::Cell &cell = space.cells[c];
         const double                 area = cell.geometry.area();
-        const bool                   in_foundation =
-          state.cell_in_foundation.empty() || state.cell_in_foundation[c];
-        if (!tensionless)
-          {
-            state.cell_contact_area[c] = in_foundation ? area : 0.;
-            continue;
-          }
-        const double stiffness =
+        const double                 stiffness =
           foundation.soil().patch_stiffness(std::sqrt(area));
         const std::vector<unsigned int> nodes = cell.nodes();
         // C = q - factor c g at a node, relative to the cell's largest
@@ -208,12 +242,13 @@ namespace PlateOnHalfspace
                  p[0] * (1 - p[1]) * corner[1] + (1 - p[0]) * p[1] * corner[2] +
                  p[0] * p[1] * corner[3];
         };
-        const double located       = positive_area(cell, quadratic(1.));
+        const SubCells sub_cells(cell);
+        const double   located     = positive_area(sub_cells, quadratic(1.));
         state.cell_contact_area[c] = located;
         state.cell_contact_area_uncertainty[c] =
-          std::max(std::abs(located - positive_area(cell, bilinear)),
-                   0.5 * std::abs(positive_area(cell, quadratic(0.5)) -
-                                  positive_area(cell, quadratic(2.))));
+          std::max(std::abs(located - positive_area(sub_cells, bilinear)),
+                   0.5 * std::abs(positive_area(sub_cells, quadratic(0.5)) -
+                                  positive_area(sub_cells, quadratic(2.))));
       }
   }
 } // namespace PlateOnHalfspace
