@@ -74,7 +74,8 @@ main()
         deallog << "p0 xi^" << n << ", " << (4u << refinements)
                 << " rows: contact area fraction "
                 << rounded(s.contact_area_fraction, 1e-4) << " reference "
-                << exact << ", error <= 1e-4 and <= the stated uncertainty: "
+                << rounded(exact, 1e-4)
+                << ", error <= 1e-4 and <= the stated uncertainty: "
                 << (ok ? "ok" : "FAILED") << std::endl;
         AssertThrow(ok, ExcMessage("contact area"));
       }
