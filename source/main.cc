@@ -3,6 +3,7 @@
  * half-space. Usage:
  *   plate-on-halfspace scene.prm
  *   plate-on-halfspace --print-parameters
+ *   plate-on-halfspace --print-results
  *   mpirun -np P plate-on-halfspace scene.prm
  * Under MPI every rank runs the same program on a shared mesh; rank 0
  * writes the log, the messages and the results (doc/parallel.md).
@@ -14,6 +15,7 @@
 #include <plate_on_halfspace/base/error_on_every_rank.h>
 #include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/base/mpi_singleton.h>
+#include <plate_on_halfspace/base/result_record.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/scene/input_checks.h>
@@ -44,7 +46,8 @@ main(int argc, char **argv)
   std::ostream &err = is_root ? std::cerr : silent;
 
   const std::string usage =
-    "usage: plate-on-halfspace SCENE.prm | --print-parameters";
+    "usage: plate-on-halfspace SCENE.prm | --print-parameters | "
+    "--print-results";
   if (argc != 2)
     {
       err << usage << std::endl;
@@ -61,6 +64,13 @@ main(int argc, char **argv)
             out,
             dealii::ParameterHandler::PRM |
               dealii::ParameterHandler::KeepDeclarationOrder);
+          return 0;
+        }
+      // the keys of summary.json and the columns of convergence.txt, as
+      // their producers declare them (base/result_record.h)
+      if (argument == "--print-results")
+        {
+          out << results_help_text();
           return 0;
         }
       if (argument == "--help" || argument == "-h")

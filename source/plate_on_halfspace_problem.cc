@@ -25,6 +25,120 @@
 
 namespace PlateOnHalfspace
 {
+  namespace
+  {
+    /** A convergence.txt column of a count or a time of the record. */
+    ConvergenceColumn
+    column(const std::string &name,
+           const std::string &key,
+           const unsigned int precision,
+           const std::string &meaning = "")
+    {
+      return {name,
+              meaning.empty() ? "`" + key + "`" : meaning,
+              [key](const ResultRecord &r, double &v) {
+                v = r.number(key);
+                return true;
+              },
+              precision};
+    }
+
+    // The driver's results: the mesh, the loads, the time split and the
+    // foundation operator of each cycle (doc/outputs.md).
+    const bool declared_mesh = declare_results(
+      "cycles",
+      10,
+      {{{"cycle"}, "–", "0, 1, …", ResultKind::count},
+       {{"n_cells"},
+        "–",
+        "active cells of the computed part",
+        ResultKind::count},
+       {{"n_dofs"},
+        "–",
+        "unconstrained degrees of freedom of the plate (w, β_x, β_y) on the "
+        "computed part",
+        ResultKind::count},
+       {{"n_foundation_dofs"},
+        "–",
+        "foundation nodes (unconstrained w-DOFs) of the computed part: the "
+        "size n of the half-space block",
+        ResultKind::count}},
+      {column("cycle", "cycle", 0),
+       column("cells", "n_cells", 0),
+       column("dofs", "n_dofs", 0),
+       column("foundation dofs", "n_foundation_dofs", 0)});
+
+    const bool declared_loads = declare_results(
+      "cycles",
+      20,
+      {{{"applied_load"},
+        "force",
+        "total applied load of the whole plate (downward positive), the part "
+        "of patches on the plate"},
+       {{"load_integration_error"},
+        "–",
+        "the largest difference, over the loads, between a load integrated "
+        "by its own rule and by 3 more Gauss points per direction on each "
+        "quarter of each cell, relative to the integral of its \\|p\\| "
+        "([loads.md](loads.md#pressure-function)); 0 without a `Pressure "
+        "function` (the other loads are integrated exactly), rounding "
+        "(≈ 1e-15) for a polynomial one"}});
+
+    const bool declared_timing = declare_results(
+      "cycles",
+      50,
+      {{{"wall_time_s"}, "s", "wall time of the cycle (plate setup included)"},
+       {{"assembly_time_s"},
+        "s",
+        "plate setup (DoFs, constraints, stiffness) and loads"},
+       {{"foundation_time_s"},
+        "s",
+        "building the foundation operator; the sum of the next three"},
+       {{"foundation_integration_time_s"}, "s", "integrating its entries"},
+       {{"foundation_compression_time_s"},
+        "s",
+        "hierarchical storage: ACA+'s own algebra (0 for dense)"},
+       {{"foundation_factorization_time_s"},
+        "s",
+        "the contact solver's factorisation of the flexibility: the "
+        "approximate inverse of the iterative solver (H-Cholesky or dense "
+        "Cholesky factor), or the direct solver's first contact block F_CC"},
+       {{"solve_time_s"},
+        "s",
+        "the contact solve without that factorisation: the plate's "
+        "condensation (direct) or generalised inverse (iterative) and all "
+        "contact iterations"},
+       {{"output_time_s"}, "s", "evaluating and writing the results"}},
+      {column("assembly [s]", "assembly_time_s", 3),
+       column("foundation [s]", "foundation_time_s", 3),
+       column("solve [s]", "solve_time_s", 3),
+       column("output [s]", "output_time_s", 3),
+       column("total [s]",
+              "wall_time_s",
+              3,
+              "`wall_time_s`, the cycle's wall time")});
+
+    const bool declared_foundation = declare_results(
+      "cycles",
+      60,
+      {{{"foundation_storage"},
+        "–",
+        "`dense` or `hierarchical` for the half-space (with `Storage = "
+        "auto`, decided per cycle), `sparse` for the dense liquid",
+        ResultKind::text},
+       {{"foundation_memory_bytes"},
+        "bytes",
+        "memory held by the half-space operator's matrices and by the "
+        "contact solver's factor of the flexibility (on several processes: "
+        "rank 0's share)",
+        ResultKind::count},
+       {{"foundation_nodes_per_rank"},
+        "–",
+        "the foundation nodes each MPI process owns, one entry per process "
+        "([parallel.md](parallel.md))",
+        ResultKind::list}});
+  } // namespace
+
   PlateOnHalfspaceProblem::PlateOnHalfspaceProblem(
     const SceneParameters &parameters,
     std::ostream          &log)
@@ -34,7 +148,12 @@ namespace PlateOnHalfspace
                                                         MPI_COMM_SELF)
     , soil(create_soil_model(parameters))
     , timer_output(log, TimerOutput::never, TimerOutput::wall_times)
-  {}
+  {
+    (void)declared_mesh;
+    (void)declared_loads;
+    (void)declared_timing;
+    (void)declared_foundation;
+  }
 
   bool
   PlateOnHalfspaceProblem::run()
@@ -86,12 +205,14 @@ namespace PlateOnHalfspace
                           "Contact/Max iterations (" +
                           std::to_string(parameters.contact.max_iterations) +
                           ") reached before the contact set settled."));
-            if (summary.goal.target_met)
+            if (summary.has("goal") &&
+                summary.object("goal").flag("target_met"))
               {
                 log << "Adaptivity/Target error met: estimated relative "
                        "error of <"
                     << goal->name() << "> " << std::scientific
-                    << std::setprecision(2) << summary.goal.relative_error
+                    << std::setprecision(2)
+                    << summary.object("goal").number("relative_error")
                     << " <= " << parameters.adaptivity.target_error
                     << std::defaultfloat << "." << std::endl;
                 break;
@@ -370,8 +491,9 @@ namespace PlateOnHalfspace
       if (std::isfinite(value) && std::abs(value) <= limit)
         return;
       std::ostringstream message;
-      message << "The " << name << " of cycle " << summary.cycle << " is "
-              << (std::isfinite(value) ? "" : "not a finite number, ") << value;
+      message << "The " << name << " of cycle " << summary.count("cycle")
+              << " is " << (std::isfinite(value) ? "" : "not a finite number, ")
+              << value;
       if (std::isfinite(value))
         message << ", beyond the 3.4e37 the results may reach (the VTU files "
                      "hold 32-bit floats, up to 3.4e38): express the scene in "
@@ -393,29 +515,10 @@ namespace PlateOnHalfspace
                  contact.plate_solution);
     check_vector("contact pressure", contact.q);
     check_vector("gap", contact.gap);
-    check("applied load", summary.applied_load);
-    check("contact force", summary.contact_force);
-    for (const auto &[name, value] :
-         std::vector<std::pair<std::string, double>>{
-           {"largest deflection", summary.max_w},
-           {"smallest deflection", summary.min_w},
-           {"largest pressure", summary.max_q},
-           {"smallest pressure", summary.min_q},
-           {"largest moment Mx", summary.max_mx},
-           {"smallest moment Mx", summary.min_mx},
-           {"largest moment My", summary.max_my},
-           {"smallest moment My", summary.min_my},
-           {"largest principal moment", summary.max_principal_moment},
-           {"largest principal stress at the bottom",
-            summary.max_principal_stress_bottom},
-           {"largest principal stress at the top",
-            summary.max_principal_stress_top}})
-      check(name, value);
-    for (const PointValues &p : summary.probes)
-      for (const double value : {p.w, p.q, p.mx, p.my})
-        check("value at the probe point (" + std::to_string(p.location[0]) +
-                ", " + std::to_string(p.location[1]) + ")",
-              value);
+    // every number of the cycle's record (doc/outputs.md)
+    summary.for_each_number([&](const std::string &key, const double value) {
+      check(key + " (summary.json)", value);
+    });
   }
 
   bool
@@ -447,7 +550,7 @@ namespace PlateOnHalfspace
         for (const auto &cell : triangulation.active_cell_iterators())
           n_refined += cell->refine_flag_set() ? 1 : 0;
         const double predicted_nodes =
-          double(summary.n_foundation_dofs) *
+          double(summary.count("n_foundation_dofs")) *
           (triangulation.n_active_cells() + 3. * n_refined) /
           triangulation.n_active_cells();
         const unsigned int limit = soil->largest_goal_estimate();
@@ -484,12 +587,14 @@ namespace PlateOnHalfspace
     Timer phase;
     mindlin_plate->assemble_loads(computed_loads);
     // Sums over the computed part times the copies that make the plate.
-    summary                   = CycleSummary();
-    summary.cycle             = cycle;
-    summary.n_cells           = triangulation.n_active_cells();
-    summary.n_dofs            = mindlin_plate->n_unconstrained_dofs();
-    summary.n_foundation_dofs = mindlin_plate->get_foundation_dofs().size();
-    summary.applied_load = symmetry.n_copies() * mindlin_plate->applied_load();
+    summary = ResultRecord("cycles");
+    summary.set_count("cycle", cycle);
+    summary.set_count("n_cells", triangulation.n_active_cells());
+    summary.set_count("n_dofs", mindlin_plate->n_unconstrained_dofs());
+    summary.set_count("n_foundation_dofs",
+                      mindlin_plate->get_foundation_dofs().size());
+    summary.set("applied_load",
+                symmetry.n_copies() * mindlin_plate->applied_load());
     // before anything is computed on these loads: what they put on the
     // plate, whether it has an answer, and whether that fits the files
     check_loads_on_plate(loads_at(Tensor<1, 2>(), false),
@@ -498,16 +603,17 @@ namespace PlateOnHalfspace
                          cycle == 0);
     if (cycle == 0)
       check_result_magnitudes();
-    summary.load_integration_error =
+    const double integration_error =
       load_integration_error(mindlin_plate->get_foundation_space(),
                              computed_loads);
+    summary.set("load_integration_error", integration_error);
     // said once: a later cycle's finer mesh usually brings it down
-    if (summary.load_integration_error > 1e-4 && !integration_error_warned)
+    if (integration_error > 1e-4 && !integration_error_warned)
       {
         std::ostringstream w;
         w << "Loads: the applied load of cycle " << cycle
           << " is integrated to a relative error of about "
-          << std::setprecision(2) << summary.load_integration_error
+          << std::setprecision(2) << integration_error
           << " (load_integration_error in summary.json): a pressure with a "
              "jump, a peak or a pole inside the cells. Raise Loads/Pressure "
              "function points, refine, or give a jump as a region "
@@ -517,20 +623,23 @@ namespace PlateOnHalfspace
       }
     const unsigned int owned_nodes = static_cast<unsigned int>(
       mindlin_plate->get_foundation_space().owned_nodes.n_elements());
-    summary.foundation_nodes_per_rank =
+    const std::vector<unsigned int> nodes_per_rank =
       n_ranks(communicator) > 1 ?
         Utilities::MPI::all_gather(communicator, owned_nodes) :
         std::vector<unsigned int>{owned_nodes};
-    summary.assembly_time_s = setup_time_s + phase.wall_time();
+    summary.set("foundation_nodes_per_rank",
+                ResultRecord::Counts(nodes_per_rank.begin(),
+                                     nodes_per_rank.end()));
+    summary.set("assembly_time_s", setup_time_s + phase.wall_time());
     if (parameters.output.verbosity > 0)
-      log << "cycle " << cycle << ": " << summary.n_cells << " cells, "
-          << summary.n_dofs << " dofs, " << summary.n_foundation_dofs
-          << " foundation nodes" << std::endl;
-    if (parameters.output.verbosity > 0 &&
-        summary.foundation_nodes_per_rank.size() > 1)
+      log << "cycle " << cycle << ": " << summary.count("n_cells") << " cells, "
+          << summary.count("n_dofs") << " dofs, "
+          << summary.count("n_foundation_dofs") << " foundation nodes"
+          << std::endl;
+    if (parameters.output.verbosity > 0 && nodes_per_rank.size() > 1)
       {
         log << "   foundation nodes per rank (METIS):";
-        for (const unsigned int n : summary.foundation_nodes_per_rank)
+        for (const unsigned int n : nodes_per_rank)
           log << ' ' << n;
         log << std::endl;
       }
@@ -542,7 +651,7 @@ namespace PlateOnHalfspace
     TimerOutput::Scope scope(timer_output, "build foundation operator");
     Timer              phase;
     // Storage = auto and Solver = auto are decided for this cycle's mesh.
-    const unsigned int n       = summary.n_foundation_dofs;
+    const unsigned int n       = summary.count("n_foundation_dofs");
     const auto         storage = parameters.foundation_storage(n);
     // A goal's half-space residual evaluates the settlement at every Gauss
     // point of the contact cells against every cell (halfspace/
@@ -599,9 +708,7 @@ namespace PlateOnHalfspace
             coarse_cell_warned = true;
           }
       }
-    summary.foundation_time_s = phase.wall_time();
-    summary.foundation_compression_time_s =
-      foundation_operator->build_times().compression;
+    foundation_time_s = phase.wall_time();
   }
 
   void
@@ -609,11 +716,12 @@ namespace PlateOnHalfspace
   {
     TimerOutput::Scope scope(timer_output, "contact solve");
     Timer              phase;
-    contact_solver = create_contact_solver(parameters,
-                                           parameters.contact_solver(
-                                             summary.n_foundation_dofs),
-                                           parameters.output.verbosity,
-                                           log);
+    contact_solver =
+      create_contact_solver(parameters,
+                            parameters.contact_solver(
+                              summary.count("n_foundation_dofs")),
+                            parameters.output.verbosity,
+                            log);
     contact        = contact_solver->solve(*mindlin_plate,
                                     *foundation_operator,
                                     mindlin_plate->get_load_vector(),
@@ -622,11 +730,14 @@ namespace PlateOnHalfspace
     // The solver's factorisation of the flexibility belongs to the
     // foundation's time (doc/outputs.md, the time split).
     const double factorization = contact.factorization_time_s;
-    summary.solve_time_s = std::max(0., phase.wall_time() - factorization);
-    summary.foundation_factorization_time_s = factorization;
-    summary.foundation_integration_time_s   = std::max(
-      0., summary.foundation_time_s - summary.foundation_compression_time_s);
-    summary.foundation_time_s += factorization;
+    const double compression   = foundation_operator->build_times().compression;
+    summary.set("foundation_time_s", foundation_time_s + factorization);
+    summary.set("foundation_integration_time_s",
+                std::max(0., foundation_time_s - compression));
+    summary.set("foundation_compression_time_s", compression);
+    summary.set("foundation_factorization_time_s", factorization);
+    summary.set("solve_time_s",
+                std::max(0., phase.wall_time() - factorization));
   }
 
   void
@@ -647,33 +758,14 @@ namespace PlateOnHalfspace
       pressure_field,
       *contact_solver,
       GoalEstimateScene{computed_loads, *foundation_operator});
-    summary.has_goal             = true;
-    summary.goal.quantity        = goal->name();
-    summary.goal.value           = value.value;
-    summary.goal.has_location    = value.has_location;
-    summary.goal.location        = value.location;
-    summary.goal.estimated_error = goal_estimate.estimated_error;
-    summary.goal.has_dwr         = goal_estimate.has_dwr;
-    summary.goal.dwr             = goal_estimate.dwr;
-    // The dual-weighted residual underestimates where the adjoint
-    // solution is singular at the mesh's scale (doc/verification.md,
-    // "Goal error estimates"): the bound also takes the last change.
-    double bound = goal_estimate.estimated_error;
-    if (!cycle_summaries.empty() && cycle_summaries.back().has_goal)
-      {
-        summary.goal.has_change = true;
-        summary.goal.change = value.value - cycle_summaries.back().goal.value;
-        bound               = std::max(bound, std::abs(summary.goal.change));
-      }
-    summary.goal.relative_error =
-      bound / std::max(std::abs(value.value), 1e-300);
-    summary.goal.target_error = parameters.adaptivity.target_error;
-    // Not on the first cycle: its bound has no change to check the
-    // estimate against.
-    summary.goal.target_met =
-      summary.goal.target_error > 0 && summary.goal.has_change &&
-      summary.goal.relative_error <= summary.goal.target_error;
-    summary.goal.time_s = phase.wall_time();
+    add_goal_results(*goal,
+                     value,
+                     goal_estimate,
+                     cycle_summaries.empty() ? nullptr :
+                                               &cycle_summaries.back(),
+                     parameters.adaptivity.target_error,
+                     phase.wall_time(),
+                     summary);
   }
 
   void
@@ -700,8 +792,12 @@ namespace PlateOnHalfspace
     // moving loads alone hold it, and its deflections are theirs.
     if (!has_load && (!has_moment || parameters.foundation.tensionless))
       return;
-    const auto solver = create_contact_solver(
-      parameters, parameters.contact_solver(summary.n_foundation_dofs), 0, log);
+    const auto solver =
+      create_contact_solver(parameters,
+                            parameters.contact_solver(
+                              summary.count("n_foundation_dofs")),
+                            0,
+                            log);
     standing_solution = solver
                           ->solve(*mindlin_plate,
                                   *foundation_operator,
@@ -714,38 +810,19 @@ namespace PlateOnHalfspace
   PlateOnHalfspaceProblem::postprocess()
   {
     TimerOutput::Scope scope(timer_output, "output");
-    // Equilibrium: the integral of q is the sum of the nodal forces M q.
-    Vector<double> forces;
-    foundation_operator->nodal_forces(contact.pressure_coefficients, forces);
-    summary.contact_force =
-      symmetry.n_copies() * std::accumulate(forces.begin(), forces.end(), 0.);
     solve_standing_loads();
     output->evaluate(*mindlin_plate,
                      contact.plate_solution,
                      pressure_field,
                      contact,
+                     *foundation_operator,
+                     parameters.output.probe_points,
                      summary,
                      standing_solution);
-    summary.foundation_storage = foundation_operator->storage_name();
-    summary.foundation_memory_bytes =
-      foundation_operator->memory_consumption() + contact.factor_memory_bytes;
-    summary.coupled_matrix_rcond   = contact.coupled_rcond;
-    summary.foundation_block_rcond = contact.contact_block_rcond;
-    for (const Point<2> &x : parameters.output.probe_points)
-      {
-        try
-          {
-            summary.probes.push_back(values_at(x));
-          }
-        catch (...)
-          {
-            AssertThrow(false,
-                        ExcMessage("Output/Probe points: (" +
-                                   std::to_string(x[0]) + ", " +
-                                   std::to_string(x[1]) +
-                                   ") is not on the plate."));
-          }
-      }
+    summary.set("foundation_storage", foundation_operator->storage_name());
+    summary.set_count("foundation_memory_bytes",
+                      foundation_operator->memory_consumption() +
+                        contact.factor_memory_bytes);
   }
 
   void
@@ -847,7 +924,7 @@ namespace PlateOnHalfspace
     output->write_sweep(rows);
     bool all_converged = true;
     for (const auto &s : cycle_summaries)
-      all_converged = all_converged && s.converged;
+      all_converged = all_converged && s.flag("converged");
     output->write_summary(
       cycle_summaries, symmetry.name(), all_converged, *slab_grid, rows);
   }
@@ -877,7 +954,8 @@ namespace PlateOnHalfspace
         end   = Point<2>(x_max, 0);
       }
     const Vector<double> &solution = contact.plate_solution;
-    output->write_profile(summary.cycle,
+    const unsigned int    cycle    = summary.count("cycle");
+    output->write_profile(cycle,
                           plate,
                           solution,
                           contact,
@@ -885,118 +963,48 @@ namespace PlateOnHalfspace
                           end,
                           parameters.output.profile_points);
     output->write_nodes_and_gauss_profile(
-      summary.cycle, plate, solution, contact, start, end);
+      cycle, plate, solution, contact, start, end);
     if (parameters.output.vtu)
-      output->write_vtu(summary.cycle, plate, solution, contact);
-    summary.output_time_s = phase.wall_time();
-    summary.wall_time_s   = cycle_timer.wall_time() + setup_time_s;
+      output->write_vtu(cycle, plate, solution, contact);
+    summary.set("output_time_s", phase.wall_time());
+    summary.set("wall_time_s", cycle_timer.wall_time() + setup_time_s);
 
     const unsigned int verbosity = parameters.output.verbosity;
     if (verbosity > 0)
       {
+        const auto &r = summary;
         log << std::scientific << std::setprecision(6) << "   applied load "
-            << summary.applied_load << ", contact force "
-            << summary.contact_force << std::endl
-            << "   w in [" << summary.min_w << ", " << summary.max_w
-            << "], q in [" << summary.min_q << ", " << summary.max_q << "]"
-            << std::endl
-            << "   nodes in contact " << summary.contact_nodes
+            << r.number("applied_load") << ", contact force "
+            << r.number("contact_force") << std::endl
+            << "   w in [" << r.number("min_w") << ", " << r.number("max_w")
+            << "], q in [" << r.number("min_q") << ", " << r.number("max_q")
+            << "]" << std::endl
+            << "   nodes in contact " << r.count("contact_nodes")
             << ", contact area fraction " << std::fixed << std::setprecision(4)
-            << summary.contact_area_fraction << std::defaultfloat << std::endl;
+            << r.number("contact_area_fraction") << std::defaultfloat
+            << std::endl;
         if (parameters.foundation.tensionless)
           log << "   complementarity violation " << std::scientific
               << std::setprecision(1)
-              << std::max(summary.complementarity_violation, 1e-16)
-              << ", tensile nodes " << summary.tensile_nodes
+              << std::max(r.number("complementarity_violation"), 1e-16)
+              << ", tensile nodes " << r.count("tensile_nodes")
               << ", largest penetration "
-              << std::max(summary.max_penetration, 1e-16) << std::defaultfloat
-              << std::endl;
+              << std::max(r.number("max_penetration"), 1e-16)
+              << std::defaultfloat << std::endl;
         if (verbosity > 1)
-          log << "   wall time " << summary.wall_time_s << " s" << std::endl;
+          log << "   wall time " << r.number("wall_time_s") << " s"
+              << std::endl;
       }
 
     cycle_summaries.push_back(summary);
     bool all_converged = true;
     for (const auto &s : cycle_summaries)
-      all_converged = all_converged && s.converged;
+      all_converged = all_converged && s.flag("converged");
     output->write_summary(cycle_summaries,
                           symmetry.name(),
                           all_converged,
                           *slab_grid);
-    add_convergence_row(summary);
-    output->write_convergence(convergence);
-  }
-
-  void
-  PlateOnHalfspaceProblem::add_convergence_row(const CycleSummary &summary)
-  {
-    // One row per cycle: size, effort, the quantities of interest with
-    // their relative change from the previous cycle, and the time split.
-    convergence.add_value("cycle", summary.cycle);
-    convergence.add_value("cells", summary.n_cells);
-    convergence.add_value("dofs", summary.n_dofs);
-    convergence.add_value("foundation dofs", summary.n_foundation_dofs);
-    convergence.add_value("contact its", summary.contact_iterations);
-    const CycleSummary *previous =
-      cycle_summaries.size() > 1 ?
-        &cycle_summaries[cycle_summaries.size() - 2] :
-        nullptr;
-    const auto add_quantity = [&](const std::string &name,
-                                  const double       value,
-                                  const double       previous_value) {
-      convergence.add_value(name, value);
-      convergence.set_scientific(name, true);
-      convergence.set_precision(name, 6);
-      const std::string change = "change " + name;
-      // relative change; the first cycle has none ("-": 0 would read as
-      // converged)
-      if (previous)
-        convergence.add_value(change,
-                              std::abs(value - previous_value) /
-                                std::max(std::abs(value), 1e-300));
-      else
-        convergence.add_value(change, std::string("-"));
-      convergence.set_scientific(change, true);
-      convergence.set_precision(change, 2);
-    };
-    add_quantity("max w", summary.max_w, previous ? previous->max_w : 0.);
-    add_quantity("max Mx", summary.max_mx, previous ? previous->max_mx : 0.);
-    add_quantity("max q", summary.max_q, previous ? previous->max_q : 0.);
-    add_quantity("contact fraction",
-                 summary.contact_area_fraction,
-                 previous ? previous->contact_area_fraction : 0.);
-    if (summary.has_goal)
-      {
-        // the goal, the relative change of its value, its estimate and the
-        // error bound, both relative to |value|
-        add_quantity("goal",
-                     summary.goal.value,
-                     previous ? previous->goal.value : 0.);
-        const double scale = std::max(std::abs(summary.goal.value), 1e-300);
-        for (const auto &[name, value] :
-             std::vector<std::pair<std::string, double>>{
-               {"goal estimate", summary.goal.estimated_error / scale},
-               {"goal error", summary.goal.relative_error}})
-          {
-            convergence.add_value(name, value);
-            convergence.set_scientific(name, true);
-            convergence.set_precision(name, 2);
-          }
-      }
-    convergence.add_value("contact force", summary.contact_force);
-    convergence.set_scientific("contact force", true);
-    convergence.set_precision("contact force", 6);
-    for (const auto &[name, value] :
-         std::vector<std::pair<std::string, double>>{
-           {"assembly [s]", summary.assembly_time_s},
-           {"foundation [s]", summary.foundation_time_s},
-           {"solve [s]", summary.solve_time_s},
-           {"output [s]", summary.output_time_s},
-           {"total [s]", summary.wall_time_s}})
-      {
-        convergence.add_value(name, value);
-        convergence.set_precision(name, 3);
-      }
+    output->write_convergence(cycle_summaries);
   }
 
   PointValues
@@ -1034,18 +1042,27 @@ namespace PlateOnHalfspace
           }
         else
           {
-            const CycleSummary                 &s = cycle_summaries.back();
-            const std::map<std::string, double> summary_value = {
-              {"applied_load", s.applied_load},
-              {"contact_force", s.contact_force},
-              {"max_w", s.max_w},
-              {"min_w", s.min_w},
-              {"max_q", s.max_q},
-              {"min_q", s.min_q},
-              {"contact_area_fraction", s.contact_area_fraction},
-              {"max_principal_stress_bottom", s.max_principal_stress_bottom},
-              {"max_principal_stress_top", s.max_principal_stress_top}};
-            value = summary_value.at(check.quantity);
+            // a cycle's number, or its goal's as "goal.value"
+            // (Parameters::Verification)
+            const ResultRecord &last = cycle_summaries.back();
+            const auto          dot  = check.quantity.find('.');
+            const ResultRecord *record =
+              dot == std::string::npos ?
+                &last :
+                (last.has(check.quantity.substr(0, dot)) ?
+                   &last.object(check.quantity.substr(0, dot)) :
+                   nullptr);
+            const std::string key =
+              check.quantity.substr(dot == std::string::npos ? 0 : dot + 1);
+            if (record == nullptr || !record->is_number(key))
+              {
+                log << "check " << label
+                    << ": the last cycle has no number of this key: FAILED"
+                    << std::endl;
+                all_passed = false;
+                continue;
+              }
+            value = record->number(key);
           }
         const double error = std::abs(value - check.reference) /
                              std::max(std::abs(check.reference), 1e-300);

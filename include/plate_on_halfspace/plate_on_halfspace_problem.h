@@ -10,7 +10,6 @@
 #ifndef plate_on_halfspace_plate_on_halfspace_problem_h
 #define plate_on_halfspace_plate_on_halfspace_problem_h
 
-#include <deal.II/base/convergence_table.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/grid/tria.h>
@@ -51,7 +50,7 @@ namespace PlateOnHalfspace
     bool
     run();
 
-    const std::vector<CycleSummary> &
+    const std::vector<ResultRecord> &
     summaries() const
     {
       return cycle_summaries;
@@ -154,10 +153,6 @@ namespace PlateOnHalfspace
     void
     write_output();
 
-    /** Append the cycle's row to convergence.txt's table. */
-    void
-    add_convergence_row(const CycleSummary &summary);
-
     /** standing_solution: the plate under its weight, temperature and
      *  uniform pressure alone, for the joints' LTE. */
     void
@@ -254,14 +249,15 @@ namespace PlateOnHalfspace
      *  empty where the joints' LTE needs none. */
     Vector<double> standing_solution;
 
-    /** The cycle being solved and the summaries of all cycles so far. */
-    CycleSummary                   summary;
-    std::vector<CycleSummary>      cycle_summaries;
-    ConvergenceTable               convergence;
+    /** The record of the cycle being solved and of all cycles so far
+     *  (doc/outputs.md, "summary.json"). */
+    ResultRecord                   summary;
+    std::vector<ResultRecord>      cycle_summaries;
     std::unique_ptr<ResultsOutput> output;
 
-    /** Wall times of the cycle (s): plate setup, and the cycle so far. */
-    double setup_time_s = 0;
+    /** Wall times of the cycle (s): plate setup, and the cycle so far;
+     *  building the foundation operator. */
+    double setup_time_s = 0, foundation_time_s = 0;
     Timer  cycle_timer;
     /** Wall times per phase, printed with Output/Verbosity = 2. */
     TimerOutput timer_output;

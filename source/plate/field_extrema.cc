@@ -2,12 +2,15 @@
 
 #include <deal.II/fe/fe.h>
 
+#include <plate_on_halfspace/base/result_record.h>
 #include <plate_on_halfspace/plate/field_extrema.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <tuple>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -596,5 +599,104 @@ namespace PlateOnHalfspace
                 const PlateQuantity   quantity)
   {
     return find_extrema(plate, solution, quantity, true, true);
+  }
+
+  namespace
+  {
+    /** A convergence.txt column of a peak, with its change. */
+    ConvergenceColumn
+    peak_column(const std::string &name, const std::string &key)
+    {
+      return {name,
+              "`" + key + "`",
+              [key](const ResultRecord &r, double &v) {
+                v = r.number(key);
+                return true;
+              },
+              6,
+              true,
+              true};
+    }
+
+    const bool declared = declare_results(
+      "cycles",
+      25,
+      {{{"max_w", "min_w"},
+        "length",
+        "peaks of the deflection field w over the plate ([Peaks](#peaks); "
+        "downward positive; `min_w` < 0 means a part lifts upward)"},
+       {{"max_q", "min_q"},
+        "force/length²",
+        "peaks of the pressure field q, the nodal pressures interpolated "
+        "with the w shape functions (compression positive; `min_q` < 0 is "
+        "tension, possible when bonded or with element exclusion; with "
+        "exact tensionless contact it can dip slightly below 0 between a "
+        "lifted and a loaded node although every nodal value is ≥ 0)"},
+       {{"max_Mx", "min_Mx", "max_My", "min_My"},
+        "force·length/length",
+        "peaks of the moment fields M_x, M_y over the plate, each cell's own "
+        "polynomial up to its edges (the moments jump between cells)"},
+       {{"max_principal_moment"},
+        "force·length/length",
+        "peak of the larger principal moment M₁ = (M_x + M_y)/2 + "
+        "√(((M_x − M_y)/2)² + M_xy²)"},
+       {{"max_principal_stress_bottom", "max_principal_stress_top"},
+        "force/length²",
+        "peaks of the largest principal stress of the bottom and of the top "
+        "fibre, tension positive "
+        "([formulation.md](formulation.md#stresses))"},
+       {{"max_w_at",
+         "min_w_at",
+         "max_q_at",
+         "min_q_at",
+         "max_Mx_at",
+         "min_Mx_at",
+         "max_My_at",
+         "min_My_at",
+         "max_principal_moment_at",
+         "max_principal_stress_bottom_at",
+         "max_principal_stress_top_at"},
+        "length",
+        "`[x, y]`: where each peak above is (on the computed part of a "
+        "symmetric scene)",
+        ResultKind::location}},
+      {peak_column("max w", "max_w"),
+       peak_column("max Mx", "max_Mx"),
+       peak_column("max q", "max_q")});
+  } // namespace
+
+  void
+  add_peak_results(const MindlinPlate   &plate,
+                   const Vector<double> &solution,
+                   const Vector<double> &pressure_field,
+                   ResultRecord         &record)
+  {
+    (void)declared;
+    // The extremes of the fields, not of samples, so a probe's value does
+    // not lie beyond them; q is the nodal pressure field in the w-space,
+    // so its peaks bound the nodal values.
+    const auto set = [&record](const std::string   &key,
+                               const FieldExtremum &peak) {
+      record.set(key, peak.value);
+      record.set(key + "_at", peak.location);
+    };
+    for (const auto &[name, field, quantity] :
+         {std::make_tuple("w", &solution, PlateQuantity::w),
+          std::make_tuple("q", &pressure_field, PlateQuantity::w),
+          std::make_tuple("Mx", &solution, PlateQuantity::mx),
+          std::make_tuple("My", &solution, PlateQuantity::my)})
+      {
+        const FieldExtrema peaks = field_extrema(plate, *field, quantity);
+        set(std::string("max_") + name, peaks.maximum);
+        set(std::string("min_") + name, peaks.minimum);
+      }
+    for (const auto &[key, quantity] :
+         {std::make_pair("max_principal_moment",
+                         PlateQuantity::principal_moment),
+          std::make_pair("max_principal_stress_bottom",
+                         PlateQuantity::principal_stress_bottom),
+          std::make_pair("max_principal_stress_top",
+                         PlateQuantity::principal_stress_top)})
+      set(key, field_maximum(plate, solution, quantity));
   }
 } // namespace PlateOnHalfspace

@@ -2,10 +2,15 @@
 #include <deal.II/base/utilities.h>
 
 #include <plate_on_halfspace/base/number_list.h>
+#include <plate_on_halfspace/base/result_record.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/refinement/dual_weighted_residual.h>
 #include <plate_on_halfspace/refinement/goal.h>
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
 #include <sstream>
 
 namespace PlateOnHalfspace
@@ -18,6 +23,107 @@ namespace PlateOnHalfspace
       static std::vector<GoalKind> list;
       return list;
     }
+
+    /** A convergence.txt column of the goal object's @p value. */
+    ConvergenceColumn
+    goal_column(const std::string                                 &name,
+                const std::string                                 &meaning,
+                const std::function<double(const ResultRecord &)> &value,
+                const bool                                         with_change,
+                const unsigned int                                 precision)
+    {
+      return {name,
+              meaning,
+              [value](const ResultRecord &r, double &v) {
+                if (!r.has("goal"))
+                  return false;
+                // a value without meaning (a relative one of a zero
+                // goal) reads "-"
+                v = value(r.object("goal"));
+                return std::isfinite(v);
+              },
+              precision,
+              true,
+              with_change};
+    }
+
+    const bool declared_cycle = declare_results(
+      "cycles",
+      45,
+      {{{"goal"},
+        "–",
+        "with `Adaptivity/Goal` only: the goal's value and error "
+        "([below](#the-goal))",
+        ResultKind::object}},
+      {goal_column(
+         "goal",
+         "with `Adaptivity/Goal`: its `value`",
+         [](const ResultRecord &g) { return g.number("value"); },
+         true,
+         6),
+       goal_column(
+         "goal estimate",
+         "with `Adaptivity/Goal`: `estimated_error` / \\|`value`\\|",
+         [](const ResultRecord &g) {
+           return g.number("value") == 0 ?
+                    std::numeric_limits<double>::quiet_NaN() :
+                    g.number("estimated_error") / std::abs(g.number("value"));
+         },
+         false,
+         2),
+       goal_column(
+         "goal error",
+         "with `Adaptivity/Goal`: the reported bound `relative_error`",
+         [](const ResultRecord &g) {
+           return g.is_number("relative_error") ?
+                    g.number("relative_error") :
+                    std::numeric_limits<double>::quiet_NaN();
+         },
+         false,
+         2)});
+
+    const bool declared_goal = declare_results(
+      "cycles.goal",
+      0,
+      {{{"quantity"},
+        "–",
+        "the entry `Adaptivity/Goal` as written",
+        ResultKind::text},
+       {{"value"}, "the goal's", "its value on this cycle"},
+       {{"at"},
+        "length",
+        "`[x, y]` of a point value or a peak, on the computed part (point "
+        "values and peaks only)",
+        ResultKind::location},
+       {{"estimated_error"},
+        "the goal's",
+        "the estimate of \\|true − value\\|: Σ of the local dual-weighted "
+        "residuals' magnitudes; for the contact area the cells' location "
+        "uncertainties ([Contact area](#contact-area)); 0 for a goal without "
+        "an estimate (`Refinement = goal` refuses it)"},
+       {{"dwr"},
+        "the goal's",
+        "their signed sum, the estimate of true − value; `null` where there "
+        "is no adjoint problem (the contact area, a pressure at a point)"},
+       {{"change"},
+        "the goal's",
+        "value minus the previous cycle's; `null` on the first"},
+       {{"relative_error"},
+        "–",
+        "the error bound the run reports (`null` when the value is 0): "
+        "max(estimated_error, "
+        "\\|change\\|) / \\|value\\|, estimated_error / \\|value\\| on the "
+        "first cycle ([formulation.md](formulation.md#goal-oriented-"
+        "refinement))"},
+       {{"target_error"}, "–", "`Adaptivity/Target error` (0: none)"},
+       {{"target_met"},
+        "–",
+        "whether `relative_error` met it (never on the first cycle: its "
+        "bound has no change to check the estimate against)",
+        ResultKind::flag},
+       {{"time_s"},
+        "s",
+        "wall time of the value, the adjoint solve and the estimate"}});
   } // namespace
 
   GoalFunctional::GoalFunctional(const std::string &text)
@@ -116,5 +222,54 @@ namespace PlateOnHalfspace
     if (numbers.size() != 1)
       return std::nullopt;
     return Point<2>(numbers[0][0], numbers[0][1]);
+  }
+
+  void
+  add_goal_results(const GoalFunctional             &goal,
+                   const GoalFunctional::Evaluation &value,
+                   const GoalErrorEstimate          &estimate,
+                   const ResultRecord               *previous,
+                   const double                      target_error,
+                   const double                      time_s,
+                   ResultRecord                     &record)
+  {
+    (void)declared_cycle;
+    (void)declared_goal;
+    ResultRecord &g = record.set_object("goal");
+    g.set("quantity", goal.name());
+    g.set("value", value.value);
+    if (value.has_location)
+      g.set("at", value.location);
+    g.set("estimated_error", estimate.estimated_error);
+    if (estimate.has_dwr)
+      g.set("dwr", estimate.dwr);
+    else
+      g.set_null("dwr");
+    // The dual-weighted residual underestimates where the adjoint
+    // solution is singular at the mesh's scale (doc/verification.md,
+    // "Goal error estimates"): the bound also takes the last change.
+    double     bound      = estimate.estimated_error;
+    const bool has_change = previous != nullptr && previous->has("goal");
+    if (has_change)
+      {
+        const double change =
+          value.value - previous->object("goal").number("value");
+        g.set("change", change);
+        bound = std::max(bound, std::abs(change));
+      }
+    else
+      g.set_null("change");
+    // A goal whose value is 0 (q where the plate has lifted) has no
+    // relative error: null, and no target is met.
+    const bool   relative       = value.value != 0;
+    const double relative_error = relative ? bound / std::abs(value.value) : 0;
+    g.set_or_null("relative_error",
+                  relative ? relative_error :
+                             std::numeric_limits<double>::quiet_NaN());
+    g.set("target_error", target_error);
+    g.set("target_met",
+          target_error > 0 && has_change && relative &&
+            relative_error <= target_error);
+    g.set("time_s", time_s);
   }
 } // namespace PlateOnHalfspace

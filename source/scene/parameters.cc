@@ -10,6 +10,7 @@
 #include <boost/algorithm/string/join.hpp>
 
 #include <plate_on_halfspace/base/number_list.h>
+#include <plate_on_halfspace/base/result_record.h>
 #include <plate_on_halfspace/refinement/goal.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
@@ -1095,11 +1096,13 @@ namespace PlateOnHalfspace
         "",
         Patterns::Anything(),
         "Values the run must reproduce, checked after the last cycle: "
-        "'quantity,x,y,reference,relative tolerance' for w|q|Mx|My at a "
-        "point, or 'key,reference,relative tolerance' for a summary value "
-        "(applied_load, contact_force, max_w, min_w, max_q, min_q, "
-        "contact_area_fraction); items separated by ';'. A failed check "
-        "makes the program exit with status 1.");
+        "'quantity,x,y,reference,relative tolerance' for w|q|Mx|My|"
+        "sxx_bottom|...|s1_top at a point, or 'key,reference,relative "
+        "tolerance' for a number of the last cycle in summary.json (e.g. "
+        "max_w, contact_force, n_dofs, goal.value: every number and count "
+        "that plate-on-halfspace --print-results lists under cycles and "
+        "cycles.goal); items separated by ';'. A failed check makes the "
+        "program exit with status 1.");
       prm.leave_subsection();
     }
 
@@ -1148,16 +1151,15 @@ namespace PlateOnHalfspace
               check.location = Point<2>(v[0], v[1]);
             }
           else
-            require(quantity == "applied_load" || quantity == "contact_force" ||
-                      quantity == "max_w" || quantity == "min_w" ||
-                      quantity == "max_q" || quantity == "min_q" ||
-                      quantity == "contact_area_fraction" ||
-                      quantity == "max_principal_stress_bottom" ||
-                      quantity == "max_principal_stress_top",
-                    "Verification/Checks: summary key <" + quantity +
-                      "> is not one of applied_load, contact_force, max_w, "
-                      "min_w, max_q, min_q, contact_area_fraction, "
-                      "max_principal_stress_bottom, max_principal_stress_top.");
+            {
+              const std::vector<std::string> keys = checkable_result_keys();
+              require(std::find(keys.begin(), keys.end(), quantity) !=
+                        keys.end(),
+                      "Verification/Checks: summary key <" + quantity +
+                        "> is not a number of a cycle in summary.json (e.g. "
+                        "max_w, contact_force, n_dofs, goal.value; "
+                        "plate-on-halfspace --print-results lists them).");
+            }
           check.reference          = v[v.size() - 2];
           check.relative_tolerance = v[v.size() - 1];
           require(check.relative_tolerance > 0,

@@ -28,6 +28,10 @@ expect() { # description, expected status (0 or nonzero), command...
 }
 
 expect "--print-parameters" 0 "$program" --print-parameters
+expect "--print-results" 0 "$program" --print-results
+grep -q "^  max_w, min_w \[length\]" stdout && grep -q "^cycles.goal:" stdout &&
+  echo "ok: --print-results lists the declared keys" && passed=$((passed + 1)) ||
+  { echo "FAILED: --print-results misses keys"; failed=$((failed + 1)); }
 printf 'set Output directory = run\ninclude %s/flexible-square.prm\nset Output directory = run\n' "$scenes" >good.prm
 expect "shipped scene" 0 "$program" good.prm
 # a finished run says so: "finished": true, then the flag file written last

@@ -63,10 +63,16 @@ main()
               << std::endl;
       AssertThrow(patches.size() == tyres[t], ExcMessage("tyre count"));
       check(name + ": tyres' area x pressure [kN]", load, 160., 1e-14);
-      const CycleSummary c =
+      const ResultRecord c =
         run(name + ", 0.1, 0.2, 30, 160, 700", "none")->summaries().back();
-      check(name + ": applied load [kN]", c.applied_load, 160., 1e-12);
-      check(name + ": contact force [kN]", c.contact_force, 160., 1e-10);
+      check(name + ": applied load [kN]",
+            c.number("applied_load"),
+            160.,
+            1e-12);
+      check(name + ": contact force [kN]",
+            c.number("contact_force"),
+            160.,
+            1e-10);
     }
 
   // the tandem's layout, and a quarter turn of a single axle
@@ -104,7 +110,7 @@ main()
   {
     const auto   whole   = run("tandem, 0, 0, 0, 160, 700", "none");
     const auto   quarter = run("tandem, 0, 0, 0, 160, 700", "auto");
-    const double scale   = whole->summaries().back().max_w;
+    const double scale   = whole->summaries().back().number("max_w");
     double       mirror = 0, parts = 0;
     for (const Point<2> &x :
          {Point<2>(0.6, 0.9), Point<2>(1.7, 0.3), Point<2>(3.1, 2.2)})

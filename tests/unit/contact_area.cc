@@ -32,7 +32,7 @@ using namespace PlateOnHalfspace;
 
 namespace
 {
-  const CycleSummary &
+  const ResultRecord &
   rigid_slab(std::unique_ptr<PlateOnHalfspaceProblem> &problem,
              const unsigned int                        n,
              const std::string                        &contact,
@@ -65,16 +65,18 @@ main()
   for (const unsigned int n : {2u, 3u})
     for (unsigned int refinements = 1; refinements <= 3; ++refinements)
       {
-        const CycleSummary &s =
+        const ResultRecord &s =
           rigid_slab(problem, n, "tensionless", refinements);
-        const double exact  = 3. / (n + 2);
-        const double error  = std::abs(s.contact_area_fraction - exact);
-        const double stated = s.goal.estimated_error / 8.; // plate area 8
-        const bool   ok     = error <= 1e-4 && error <= stated + 1e-9;
+        const double exact = 3. / (n + 2);
+        const double error =
+          std::abs(s.number("contact_area_fraction") - exact);
+        const double stated =
+          s.object("goal").number("estimated_error") / 8.; // plate area 8
+        const bool ok = error <= 1e-4 && error <= stated + 1e-9;
         deallog << "p0 xi^" << n << ", " << (4u << refinements)
                 << " rows: contact area fraction "
-                << rounded(s.contact_area_fraction, 1e-4) << " reference "
-                << rounded(exact, 1e-4)
+                << rounded(s.number("contact_area_fraction"), 1e-4)
+                << " reference " << rounded(exact, 1e-4)
                 << ", error <= 1e-4 and <= the stated uncertainty: "
                 << (ok ? "ok" : "FAILED") << std::endl;
         AssertThrow(ok, ExcMessage("contact area"));
@@ -96,15 +98,16 @@ main()
             "subsection Contact\n set Method = active set\nend\n")
           ->summaries()
           .back()
-          .contact_area_fraction);
+          .number("contact_area_fraction"));
     const bool ok = std::abs(area[1] - area[0]) <= 1e-12;
     deallog << "load x 1e-200: the same contact area (1e-12): "
             << (ok ? "ok" : "FAILED") << std::endl;
     AssertThrow(ok, ExcMessage("contact area at a tiny load"));
   }
   {
-    const CycleSummary &s = rigid_slab(problem, 2, "bonded", 1);
-    const bool ok = s.contact_area_fraction == 1 && s.goal.estimated_error == 0;
+    const ResultRecord &s  = rigid_slab(problem, 2, "bonded", 1);
+    const bool          ok = s.number("contact_area_fraction") == 1 &&
+                    s.object("goal").number("estimated_error") == 0;
     deallog << "bonded: fraction 1, uncertainty 0: " << (ok ? "ok" : "FAILED")
             << std::endl;
     AssertThrow(ok, ExcMessage("bonded contact area"));
@@ -122,8 +125,10 @@ main()
             "subsection Contact\n set Method = active set\nend\n"
             "subsection Adaptivity\n set Refinement = global\n"
             " set Cycles = 1\n set Goal = contact area\nend\n");
-        area.push_back(problem->summaries().back().goal.value);
-        stated.push_back(problem->summaries().back().goal.estimated_error);
+        area.push_back(
+          problem->summaries().back().object("goal").number("value"));
+        stated.push_back(
+          problem->summaries().back().object("goal").number("estimated_error"));
       }
     const bool ok = std::abs(area[1] - area[0]) <= stated[0];
     deallog << "example 2, half-space: the change on the finer mesh is "

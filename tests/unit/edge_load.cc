@@ -43,17 +43,30 @@ main()
   const auto  &last      = summaries.back();
   const double exact     = 2273.7394;
   deallog << "cycles " << summaries.size() << ", last "
-          << (last.goal.relative_error <= 1e-4 ? "met the target" :
-                                                 "did not meet the target")
+          << (last.object("goal").number("relative_error") <= 1e-4 ?
+                "met the target" :
+                "did not meet the target")
           << std::endl;
-  check("edge stress sigma_y(0,0) [kPa]", last.goal.value, exact, 1e-4);
-  const double true_error = std::abs(last.goal.value - exact) / exact;
+  check("edge stress sigma_y(0,0) [kPa]",
+        last.object("goal").number("value"),
+        exact,
+        1e-4);
+  const double true_error =
+    std::abs(last.object("goal").number("value") - exact) / exact;
   deallog << "the reported bound covers the true error: "
-          << (last.goal.relative_error >= true_error ? "yes" : "NO")
+          << (last.object("goal").number("relative_error") >= true_error ?
+                "yes" :
+                "NO")
           << std::endl;
-  AssertThrow(last.goal.relative_error >= true_error,
+  AssertThrow(last.object("goal").number("relative_error") >= true_error,
               ExcMessage("the bound does not cover the true error"));
-  check("w(0,0) [m]", last.probes[0].w, 5.51571072e-4, 3e-4);
-  check("w(a/2,0) [m]", last.probes[1].w, 4.95095874e-4, 3e-4);
-  check("w(0,0.5) [m]", last.probes[2].w, 4.76016991e-4, 3e-4);
+  check("w(0,0) [m]", last.items("probes")[0].number("w"), 5.51571072e-4, 3e-4);
+  check("w(a/2,0) [m]",
+        last.items("probes")[1].number("w"),
+        4.95095874e-4,
+        3e-4);
+  check("w(0,0.5) [m]",
+        last.items("probes")[2].number("w"),
+        4.76016991e-4,
+        3e-4);
 }

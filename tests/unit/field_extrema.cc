@@ -267,14 +267,16 @@ namespace
     const auto          problem = solve_scene("example2-bonded.prm",
                                      "subsection Adaptivity\n set Cycles = 1\n"
                                               "end\n");
-    const CycleSummary &s       = problem->summaries().back();
+    const ResultRecord &s       = problem->summaries().back();
     // The solved scene's values for the record, 4 digits: the solve
     // changes later digits with the CPU's BLAS kernel; the checks below
     // count points and compare with 1e-12 margins.
     deallog << std::setprecision(4) << "example2-bonded, whole plate, "
-            << s.n_cells << " cells: max_w " << s.max_w << " max_q " << s.max_q
-            << " max_Mx " << s.max_mx << " max_My " << s.max_my
-            << " max_principal_moment " << s.max_principal_moment << std::endl;
+            << s.count("n_cells") << " cells: max_w " << s.number("max_w")
+            << " max_q " << s.number("max_q") << " max_Mx "
+            << s.number("max_Mx") << " max_My " << s.number("max_My")
+            << " max_principal_moment " << s.number("max_principal_moment")
+            << std::endl;
     const PointValues centre = problem->values_at(Point<2>(0, 0));
     deallog << "centre: w " << centre.w << " q " << centre.q << " Mx "
             << centre.mx << " My " << centre.my << std::endl;
@@ -290,25 +292,27 @@ namespace
     std::uniform_real_distribution<double> x(-6, 6), y(-4, 4);
     for (unsigned int i = 0; i < 200; ++i)
       points.emplace_back(x(random), y(random));
-    double w_scale     = std::max(std::abs(s.max_w), std::abs(s.min_w)),
-           q_scale     = std::max(std::abs(s.max_q), std::abs(s.min_q)),
-           m_scale     = std::max({std::abs(s.max_mx),
-                                   std::abs(s.min_mx),
-                                   std::abs(s.max_my),
-                                   std::abs(s.min_my)});
+    double w_scale =
+             std::max(std::abs(s.number("max_w")), std::abs(s.number("min_w"))),
+           q_scale =
+             std::max(std::abs(s.number("max_q")), std::abs(s.number("min_q"))),
+           m_scale     = std::max({std::abs(s.number("max_Mx")),
+                                   std::abs(s.number("min_Mx")),
+                                   std::abs(s.number("max_My")),
+                                   std::abs(s.number("min_My"))});
     unsigned int bad_w = 0, bad_q = 0, bad_mx = 0, bad_my = 0, bad_m1 = 0;
     const double tolerance = 1e-12;
     for (const Point<2> &p : points)
       {
         const PointValues v = problem->values_at(p);
-        bad_w += (v.w > s.max_w + tolerance * w_scale ||
-                  v.w < s.min_w - tolerance * w_scale);
-        bad_q += (v.q > s.max_q + tolerance * q_scale ||
-                  v.q < s.min_q - tolerance * q_scale);
-        bad_mx += (v.mx > s.max_mx + tolerance * m_scale ||
-                   v.mx < s.min_mx - tolerance * m_scale);
-        bad_my += (v.my > s.max_my + tolerance * m_scale ||
-                   v.my < s.min_my - tolerance * m_scale);
+        bad_w += (v.w > s.number("max_w") + tolerance * w_scale ||
+                  v.w < s.number("min_w") - tolerance * w_scale);
+        bad_q += (v.q > s.number("max_q") + tolerance * q_scale ||
+                  v.q < s.number("min_q") - tolerance * q_scale);
+        bad_mx += (v.mx > s.number("max_Mx") + tolerance * m_scale ||
+                   v.mx < s.number("min_Mx") - tolerance * m_scale);
+        bad_my += (v.my > s.number("max_My") + tolerance * m_scale ||
+                   v.my < s.number("min_My") - tolerance * m_scale);
         // the principal moment at the point (in the cell values_at uses)
         const auto   located = problem->plate().locate(p);
         const double m1      = plate_quantity(problem->plate(),
@@ -316,7 +320,7 @@ namespace
                                          PlateQuantity::principal_moment,
                                          located.first,
                                          located.second);
-        bad_m1 += (m1 > s.max_principal_moment + tolerance * m_scale);
+        bad_m1 += (m1 > s.number("max_principal_moment") + tolerance * m_scale);
       }
     const auto line = [&](const std::string &what,
                           const unsigned int bad,
@@ -328,14 +332,14 @@ namespace
              << ")";
       report(what + " bounds the values at the points", bad == 0, detail.str());
     };
-    line("max_w, min_w", bad_w, s.max_w, centre.w);
-    line("max_q, min_q", bad_q, s.max_q, centre.q);
-    line("max_Mx, min_Mx", bad_mx, s.max_mx, centre.mx);
-    line("max_My, min_My", bad_my, s.max_my, centre.my);
+    line("max_w, min_w", bad_w, s.number("max_w"), centre.w);
+    line("max_q, min_q", bad_q, s.number("max_q"), centre.q);
+    line("max_Mx, min_Mx", bad_mx, s.number("max_Mx"), centre.mx);
+    line("max_My, min_My", bad_my, s.number("max_My"), centre.my);
     const auto centre_cell = problem->plate().locate(Point<2>(0, 0));
     line("max_principal_moment",
          bad_m1,
-         s.max_principal_moment,
+         s.number("max_principal_moment"),
          plate_quantity(problem->plate(),
                         problem->solution(),
                         PlateQuantity::principal_moment,
@@ -347,10 +351,10 @@ namespace
     const ContactState &state     = problem->contact_state();
     unsigned int        bad_nodes = 0;
     for (unsigned int i = 0; i < state.w.size(); ++i)
-      bad_nodes += (state.w[i] > s.max_w + tolerance * w_scale ||
-                    state.w[i] < s.min_w - tolerance * w_scale ||
-                    state.q[i] > s.max_q + tolerance * q_scale ||
-                    state.q[i] < s.min_q - tolerance * q_scale);
+      bad_nodes += (state.w[i] > s.number("max_w") + tolerance * w_scale ||
+                    state.w[i] < s.number("min_w") - tolerance * w_scale ||
+                    state.q[i] > s.number("max_q") + tolerance * q_scale ||
+                    state.q[i] < s.number("min_q") - tolerance * q_scale);
     report("peaks of w and q bound the nodal values",
            bad_nodes == 0,
            "(" + std::to_string(state.w.size()) + " nodes)");
@@ -378,18 +382,21 @@ namespace
     gauss << std::setprecision(4) << "(Gauss points: Mx in [" << gauss_min_mx
           << ", " << gauss_max_mx << "])";
     report("peaks of Mx bound the 2x2 Gauss points",
-           s.max_mx >= gauss_max_mx && s.min_mx <= gauss_min_mx,
+           s.number("max_Mx") >= gauss_max_mx &&
+             s.number("min_Mx") <= gauss_min_mx,
            gauss.str());
 
     // w and q are continuous: each peak is the field's value at its
     // location, whichever cell values_at() finds there
     double mismatch = 0;
-    for (const auto &[value, at] : {std::make_pair(s.max_w, s.max_w_at),
-                                    std::make_pair(s.min_w, s.min_w_at)})
+    for (const auto &[value, at] :
+         {std::make_pair(s.number("max_w"), s.point("max_w_at")),
+          std::make_pair(s.number("min_w"), s.point("min_w_at"))})
       mismatch = std::max(mismatch,
                           std::abs(problem->values_at(at).w - value) / w_scale);
-    for (const auto &[value, at] : {std::make_pair(s.max_q, s.max_q_at),
-                                    std::make_pair(s.min_q, s.min_q_at)})
+    for (const auto &[value, at] :
+         {std::make_pair(s.number("max_q"), s.point("max_q_at")),
+          std::make_pair(s.number("min_q"), s.point("min_q_at"))})
       mismatch = std::max(mismatch,
                           std::abs(problem->values_at(at).q - value) / q_scale);
     report("w and q peaks = the fields at their locations",

@@ -28,7 +28,7 @@ namespace
 {
   const double exact_moment = 10.803889266;
 
-  std::vector<CycleSummary>
+  std::vector<ResultRecord>
   run(const std::string &refinement, const unsigned int cycles)
   {
     std::ostringstream prm;
@@ -45,9 +45,10 @@ namespace
   }
 
   double
-  relative_error(const CycleSummary &c)
+  relative_error(const ResultRecord &c)
   {
-    return std::abs(exact_moment - c.goal.value) / exact_moment;
+    return std::abs(exact_moment - c.object("goal").number("value")) /
+           exact_moment;
   }
 } // namespace
 
@@ -55,33 +56,36 @@ int
 main()
 {
   initlog();
-  const std::vector<CycleSummary> goal    = run("goal", 6);
+  const std::vector<ResultRecord> goal    = run("goal", 6);
   bool                            bracket = true;
-  for (const CycleSummary &c : goal)
+  for (const ResultRecord &c : goal)
     {
       const double effectivity =
-        c.goal.estimated_error / std::abs(exact_moment - c.goal.value);
-      if (c.cycle >= 2)
+        c.object("goal").number("estimated_error") /
+        std::abs(exact_moment - c.object("goal").number("value"));
+      if (c.count("cycle") >= 2)
         bracket = bracket && effectivity >= 1. / 3 && effectivity <= 3;
-      deallog << "goal cycle " << c.cycle << ": dofs " << c.n_dofs
-              << ", relative error " << std::setprecision(2)
-              << relative_error(c) << ", effectivity " << std::fixed
-              << effectivity << std::defaultfloat << std::setprecision(6)
-              << std::endl;
+      deallog << "goal cycle " << c.count("cycle") << ": dofs "
+              << c.count("n_dofs") << ", relative error "
+              << std::setprecision(2) << relative_error(c) << ", effectivity "
+              << std::fixed << effectivity << std::defaultfloat
+              << std::setprecision(6) << std::endl;
     }
   deallog << "estimate within a factor 3 of the error from cycle 2 on: "
           << (bracket ? "OK" : "FAILED") << std::endl;
 
-  const std::vector<CycleSummary> global = run("global", 4);
-  const CycleSummary             &g      = global.back();
-  const CycleSummary             &last   = goal.back();
-  deallog << "global refinement: dofs " << g.n_dofs << ", relative error "
-          << std::setprecision(2) << relative_error(g) << std::setprecision(6)
-          << std::endl;
+  const std::vector<ResultRecord> global = run("global", 4);
+  const ResultRecord             &g      = global.back();
+  const ResultRecord             &last   = goal.back();
+  deallog << "global refinement: dofs " << g.count("n_dofs")
+          << ", relative error " << std::setprecision(2) << relative_error(g)
+          << std::setprecision(6) << std::endl;
   deallog << "goal refinement within 1.5 %: "
           << (relative_error(last) < 0.015 ? "OK" : "FAILED") << std::endl;
   deallog << "global refinement still above 4 % with more dofs: "
-          << (relative_error(g) > 0.04 && g.n_dofs > last.n_dofs ? "OK" :
-                                                                   "FAILED")
+          << (relative_error(g) > 0.04 &&
+                  g.count("n_dofs") > last.count("n_dofs") ?
+                "OK" :
+                "FAILED")
           << std::endl;
 }

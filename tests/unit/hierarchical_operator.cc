@@ -45,17 +45,26 @@ namespace
 
   /** Largest difference of the probes, relative to each field's scale. */
   double
-  probe_difference(const CycleSummary &a, const CycleSummary &b)
+  probe_difference(const ResultRecord &a, const ResultRecord &b)
   {
-    const double w_scale = std::max(std::abs(a.max_w), std::abs(a.min_w));
-    const double m_scale = std::max(std::abs(a.max_mx), std::abs(a.min_mx));
-    const double q_scale = std::max(std::abs(a.max_q), std::abs(a.min_q));
-    double       largest = 0;
-    for (unsigned int p = 0; p < a.probes.size(); ++p)
+    const double w_scale =
+      std::max(std::abs(a.number("max_w")), std::abs(a.number("min_w")));
+    const double m_scale =
+      std::max(std::abs(a.number("max_Mx")), std::abs(a.number("min_Mx")));
+    const double q_scale =
+      std::max(std::abs(a.number("max_q")), std::abs(a.number("min_q")));
+    double largest = 0;
+    for (unsigned int p = 0; p < a.items("probes").size(); ++p)
       largest = std::max({largest,
-                          std::abs(a.probes[p].w - b.probes[p].w) / w_scale,
-                          std::abs(a.probes[p].mx - b.probes[p].mx) / m_scale,
-                          std::abs(a.probes[p].q - b.probes[p].q) / q_scale});
+                          std::abs(a.items("probes")[p].number("w") -
+                                   b.items("probes")[p].number("w")) /
+                            w_scale,
+                          std::abs(a.items("probes")[p].number("Mx") -
+                                   b.items("probes")[p].number("Mx")) /
+                            m_scale,
+                          std::abs(a.items("probes")[p].number("q") -
+                                   b.items("probes")[p].number("q")) /
+                            q_scale});
     return largest;
   }
 
@@ -66,20 +75,23 @@ namespace
   {
     const auto dense             = solve(scene, extra, "dense", 1e-6);
     const auto hierarchical      = solve(scene, extra, "hierarchical", 1e-6);
-    const CycleSummary &d        = dense->summaries().back();
-    const CycleSummary &h        = hierarchical->summaries().back();
+    const ResultRecord &d        = dense->summaries().back();
+    const ResultRecord &h        = hierarchical->summaries().back();
     const bool          same_set = dense->contact_state().active_set ==
                           hierarchical->contact_state().active_set;
     const double difference = probe_difference(d, h);
-    deallog << label << ": " << h.n_foundation_dofs << " foundation nodes, "
-            << h.foundation_storage << " storage uses "
-            << (h.foundation_memory_bytes < d.foundation_memory_bytes ? "less" :
-                                                                        "more")
+    deallog << label << ": " << h.count("n_foundation_dofs")
+            << " foundation nodes, " << h.text("foundation_storage")
+            << " storage uses "
+            << (h.count("foundation_memory_bytes") <
+                    d.count("foundation_memory_bytes") ?
+                  "less" :
+                  "more")
             << " memory than dense; same contact set: "
             << (same_set ? "yes" : "NO") << "; probes within 1e-5 of dense: "
             << (difference <= 1e-5 ? "ok" : "FAILED") << std::endl;
     AssertThrow(same_set && difference <= 1e-5 &&
-                  h.foundation_storage == "hierarchical",
+                  h.text("foundation_storage") == "hierarchical",
                 ExcMessage(label + ": differs from dense"));
   }
 } // namespace
@@ -128,17 +140,18 @@ main()
                     "subsection Foundation operator\n set Storage = auto\n"
                     " set Hierarchical from = 200\nend\n");
     const auto &cycles = automatic->summaries();
-    const bool  picks  = cycles[0].n_foundation_dofs < 200 &&
-                       cycles[0].foundation_storage == "dense" &&
-                       cycles[1].n_foundation_dofs >= 200 &&
-                       cycles[1].foundation_storage == "hierarchical";
+    const bool  picks  = cycles[0].count("n_foundation_dofs") < 200 &&
+                       cycles[0].text("foundation_storage") == "dense" &&
+                       cycles[1].count("n_foundation_dofs") >= 200 &&
+                       cycles[1].text("foundation_storage") == "hierarchical";
     const double difference =
       probe_difference(dense->summaries().back(), cycles.back());
     deallog << "Storage = auto, Hierarchical from = 200: cycle 0 ("
-            << cycles[0].n_foundation_dofs << " nodes) "
-            << cycles[0].foundation_storage << ", cycle 1 ("
-            << cycles[1].n_foundation_dofs << " nodes) "
-            << cycles[1].foundation_storage << ", probes within 1e-5 of "
+            << cycles[0].count("n_foundation_dofs") << " nodes) "
+            << cycles[0].text("foundation_storage") << ", cycle 1 ("
+            << cycles[1].count("n_foundation_dofs") << " nodes) "
+            << cycles[1].text("foundation_storage")
+            << ", probes within 1e-5 of "
             << "dense: " << (picks && difference <= 1e-5 ? "ok" : "FAILED")
             << std::endl;
     AssertThrow(picks && difference <= 1e-5, ExcMessage("Storage = auto"));
@@ -147,8 +160,9 @@ main()
       "subsection Foundation operator\n set Hierarchical from = 0\nend\n");
     deallog << "Storage = auto with the paper's collocation and element "
                "exclusion: "
-            << paper->summaries().back().foundation_storage << std::endl;
-    AssertThrow(paper->summaries().back().foundation_storage == "dense",
+            << paper->summaries().back().text("foundation_storage")
+            << std::endl;
+    AssertThrow(paper->summaries().back().text("foundation_storage") == "dense",
                 ExcMessage("Storage = auto with collocation"));
   }
 

@@ -160,16 +160,16 @@ main()
               0,
               "subsection Loads\n set Circular patches = 0, 0, " + radius +
                 ", 100\nend\n"));
-          const CycleSummary &s = problem->summaries().back();
+          const ResultRecord &s = problem->summaries().back();
           const std::string   scene =
             "radius " + radius + ", " + std::to_string(threads) + " thread(s)";
           verdict(scene + ": applied_load = 100 x 12",
-                  s.applied_load,
+                  s.number("applied_load"),
                   1200,
                   1e-12);
           verdict(scene + ": contact_force = applied_load",
-                  s.contact_force,
-                  s.applied_load,
+                  s.number("contact_force"),
+                  s.number("applied_load"),
                   1e-10);
         }
     }

@@ -384,8 +384,8 @@ main()
         check("program, own-material layers: Mx", b.mx, a.mx, 1e-10);
       }
     check("program, own-material layers: largest q",
-          same->summaries().back().max_q,
-          half->summaries().back().max_q,
+          same->summaries().back().number("max_q"),
+          half->summaries().back().number("max_q"),
           1e-10);
   }
 

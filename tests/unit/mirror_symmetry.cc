@@ -43,24 +43,27 @@ namespace
         worst =
           std::max(worst, std::abs(x[i] - y[i]) / std::max(scale, 1e-300));
     };
-    const auto collect = [](const CycleSummary &s) {
+    const auto collect = [](const ResultRecord &s) {
       std::vector<std::vector<double>> values = {
-        {s.applied_load},
-        {s.contact_force},
-        {s.max_w, s.min_w},
-        {s.max_q, s.min_q},
-        {s.max_mx, s.min_mx, s.max_my, s.min_my},
-        {s.contact_area_fraction},
-        {double(s.contact_nodes)},
+        {s.number("applied_load")},
+        {s.number("contact_force")},
+        {s.number("max_w"), s.number("min_w")},
+        {s.number("max_q"), s.number("min_q")},
+        {s.number("max_Mx"),
+         s.number("min_Mx"),
+         s.number("max_My"),
+         s.number("min_My")},
+        {s.number("contact_area_fraction")},
+        {double(s.count("contact_nodes"))},
         {},  // probe w
         {},  // probe q
         {}}; // probe moments
-      for (const PointValues &p : s.probes)
+      for (const ResultRecord &p : s.items("probes"))
         {
-          values[7].push_back(p.w);
-          values[8].push_back(p.q);
-          values[9].push_back(p.mx);
-          values[9].push_back(p.my);
+          values[7].push_back(p.number("w"));
+          values[8].push_back(p.number("q"));
+          values[9].push_back(p.number("Mx"));
+          values[9].push_back(p.number("My"));
         }
       return values;
     };
@@ -85,8 +88,9 @@ namespace
                           "end\n");
     const auto &last = whole->summaries().back();
     deallog << name << ", whole plate: " << whole->summaries().size()
-            << " cycles, last " << last.n_cells << " cells, "
-            << last.n_foundation_dofs << " foundation nodes" << std::endl;
+            << " cycles, last " << last.count("n_cells") << " cells, "
+            << last.count("n_foundation_dofs") << " foundation nodes"
+            << std::endl;
     for (const std::string &symmetry : symmetries)
       {
         const auto part =
@@ -95,8 +99,9 @@ namespace
                         symmetry + "\nend\n");
         const auto  &s          = part->summaries().back();
         const double difference = largest_difference(*whole, *part);
-        deallog << name << ", symmetry " << symmetry << ": last " << s.n_cells
-                << " cells, " << s.n_foundation_dofs
+        deallog << name << ", symmetry " << symmetry << ": last "
+                << s.count("n_cells") << " cells, "
+                << s.count("n_foundation_dofs")
                 << " foundation nodes, largest relative difference "
                 << (difference < 1e-8 ? "< 1e-8: ok" : "> 1e-8: FAILED")
                 << std::endl;
@@ -104,9 +109,9 @@ namespace
                     ExcMessage(name + ": symmetry " + symmetry +
                                " differs from the whole plate"));
         AssertThrow(
-          s.n_cells *
+          s.count("n_cells") *
               part->plate().get_foundation_space().symmetry.n_copies() ==
-            last.n_cells,
+            last.count("n_cells"),
           ExcMessage("the computed part is not the right part"));
       }
   }

@@ -49,7 +49,7 @@ main()
     };
     const auto whole = run(loads("p0*(y+1)^2", "p0=5", ""));
     check("whole plate, p0 (y+1)^2: load",
-          whole->summaries().back().applied_load,
+          whole->summaries().back().number("applied_load"),
           4. * 5. * 8. / 3.,
           1e-12);
     const double x1 = -1.3, x2 = 0.9, y1 = -0.55, y2 = 0.35;
@@ -59,7 +59,7 @@ main()
       (std::exp(x2) - std::exp(x1)) * (std::sin(y2) - std::sin(y1));
     const auto &r = rectangle->summaries().back();
     check("rectangle region, exp(x) cos(y): load",
-          r.applied_load,
+          r.number("applied_load"),
           exact_rectangle,
           1e-10);
     const double a = 0.6, xc = 0.3, yc = -0.2;
@@ -67,7 +67,10 @@ main()
     const double exact_disk = numbers::PI * std::pow(a, 4) / 2 +
                               numbers::PI * a * a * (xc * xc + yc * yc);
     const auto &d = disk->summaries().back();
-    check("disk region, x^2 + y^2: load", d.applied_load, exact_disk, 1e-10);
+    check("disk region, x^2 + y^2: load",
+          d.number("applied_load"),
+          exact_disk,
+          1e-10);
     // a rule of 2 points on cells the disk cuts: the stated error bounds
     // the true one
     const auto coarse =
@@ -78,16 +81,17 @@ main()
       return 2 * numbers::PI * a * std::exp(3 * xc) *
              std::cyl_bessel_i(1., 3 * a) / 3.;
     }();
-    const auto  &c          = coarse->summaries().back();
-    const double true_error = std::abs(c.applied_load - exact_exp) / exact_exp;
+    const auto  &c = coarse->summaries().back();
+    const double true_error =
+      std::abs(c.number("applied_load") - exact_exp) / exact_exp;
     deallog << "2 points on a disk of exp(3x): the stated error "
-            << (c.load_integration_error >= 0.5 * true_error &&
-                    c.load_integration_error > 0 ?
+            << (c.number("load_integration_error") >= 0.5 * true_error &&
+                    c.number("load_integration_error") > 0 ?
                   "covers" :
                   "DOES NOT cover")
             << " the true error (within a factor 2)" << std::endl;
-    AssertThrow(c.load_integration_error >= 0.5 * true_error &&
-                  c.load_integration_error > 0,
+    AssertThrow(c.number("load_integration_error") >= 0.5 * true_error &&
+                  c.number("load_integration_error") > 0,
                 ExcMessage("the stated integration error misses the true "
                            "one"));
   }
@@ -111,23 +115,29 @@ main()
     const auto  &s     = problem->summaries().back();
     const double F     = p0 * L * B / 3;
     const double q_max = 8 * p0 / 9;
-    check("applied load", s.applied_load, F, 1e-12);
-    check("contact force", s.contact_force, F, 1e-8);
-    check("peak pressure", s.max_q, q_max, 1e-4);
-    check("w at the loaded edge", s.probes[0].w, q_max / k, 1e-4);
-    check("w at the lifted edge", s.probes[1].w, -q_max / (3 * k), 1e-4);
+    check("applied load", s.number("applied_load"), F, 1e-12);
+    check("contact force", s.number("contact_force"), F, 1e-8);
+    check("peak pressure", s.number("max_q"), q_max, 1e-4);
+    check("w at the loaded edge",
+          s.items("probes")[0].number("w"),
+          q_max / k,
+          1e-4);
+    check("w at the lifted edge",
+          s.items("probes")[1].number("w"),
+          -q_max / (3 * k),
+          1e-4);
     // q(x) = q_max (x + L/4) / (3 L/4)
     check("q at (1.5, 0.5)",
-          s.probes[2].q,
+          s.items("probes")[2].number("q"),
           q_max * (1.5 + L / 4) / (3 * L / 4),
           1e-4);
     // relative to the pressures and gaps (doc/outputs.md); the near-rigid
     // slab's solves leave about 1e-10
     deallog << "complementarity: "
-            << (s.complementarity_violation <= 1e-8 ? "within 1e-8" :
-                                                      "VIOLATED")
+            << (s.number("complementarity_violation") <= 1e-8 ? "within 1e-8" :
+                                                                "VIOLATED")
             << std::endl;
-    AssertThrow(s.complementarity_violation <= 1e-8,
+    AssertThrow(s.number("complementarity_violation") <= 1e-8,
                 ExcMessage("complementarity violated"));
   }
 }

@@ -40,14 +40,15 @@ namespace
     deallog << refinement << " refinement (symmetry "
             << problem->plate().get_foundation_space().symmetry.name()
             << "):" << std::endl;
-    for (const CycleSummary &s : problem->summaries())
+    for (const ResultRecord &s : problem->summaries())
       {
-        const double error = std::abs(s.probes[0].w - exact) / exact;
+        const double error =
+          std::abs(s.items("probes")[0].number("w") - exact) / exact;
         errors.push_back(error);
-        deallog << "  cycle " << s.cycle << ": " << s.n_cells << " cells, "
-                << s.n_foundation_dofs << " foundation dofs, centre error "
-                << std::setprecision(2) << error << std::setprecision(10)
-                << std::endl;
+        deallog << "  cycle " << s.count("cycle") << ": " << s.count("n_cells")
+                << " cells, " << s.count("n_foundation_dofs")
+                << " foundation dofs, centre error " << std::setprecision(2)
+                << error << std::setprecision(10) << std::endl;
       }
 
     // one row per cycle in convergence.txt (org-mode table: a header row,

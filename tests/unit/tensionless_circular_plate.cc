@@ -47,7 +47,7 @@ main()
             << "subsection Discretization\n set Symmetry = xy\nend\n"
             << "subsection Adaptivity\n set Cycles = 4\nend\n";
       const auto          problem = solve_scene("rigid-disk.prm", extra.str());
-      const CycleSummary &s       = problem->summaries().back();
+      const ResultRecord &s       = problem->summaries().back();
       const ContactState &state   = problem->contact_state();
       const auto         &nodes =
         problem->plate().get_foundation_space().node_locations;
@@ -56,21 +56,22 @@ main()
         (state.in_contact[i] ? outermost_in : innermost_out) =
           state.in_contact[i] ? std::max(outermost_in, nodes[i].norm()) :
                                 std::min(innermost_out, nodes[i].norm());
-      const double from_area = std::sqrt(s.contact_area_fraction);
+      const double from_area = std::sqrt(s.number("contact_area_fraction"));
       deallog << "K = " << c.K << ": contact radius c/a = " << from_area
               << " from the area, nodes in contact up to " << outermost_in
               << ", lifted from " << innermost_out << "; reference "
-              << c.reference << " (" << s.n_foundation_dofs
-              << " foundation nodes, " << s.contact_iterations
+              << c.reference << " (" << s.count("n_foundation_dofs")
+              << " foundation nodes, " << s.count("contact_iterations")
               << " contact iterations)" << std::endl;
-      AssertThrow(s.converged &&
-                    std::abs(s.contact_force - s.applied_load) <=
-                      1e-10 * s.applied_load &&
-                    s.complementarity_violation <= 1e-10,
+      AssertThrow(s.flag("converged") &&
+                    std::abs(s.number("contact_force") -
+                             s.number("applied_load")) <=
+                      1e-10 * s.number("applied_load") &&
+                    s.number("complementarity_violation") <= 1e-10,
                   ExcMessage("contact conditions"));
       if (c.reference == 1.)
         {
-          AssertThrow(s.contact_area_fraction == 1.,
+          AssertThrow(s.number("contact_area_fraction") == 1.,
                       ExcMessage("lift-off above K = 0.069"));
           deallog << "  full contact: ok" << std::endl;
         }

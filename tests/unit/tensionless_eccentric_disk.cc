@@ -45,21 +45,24 @@ main()
         if (!c.in_contact[i])
           (nodes.node_locations[i][0] > 0 ? lifted_near : lifted_far) += 1;
       deallog << "e = " << std::setprecision(2) << e << std::setprecision(10)
-              << " a: nodes in contact " << s.contact_nodes << " of "
-              << s.n_foundation_dofs << " (lifted on the load side "
+              << " a: nodes in contact " << s.count("contact_nodes") << " of "
+              << s.count("n_foundation_dofs") << " (lifted on the load side "
               << lifted_near << ", on the far side " << lifted_far
-              << "), iterations " << s.contact_iterations << std::endl;
+              << "), iterations " << s.count("contact_iterations") << std::endl;
       const double equilibrium =
-        std::abs(s.contact_force - s.applied_load) / s.applied_load;
+        std::abs(s.number("contact_force") - s.number("applied_load")) /
+        s.number("applied_load");
       deallog << "  equilibrium " << (equilibrium < 1e-8 ? "ok" : "FAILED")
               << ", complementarity violation <= 1e-8 "
-              << (s.complementarity_violation <= 1e-8 ? "ok" : "FAILED")
+              << (s.number("complementarity_violation") <= 1e-8 ? "ok" :
+                                                                  "FAILED")
               << std::endl;
-      AssertThrow(equilibrium < 1e-8 && s.complementarity_violation <= 1e-8,
+      AssertThrow(equilibrium < 1e-8 &&
+                    s.number("complementarity_violation") <= 1e-8,
                   ExcMessage("contact conditions"));
       if (e < 1. / 3.)
         {
-          AssertThrow(s.contact_nodes == s.n_foundation_dofs,
+          AssertThrow(s.count("contact_nodes") == s.count("n_foundation_dofs"),
                       ExcMessage("lift-off below a/3"));
           const auto     bonded     = solve(e, "bonded");
           Vector<double> difference = bonded->solution();

@@ -54,9 +54,11 @@ main()
   const auto &summary = base->summaries().back();
   const auto &state   = base->contact_state();
   const auto &space   = base->plate().get_foundation_space();
-  deallog << "example2, galerkin + active set: " << summary.contact_iterations
-          << " iterations, " << summary.contact_nodes << " of "
-          << summary.n_foundation_dofs << " nodes in contact" << std::endl;
+  deallog << "example2, galerkin + active set: "
+          << summary.count("contact_iterations") << " iterations, "
+          << summary.count("contact_nodes") << " of "
+          << summary.count("n_foundation_dofs") << " nodes in contact"
+          << std::endl;
 
   // symmetry: each node's mirror images
   std::map<std::pair<long, long>, unsigned int> node_at;
@@ -82,10 +84,13 @@ main()
   report("symmetric w and q at mirrored nodes", asymmetry, 1e-10);
   report("symmetric contact set", mismatched_contact, 0);
   report("equilibrium |contact_force - applied_load| / applied_load",
-         std::abs(summary.contact_force - summary.applied_load) /
-           summary.applied_load,
+         std::abs(summary.number("contact_force") -
+                  summary.number("applied_load")) /
+           summary.number("applied_load"),
          1e-8);
-  report("complementarity violation", summary.complementarity_violation, 1e-8);
+  report("complementarity violation",
+         summary.number("complementarity_violation"),
+         1e-8);
 
   // positive homogeneity
   const auto     scaled         = solve("example2.prm",
@@ -104,8 +109,9 @@ main()
          q_difference.linfty_norm() / scaled_state.q.linfty_norm(),
          1e-9);
   report("loads x 1000: max Mx x 1000",
-         std::abs(scaled_summary.max_mx - 1000. * summary.max_mx) /
-           std::abs(scaled_summary.max_mx),
+         std::abs(scaled_summary.number("max_Mx") -
+                  1000. * summary.number("max_Mx")) /
+           std::abs(scaled_summary.number("max_Mx")),
          1e-9);
   report("loads x 1000: same contact set",
          scaled_state.in_contact != state.in_contact,
@@ -116,14 +122,14 @@ main()
                             "subsection Foundation\n set Contact = bonded\n"
                                  "end\n");
   const auto tensionless = solve("example1.prm", "");
-  deallog << "example1 bonded: min q " << bonded->summaries().back().min_q
-          << " > 0; tensionless: "
-          << tensionless->summaries().back().contact_iterations
+  deallog << "example1 bonded: min q "
+          << bonded->summaries().back().number("min_q") << " > 0; tensionless: "
+          << tensionless->summaries().back().count("contact_iterations")
           << " iteration(s)" << std::endl;
-  AssertThrow(bonded->summaries().back().min_q > 0,
+  AssertThrow(bonded->summaries().back().number("min_q") > 0,
               ExcMessage("not compressive"));
   report("one iteration",
-         tensionless->summaries().back().contact_iterations,
+         tensionless->summaries().back().count("contact_iterations"),
          1);
   Vector<double> difference = bonded->solution();
   difference -= tensionless->solution();
@@ -136,11 +142,13 @@ main()
                            "subsection Contact\n set Method = element "
                             "exclusion\nend\n");
   const auto &p     = paper->summaries().back();
-  deallog << "example2, galerkin + element exclusion: " << p.contact_iterations
-          << " iterations, " << p.contact_nodes << " nodes in contact, "
-          << p.tensile_nodes << " tensile, complementarity violation "
-          << p.complementarity_violation << std::endl;
+  deallog << "example2, galerkin + element exclusion: "
+          << p.count("contact_iterations") << " iterations, "
+          << p.count("contact_nodes") << " nodes in contact, "
+          << p.count("tensile_nodes") << " tensile, complementarity violation "
+          << p.number("complementarity_violation") << std::endl;
   report("element exclusion: equilibrium",
-         std::abs(p.contact_force - p.applied_load) / p.applied_load,
+         std::abs(p.number("contact_force") - p.number("applied_load")) /
+           p.number("applied_load"),
          1e-8);
 }

@@ -6,12 +6,12 @@
 #ifndef plate_on_halfspace_io_results_output_h
 #define plate_on_halfspace_io_results_output_h
 
-#include <deal.II/base/convergence_table.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 
 #include <deal.II/lac/vector.h>
 
+#include <plate_on_halfspace/base/result_record.h>
 #include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
@@ -23,6 +23,8 @@ namespace PlateOnHalfspace
 {
   using namespace dealii;
 
+  class FoundationOperator;
+
   /** Values at one point of the plate. */
   struct PointValues
   {
@@ -30,96 +32,6 @@ namespace PlateOnHalfspace
     double   w = 0, q = 0, mx = 0, my = 0;
     /** Fibre stresses at the point (MindlinPlate::fibre_stresses()). */
     FibreStresses stresses;
-  };
-
-  /** What summary.json reports for one cycle. */
-  struct CycleSummary
-  {
-    unsigned int cycle = 0, n_cells = 0, n_dofs = 0, n_foundation_dofs = 0;
-    unsigned int contact_iterations = 0, contact_nodes = 0;
-    double       contact_area_fraction = 0;
-    double       applied_load = 0, contact_force = 0;
-    /** The applied load's quadrature error (load_integration_error()). */
-    double       load_integration_error    = 0;
-    double       complementarity_violation = 0;
-    unsigned int tensile_nodes             = 0;
-    double       max_penetration           = 0;
-    /** Peaks of the fields over the plate (plate/field_extrema.h): w, the
-     *  pressure field q, the moments and the larger principal moment. */
-    double max_w = 0, min_w = 0, max_q = 0, min_q = 0;
-    double max_mx = 0, min_mx = 0, max_my = 0, min_my = 0;
-    double max_principal_moment = 0;
-    /** The largest principal stress of the bottom and the top fibre. */
-    double max_principal_stress_bottom = 0, max_principal_stress_top = 0;
-    /** Where each peak is (on the computed part of a symmetric scene). */
-    Point<2> max_w_at, min_w_at, max_q_at, min_q_at;
-    Point<2> max_mx_at, min_mx_at, max_my_at, min_my_at;
-    Point<2> max_principal_moment_at;
-    Point<2> max_principal_stress_bottom_at, max_principal_stress_top_at;
-    /** Wall time of the cycle and its parts: plate assembly (setup,
-     *  loads, condensation), half-space operator, contact solve, output. */
-    double wall_time_s = 0, assembly_time_s = 0, foundation_time_s = 0;
-    double solve_time_s = 0, output_time_s = 0;
-    /** The half-space operator's time split: integration, compression
-     *  (hierarchical storage), factorisation (FoundationOperator::
-     *  BuildTimes); they add up to foundation_time_s. */
-    double      foundation_integration_time_s   = 0;
-    double      foundation_compression_time_s   = 0;
-    double      foundation_factorization_time_s = 0;
-    std::string foundation_storage;
-    /** The foundation nodes each rank owns (one entry per process). */
-    std::vector<unsigned int> foundation_nodes_per_rank;
-    std::size_t               foundation_memory_bytes = 0;
-    bool                      converged               = true;
-    /** 1/κ₁ estimates of the coupled matrix and of the half-space block. */
-    double coupled_matrix_rcond = 1, foundation_block_rcond = 1;
-    std::vector<PointValues> probes;
-    /** Per slab of a grid of slabs (plate/slab_grid.h): the largest
-     *  principal stress of the bottom and the top fibre, and where. */
-    struct SlabPeaks
-    {
-      double   max_principal_stress_bottom = 0, max_principal_stress_top = 0;
-      Point<2> max_principal_stress_bottom_at, max_principal_stress_top_at;
-    };
-    std::vector<SlabPeaks> slabs;
-    /** What each joint carries (plate/joints.h). */
-    std::vector<JointResponse> joints;
-
-    /** The cycle's value and error estimate of Adaptivity/Goal. */
-    struct Goal
-    {
-      std::string quantity; ///< as the scene names it
-      double      value = 0;
-      /** Where a point value or a peak was taken. */
-      bool     has_location = false;
-      Point<2> location;
-      /** The estimate of |true value - value|: sum of the local
-       *  dual-weighted residuals' magnitudes (the contact area: of the
-       *  cells' location uncertainties, contact_region.h). */
-      double estimated_error = 0;
-      /** The dual-weighted residual, the signed estimate of true value
-       *  minus value (not for the contact area). */
-      bool   has_dwr = false;
-      double dwr     = 0;
-      /** value minus the previous cycle's (from the second cycle on). */
-      bool   has_change = false;
-      double change     = 0;
-      /**
-       * The error bound the run reports and Target error tests:
-       * max(estimated_error, |change|) / |value|, estimated_error /
-       * |value| on the first cycle (doc/formulation.md, "Goal-oriented
-       * refinement").
-       */
-      double relative_error = 0;
-      /** Adaptivity/Target error (0: none), and whether relative_error
-       *  met it (never on the first cycle). */
-      double target_error = 0;
-      bool   target_met   = false;
-      /** Wall time (s) of the value, the adjoint solve and the estimate. */
-      double time_s = 0;
-    };
-    bool has_goal = false;
-    Goal goal;
   };
 
   /** One position of Loads/Sweep (doc/outputs.md, "sweep.csv"). */
@@ -208,21 +120,23 @@ namespace PlateOnHalfspace
     is_result_file(const std::string &name);
 
     /**
-     * The peaks of w, q (@p pressure_field: the nodal pressures
-     * interpolated in the w-space), Mx, My and the larger principal
-     * moment: the extremes of the finite element fields over the plate
-     * with their locations (plate/field_extrema.h); the contact area, the
-     * counts of nodes in contact and tensile, and the contact measures;
-     * per slab and joint of a slab grid, the joints' LTE relative to
-     * @p standing (the plate under its standing loads; empty: none).
+     * A solved cycle's results into its @p record, producer by producer
+     * (each declares its keys; base/result_record.h): the peaks of the
+     * fields (plate/field_extrema.h; @p pressure_field: the nodal pressures
+     * interpolated in the w-space), the contact (contact/contact_results.h),
+     * the values at @p probe_points, and per slab and joint of a slab grid
+     * (plate/slab_results.h) the joints' LTE relative to @p standing (the
+     * plate under its standing loads; empty: none).
      */
     void
-    evaluate(const MindlinPlate   &plate,
-             const Vector<double> &solution,
-             const Vector<double> &pressure_field,
-             const ContactState   &contact,
-             CycleSummary         &summary,
-             const Vector<double> &standing = Vector<double>()) const;
+    evaluate(const MindlinPlate          &plate,
+             const Vector<double>        &solution,
+             const Vector<double>        &pressure_field,
+             const ContactState          &contact,
+             const FoundationOperator    &foundation,
+             const std::vector<Point<2>> &probe_points,
+             ResultRecord                &record,
+             const Vector<double>        &standing = Vector<double>()) const;
 
     /** w, q, Mx, My at @p x (q from the FE pressure field). */
     PointValues
@@ -231,12 +145,12 @@ namespace PlateOnHalfspace
                  const Vector<double> &pressure_field,
                  const Point<2>       &x) const;
 
-    /** summary.json over all cycles so far; @p slab_grid names the slabs
-     *  and joints of the cycles' per-slab and per-joint results; a
-     *  non-empty @p sweep adds its envelope. Until commit() it says
-     *  "finished": false and "converged": false; commit() sets both. */
+    /** summary.json over the records of all cycles so far; a non-empty
+     *  @p sweep adds its envelope (@p slab_grid names its joints). Until
+     *  commit() it says "finished": false and "converged": false; commit()
+     *  sets both. */
     void
-    write_summary(const std::vector<CycleSummary> &cycles,
+    write_summary(const std::vector<ResultRecord> &cycles,
                   const std::string               &symmetry,
                   const bool                       converged,
                   const SlabGrid                  &slab_grid,
@@ -280,9 +194,10 @@ namespace PlateOnHalfspace
               const Vector<double> &solution,
               const ContactState   &contact);
 
-    /** convergence.txt (ConvergenceTable text). */
+    /** convergence.txt: a row per cycle of the declared columns
+     *  (declare_results()), as a ConvergenceTable's text. */
     void
-    write_convergence(ConvergenceTable &table) const;
+    write_convergence(const std::vector<ResultRecord> &cycles) const;
 
     /** Write @p text to @p name in the directory, atomically. */
     void

@@ -125,6 +125,20 @@ namespace PlateOnHalfspace
   field_extrema(const MindlinPlate   &plate,
                 const Vector<double> &solution,
                 const PlateQuantity   quantity);
+
+  class ResultRecord;
+
+  /**
+   * The peaks of a cycle (doc/outputs.md, "Peaks"): of w, of q
+   * (@p pressure_field: the nodal pressures interpolated in the w-space),
+   * of Mx, My, the larger principal moment and the fibres' principal
+   * stresses, each with its location, as keys of @p record.
+   */
+  void
+  add_peak_results(const MindlinPlate   &plate,
+                   const Vector<double> &solution,
+                   const Vector<double> &pressure_field,
+                   ResultRecord         &record);
 } // namespace PlateOnHalfspace
 
 #endif

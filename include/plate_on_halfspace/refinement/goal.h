@@ -30,7 +30,9 @@ namespace PlateOnHalfspace
   using namespace dealii;
 
   class MindlinPlate;
+  class ResultRecord;
   struct ContactState;
+  struct GoalErrorEstimate;
 
   /** A quantity of interest (see the file documentation). */
   class GoalFunctional
@@ -141,6 +143,21 @@ namespace PlateOnHalfspace
   private:
     const std::string text;
   };
+
+  /**
+   * The goal's object "goal" of a cycle's @p record (doc/outputs.md): its
+   * value, its estimate, its change from @p previous (the previous cycle's
+   * record; null on the first), the error bound the run reports and
+   * whether it met @p target_error (0: none), and @p time_s.
+   */
+  void
+  add_goal_results(const GoalFunctional             &goal,
+                   const GoalFunctional::Evaluation &value,
+                   const GoalErrorEstimate          &estimate,
+                   const ResultRecord               *previous,
+                   const double                      target_error,
+                   const double                      time_s,
+                   ResultRecord                     &record);
 
   /**
    * A goal kind: how it is written and how a text of it becomes a goal.
