@@ -171,10 +171,13 @@ choices = {
 
 def unexpected_nulls(value, key=None, parent=None):
     """The keys holding null in a summary, except the documented ones
-    (doc/outputs.md): the goal block's change and dwr, a joint's lte where
+    (doc/outputs.md): the goal block's change and dwr, its relative_error
+    where its value is 0 (and the goal_target's then), a joint's lte where
     neither side deflects downward, and the sweep envelope's min_lte then."""
     if value is None:
-        documented = ((parent == "goal" and key in ("change", "dwr")) or
+        documented = ((parent == "goal" and
+                       key in ("change", "dwr", "relative_error")) or
+                      (parent == "goal_target" and key == "relative_error") or
                       (parent == "joints" and key == "lte") or
                       (parent == "envelope" and key == "min_lte"))
         return [] if documented else [key]
