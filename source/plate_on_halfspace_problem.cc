@@ -20,7 +20,6 @@
 #include <iostream>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <sstream>
 
 namespace PlateOnHalfspace

@@ -33,18 +33,23 @@ namespace PlateOnHalfspace
                    const std::string &key,
                    ResultKind        *kind = nullptr)
     {
+      // the registry in place: every set() asks, so nothing is copied
+      const auto found = registry().find(table);
+      if (found == registry().end())
+        return -1;
       int index = 0;
-      for (const ResultDeclaration &row : declared_results(table))
-        for (const std::string &k : row.keys)
-          {
-            if (k == key)
-              {
-                if (kind != nullptr)
-                  *kind = row.kind;
-                return index;
-              }
-            ++index;
-          }
+      for (const ProducerDeclaration &producer : found->second)
+        for (const ResultDeclaration &row : producer.rows)
+          for (const std::string &k : row.keys)
+            {
+              if (k == key)
+                {
+                  if (kind != nullptr)
+                    *kind = row.kind;
+                  return index;
+                }
+              ++index;
+            }
       return -1;
     }
 
@@ -417,15 +422,13 @@ namespace PlateOnHalfspace
   std::vector<std::string>
   ResultRecord::keys() const
   {
-    std::vector<std::string> set;
+    std::vector<std::pair<int, std::string>> ordered;
     for (const auto &[k, v] : values)
+      ordered.emplace_back(declared_index(table_name, k), k);
+    std::sort(ordered.begin(), ordered.end());
+    std::vector<std::string> set;
+    for (const auto &[index, k] : ordered)
       set.push_back(k);
-    std::stable_sort(set.begin(),
-                     set.end(),
-                     [this](const std::string &a, const std::string &b) {
-                       return declared_index(table_name, a) <
-                              declared_index(table_name, b);
-                     });
     return set;
   }
 

@@ -7,30 +7,17 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
-#include <plate_on_halfspace/base/error_on_every_rank.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/contact/contact_results.h>
 #include <plate_on_halfspace/io/results_output.h>
 #include <plate_on_halfspace/plate/field_extrema.h>
 #include <plate_on_halfspace/plate/slab_results.h>
-#include <plate_on_halfspace/scene/input_checks.h>
 
-#include <dirent.h>
-#include <fcntl.h>
 #include <nlohmann/json.hpp>
-#include <sys/file.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
-#include <cctype>
-#include <cerrno>
-#include <cstring>
-#include <ctime>
-#include <filesystem>
 #include <iomanip>
-#include <regex>
 #include <sstream>
 #include <type_traits>
 #include <variant>
@@ -281,11 +268,11 @@ namespace PlateOnHalfspace
         probe.set("q", values.q);
         probe.set("Mx", values.mx);
         probe.set("My", values.my);
-        const auto &[bottom, top] =
-          std::make_pair(values.stresses.bottom, values.stresses.top);
+        const FibreStresses &s = values.stresses;
         probe.set("stress_bottom",
-                  ResultRecord::Numbers(bottom.begin(), bottom.end()));
-        probe.set("stress_top", ResultRecord::Numbers(top.begin(), top.end()));
+                  ResultRecord::Numbers(s.bottom.begin(), s.bottom.end()));
+        probe.set("stress_top",
+                  ResultRecord::Numbers(s.top.begin(), s.top.end()));
       }
     add_slab_and_joint_results(plate, solution, standing, record);
   }
