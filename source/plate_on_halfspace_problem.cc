@@ -6,6 +6,7 @@
 #include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
+#include <plate_on_halfspace/contact/iterative_solver.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/plate/field_extrema.h>
 #include <plate_on_halfspace/plate/load_checks.h>
@@ -651,7 +652,7 @@ namespace PlateOnHalfspace
     Timer              phase;
     // Storage = auto and Solver = auto are decided for this cycle's mesh.
     const unsigned int n       = summary.count("n_foundation_dofs");
-    const auto         storage = parameters.foundation_storage(n);
+    const auto         storage = cycle_storage(n);
     // A goal's half-space residual evaluates the settlement at every Gauss
     // point of the contact cells against every cell (halfspace/
     // surface_settlement.h), O(n^2) with no compression.
@@ -667,7 +668,7 @@ namespace PlateOnHalfspace
                            "leave Adaptivity/Goal empty."));
     if (storage == Parameters::FoundationOperator::Storage::dense)
       check_dense_foundation_memory(n,
-                                    parameters.contact_solver(n) ==
+                                    cycle_solver(n) ==
                                       Parameters::Contact::Solver::iterative);
     if (!foundation_operator || operator_storage != storage)
       {
@@ -715,19 +716,60 @@ namespace PlateOnHalfspace
   {
     TimerOutput::Scope scope(timer_output, "contact solve");
     Timer              phase;
-    contact_solver =
-      create_contact_solver(parameters,
-                            parameters.contact_solver(
-                              summary.count("n_foundation_dofs")),
-                            parameters.output.verbosity,
-                            log);
-    contact        = contact_solver->solve(*mindlin_plate,
-                                    *foundation_operator,
-                                    mindlin_plate->get_load_vector(),
-                                    seed);
+    const unsigned int n          = summary.count("n_foundation_dofs");
+    const auto         solve_with = [&](const Parameters::Contact::Solver s) {
+      contact_solver =
+        create_contact_solver(parameters, s, parameters.output.verbosity, log);
+      contact = contact_solver->solve(*mindlin_plate,
+                                      *foundation_operator,
+                                      mindlin_plate->get_load_vector(),
+                                      seed);
+    };
+    double rebuild_time = 0;
+    try
+      {
+        solve_with(cycle_solver(n));
+      }
+    catch (const ConjugateGradientsNotConverged &failure)
+      {
+        using Storage = Parameters::FoundationOperator::Storage;
+        const bool own =
+          parameters.contact.solver == Parameters::Contact::Solver::automatic &&
+          parameters.foundation_operator.storage == Storage::automatic &&
+          cycle_storage(n) == Storage::hierarchical;
+        if (!own)
+          throw;
+        // The dense block's memory, checked here so that a failure says
+        // both why the iterations stopped and why the fallback cannot run.
+        const std::size_t needed    = dense_foundation_bytes(n);
+        const std::size_t available = available_memory_bytes();
+        if (available != 0 && needed > available)
+          throw ConjugateGradientsNotConverged(
+            std::string(failure.what()) +
+            " Contact/Solver = auto would take the direct solver, but its "
+            "dense block of " +
+            std::to_string(n) + " nodes needs about " + std::to_string(needed) +
+            " bytes, more than the " + std::to_string(available) +
+            " available.");
+        warn("Contact/Solver = auto: the conjugate gradients did not "
+             "converge on " +
+             std::to_string(n) +
+             " foundation nodes (the plate is far more flexible than the "
+             "soil); this cycle and the later ones use the direct solver "
+             "with dense storage (doc/errors-and-limits.md, \"Stiffness "
+             "ratio\").");
+        direct_after_failed_iterations = true;
+        const double first_build       = foundation_time_s;
+        Timer        rebuild;
+        build_foundation_operator();
+        rebuild_time = rebuild.wall_time();
+        foundation_time_s += first_build;
+        solve_with(Parameters::Contact::Solver::direct);
+      }
     pressure_field = mindlin_plate->foundation_field_to_solution(contact.q);
     // The solver's factorisation of the flexibility belongs to the
-    // foundation's time (doc/outputs.md, the time split).
+    // foundation's time (doc/outputs.md, the time split); so does a
+    // rebuild after failed iterations, whose time the solve had.
     const double factorization = contact.factorization_time_s;
     const double compression   = foundation_operator->build_times().compression;
     summary.set("foundation_time_s", foundation_time_s + factorization);
@@ -736,7 +778,25 @@ namespace PlateOnHalfspace
     summary.set("foundation_compression_time_s", compression);
     summary.set("foundation_factorization_time_s", factorization);
     summary.set("solve_time_s",
-                std::max(0., phase.wall_time() - factorization));
+                std::max(0., phase.wall_time() - factorization - rebuild_time));
+  }
+
+  Parameters::FoundationOperator::Storage
+  PlateOnHalfspaceProblem::cycle_storage(
+    const unsigned int n_foundation_nodes) const
+  {
+    return direct_after_failed_iterations ?
+             Parameters::FoundationOperator::Storage::dense :
+             parameters.foundation_storage(n_foundation_nodes);
+  }
+
+  Parameters::Contact::Solver
+  PlateOnHalfspaceProblem::cycle_solver(
+    const unsigned int n_foundation_nodes) const
+  {
+    return direct_after_failed_iterations ?
+             Parameters::Contact::Solver::direct :
+             parameters.contact_solver(n_foundation_nodes);
   }
 
   void
@@ -791,12 +851,8 @@ namespace PlateOnHalfspace
     // moving loads alone hold it, and its deflections are theirs.
     if (!has_load && (!has_moment || parameters.foundation.tensionless))
       return;
-    const auto solver =
-      create_contact_solver(parameters,
-                            parameters.contact_solver(
-                              summary.count("n_foundation_dofs")),
-                            0,
-                            log);
+    const auto solver = create_contact_solver(
+      parameters, cycle_solver(summary.count("n_foundation_dofs")), 0, log);
     standing_solution = solver
                           ->solve(*mindlin_plate,
                                   *foundation_operator,

@@ -132,9 +132,25 @@ namespace PlateOnHalfspace
     void
     build_foundation_operator();
 
-    /** Solve contact from the seed with the cycle's contact solver. */
+    /**
+     * Solve contact from the seed with the cycle's contact solver. Where
+     * Contact/Solver and Foundation operator/Storage are both auto and the
+     * conjugate gradients fail (a plate far more flexible than the soil),
+     * rebuild the operator dense and solve with the direct solver, for
+     * this and the later cycles, if the dense block fits the memory
+     * (doc/errors-and-limits.md, "Stiffness ratio").
+     */
     void
     solve_contact();
+
+    /** The cycle's storage and contact solver: the scene's choice for
+     *  @p n_foundation_nodes, or dense and direct after a failure of the
+     *  conjugate gradients (solve_contact()). */
+    Parameters::FoundationOperator::Storage
+    cycle_storage(const unsigned int n_foundation_nodes) const;
+
+    Parameters::Contact::Solver
+    cycle_solver(const unsigned int n_foundation_nodes) const;
 
     /**
      * The goal's value and the dual-weighted residual estimate of its
@@ -240,6 +256,10 @@ namespace PlateOnHalfspace
     std::unique_ptr<FoundationOperator> foundation_operator;
     /** The storage foundation_operator was made with. */
     Parameters::FoundationOperator::Storage operator_storage;
+    /** The conjugate gradients failed in a cycle where auto chose them:
+     *  that and every later cycle use dense storage and the direct
+     *  solver. */
+    bool direct_after_failed_iterations = false;
     /** The active set of the previous cycle on the current mesh. */
     std::vector<bool> seed;
     ContactState      contact;

@@ -479,7 +479,7 @@ namespace PlateOnHalfspace
                      "operator/Storage = auto or dense), or refine the mesh "
                      "(Discretization/Subdivisions x and y, "
                      "Discretization/Initial refinements).";
-        AssertThrow(false, ExcMessage(message.str()));
+        throw ConjugateGradientsNotConverged(message.str());
       }
 
     // u = K^+ (P - N^T M T q) + R alpha, w = N u.

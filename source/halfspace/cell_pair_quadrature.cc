@@ -532,7 +532,8 @@ namespace PlateOnHalfspace
     // on a threshold, and rounding must not send a pair and its mirror
     // image to different rules.
     const double       rounded = std::round(separation * 1e6) * 1e-6;
-    const unsigned int rule    = (rounded < 2.5 ? 2 : rounded < 20 ? 1 : 0);
+    const unsigned int rule =
+      kernel.separated_rule(rounded, std::max(dk.diameter, dl.diameter));
     if (rule < n_stored_rules)
       integrate_regular(
         dk.tables[rule], dl.tables[rule], block, rows, columns, kernel);

@@ -26,7 +26,7 @@ namespace PlateOnHalfspace
     const std::vector<bool> &cell_in_foundation)
   {
     const SurfaceKernel kernel = elastic->kernel(maximal_distance(space));
-    AssertThrow(!kernel.remainder,
+    AssertThrow(dynamic_cast<const HomogeneousHalfSpace *>(elastic.get()),
                 ExcMessage("Discretization/Flexibility = collocation is the "
                            "paper's closed-form operator of the homogeneous "
                            "half-space; with Foundation/Model = " +

@@ -906,7 +906,9 @@ namespace PlateOnHalfspace
         "auto",
         Patterns::Selection("auto|direct|iterative"),
         "How each contact set is solved: auto (iterative with the "
-        "hierarchical half-space operator, direct with a dense one), direct "
+        "hierarchical half-space operator, direct with a dense one; where "
+        "the iterations fail, with Foundation operator/Storage = auto, "
+        "direct with a dense one from that cycle on), direct "
         "(the plate condensed onto "
         "the foundation nodes into a dense matrix, factorised by LAPACK) or "
         "iterative (conjugate gradients on the contact pressures with the "

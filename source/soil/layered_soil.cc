@@ -27,7 +27,7 @@ namespace PlateOnHalfspace
 
   struct TabulatedLayeredRemainder::Implementation
   {
-    double top_thickness = 0, span = 0, achieved = 0;
+    double top_thickness = 0, span = 0, achieved = 0, largest_share = 0;
     /** The closed-form far field: (C_b - C1)/(2 pi) and (2 D)^2. */
     double far_coefficient = 0, depth_squared = 0;
     /** The Hankel integral's nodes and weighted integrand over 2 pi. */
@@ -398,6 +398,13 @@ namespace PlateOnHalfspace
         if (worst <= 0.1 * tolerance)
           {
             data->achieved += worst;
+            for (unsigned int i = 1; i <= n_s; ++i)
+              {
+                const double r = h1 * (i * ds) * (i * ds);
+                const double R = std::abs(data->fast[i][0]);
+                data->largest_share =
+                  worse(data->largest_share, R / (alpha / r + R));
+              }
             break;
           }
         AssertThrow(2 * n_s <= (1u << 24),
@@ -446,6 +453,12 @@ namespace PlateOnHalfspace
     return data->achieved;
   }
 
+  double
+  TabulatedLayeredRemainder::largest_share() const
+  {
+    return data->largest_share;
+  }
+
   unsigned int
   TabulatedLayeredRemainder::n_knots() const
   {
@@ -484,7 +497,19 @@ namespace PlateOnHalfspace
                           std::chrono::steady_clock::now() - start)
                           .count();
       }
+    // A remainder below the tabulation's own accuracy everywhere (layers of
+    // one material over a half-space of it) leaves the top layer's
+    // half-space kernel, which takes the half-space's rules and cost
+    // (doc/soil-models.md, "The kernel").
+    if (remainder_negligible())
+      return SurfaceKernel(alpha);
     return SurfaceKernel(alpha, table);
+  }
+
+  bool
+  LayeredSoil::remainder_negligible() const
+  {
+    return table->largest_share() <= kernel_tolerance;
   }
 
   double
@@ -582,6 +607,9 @@ namespace PlateOnHalfspace
            << ", error <= " << std::max(table->error(), 1e-16)
            << " of alpha1/r + |R(r)| (tolerance " << kernel_tolerance << ") in "
            << table_seconds << " s";
+    if (remainder_negligible())
+      report << "; R is below the tolerance everywhere, which leaves the top "
+                "layer's half-space kernel";
     return report.str();
   }
 

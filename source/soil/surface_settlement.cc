@@ -149,10 +149,9 @@ namespace PlateOnHalfspace
 
     /**
      * ∫_cell q_h(y) K(|x - y|) dy for the kernel K(r) = alpha / r + R(r):
-     * from 1.5 cell diameters on, the whole kernel on the Gauss rule 1/r
-     * gets at that distance, which resolves R as well (doc/soil-models.md,
-     * "How the storages use it"); nearer, the singular 1/r rule and R's
-     * own rule.
+     * from 1.5 cell diameters on, the whole kernel on the cell-pair rule
+     * of that distance (SurfaceKernel::separated_rule()); nearer, the
+     * singular 1/r rule and R's own rule.
      */
     double
     kernel_integral(const PressureCell  &cell,
@@ -163,10 +162,9 @@ namespace PlateOnHalfspace
       const double distance = x.distance(cell.centre) / cell.diameter;
       if (distance >= 1.5)
         {
-          const GaussTable &table = cell.gauss[distance < 2.5 ? 2 :
-                                               distance < 20  ? 1 :
-                                                                0];
-          double            sum = 0, smooth = 0;
+          const GaussTable &table =
+            cell.gauss[kernel.separated_rule(distance, cell.diameter)];
+          double sum = 0, smooth = 0;
           for (unsigned int q = 0; q < table.points.size(); ++q)
             {
               const double r = x.distance(table.points[q]);

@@ -64,6 +64,7 @@
 
 #include <memory>
 #include <ostream>
+#include <stdexcept>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -89,6 +90,18 @@ namespace PlateOnHalfspace
      * before the last); the last set is always solved to tolerance.
      */
     double changing_set_tolerance = 1e-4;
+  };
+
+  /**
+   * The conjugate gradients of a contact set did not reach their tolerance
+   * (IterativeContactSolver::solve_on_set()); what() says why and what to
+   * change. Contact/Solver = auto answers it by taking the direct solver
+   * (doc/errors-and-limits.md, "Stiffness ratio").
+   */
+  class ConjugateGradientsNotConverged : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
   };
 
   /** See the file documentation. */
@@ -120,9 +133,9 @@ namespace PlateOnHalfspace
 
     /**
      * Projected conjugate gradients on the pressures of @p contact_set;
-     * throws ExcMessage if they do not reach @p tolerance within
-     * ConjugateGradientControl::max_iterations (never a silently
-     * inaccurate answer).
+     * throws ConjugateGradientsNotConverged if they do not reach
+     * @p tolerance within ConjugateGradientControl::max_iterations (never
+     * a silently inaccurate answer).
      */
     Vector<double>
     solve_on_set(const std::vector<bool> &contact_set,

@@ -62,6 +62,11 @@ namespace PlateOnHalfspace
     double
     error() const;
 
+    /** The largest |R(r)| / (alpha / r + |R(r)|) over the table's knots:
+     *  the share of the kernel the remainder is. */
+    double
+    largest_share() const;
+
     /** Number of knots of the spline. */
     unsigned int
     n_knots() const;
@@ -84,7 +89,8 @@ namespace PlateOnHalfspace
     name() const override;
 
     /** alpha1 / r plus the remainder, tabulated on first use and again
-     *  when a longer range is asked for. */
+     *  when a longer range is asked for; alpha1 / r alone where the
+     *  remainder is below the tabulation's tolerance everywhere. */
     SurfaceKernel
     kernel(const double max_distance) const override;
 
@@ -117,6 +123,11 @@ namespace PlateOnHalfspace
     definiteness_advice() const override;
 
   private:
+    /** The table's remainder is below kernel_tolerance everywhere (the
+     *  table exists and table_mutex is held). */
+    bool
+    remainder_negligible() const;
+
     const LayeredProfile                                     profile;
     mutable std::shared_ptr<const TabulatedLayeredRemainder> table;
     mutable std::mutex                                       table_mutex;

@@ -27,9 +27,9 @@ namespace PlateOnHalfspace
    * @p space and their mirror images. Cells near x (within 1.5 of their
    * diameters) are integrated with the singularity subtracted at x's
    * reference point, the remainder by a Duffy rule of @p singular_order
-   * (as the Galerkin operator's singular pairs); farther cells by Gauss
-   * rules of 5, 3 or 2 points per direction below 2.5, below 20 and from
-   * 20 diameters. A smooth remainder is integrated by Gauss rules of 3, 5
+   * (as the Galerkin operator's singular pairs); farther cells by the Gauss
+   * rule of a separated cell pair (SurfaceKernel::separated_rule()). Near
+   * x, a smooth remainder is integrated by Gauss rules of 3, 5
    * or 3 + 3 H / l points per direction (CellPairIntegrator::
    * add_smooth_kernel()'s choice). The points are split over the threads.
    */
