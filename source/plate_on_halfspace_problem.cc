@@ -669,7 +669,8 @@ namespace PlateOnHalfspace
     if (storage == Parameters::FoundationOperator::Storage::dense)
       check_dense_foundation_memory(n,
                                     cycle_solver(n) ==
-                                      Parameters::Contact::Solver::iterative);
+                                      Parameters::Contact::Solver::iterative,
+                                    !direct_after_failed_iterations);
     if (!foundation_operator || operator_storage != storage)
       {
         foundation_operator =
@@ -730,7 +731,7 @@ namespace PlateOnHalfspace
       {
         solve_with(cycle_solver(n));
       }
-    catch (const ConjugateGradientsNotConverged &failure)
+    catch (const ConjugateGradientsFailed &failure)
       {
         using Storage = Parameters::FoundationOperator::Storage;
         const bool own =
@@ -744,22 +745,34 @@ namespace PlateOnHalfspace
         const std::size_t needed    = dense_foundation_bytes(n);
         const std::size_t available = available_memory_bytes();
         if (available != 0 && needed > available)
-          throw ConjugateGradientsNotConverged(
-            std::string(failure.what()) +
-            " Contact/Solver = auto would take the direct solver, but its "
-            "dense block of " +
-            std::to_string(n) + " nodes needs about " + std::to_string(needed) +
-            " bytes, more than the " + std::to_string(available) +
-            " available.");
-        warn("Contact/Solver = auto: the conjugate gradients did not "
-             "converge on " +
+          {
+            std::ostringstream message;
+            message << "Contact/Solver = auto: the conjugate gradients on the "
+                       "contact pressures failed on "
+                    << n
+                    << " foundation nodes (the plate is far more flexible "
+                       "than the soil), and the direct solver's dense block "
+                       "would need about "
+                    << needed << " bytes (" << std::setprecision(3)
+                    << needed / 1073741824. << " GiB), more than the "
+                    << available
+                    << " available. Reduce the node count "
+                       "(Discretization/Subdivisions x and y, Discretization/"
+                       "Initial refinements, Adaptivity/Max cells or "
+                       "Adaptivity/Cycles). The iterations stopped with: "
+                    << failure.what();
+            throw ConjugateGradientsFailed(message.str());
+          }
+        warn("Contact/Solver = auto: the conjugate gradients failed on " +
              std::to_string(n) +
              " foundation nodes (the plate is far more flexible than the "
              "soil); this cycle and the later ones use the direct solver "
              "with dense storage (doc/errors-and-limits.md, \"Stiffness "
              "ratio\").");
         direct_after_failed_iterations = true;
-        const double first_build       = foundation_time_s;
+        // The iterative solver refers to the operator about to be replaced.
+        contact_solver.reset();
+        const double first_build = foundation_time_s;
         Timer        rebuild;
         build_foundation_operator();
         rebuild_time = rebuild.wall_time();

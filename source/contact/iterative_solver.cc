@@ -318,9 +318,8 @@ namespace PlateOnHalfspace
               Interruption::check();
               problem.vmult(hp, p, soil_p);
               const double curvature = p * hp;
-              AssertThrow(
-                curvature > 0 && rz > 0,
-                ExcMessage(
+              if (!(curvature > 0 && rz > 0))
+                throw ConjugateGradientsFailed(
                   "The conjugate gradients on the contact pressures met a "
                   "direction of non-positive curvature: in floating point "
                   "the contact problem is not positive definite. The "
@@ -331,7 +330,7 @@ namespace PlateOnHalfspace
                   "Joints/Shear stiffness, Dowel modulus and Dowel support "
                   "modulus with the slabs; for a joint far stiffer than the "
                   "slabs use Joints/Load transfer = tied. " +
-                  problem.definiteness_advice()));
+                  problem.definiteness_advice());
               const double step = rz / curvature;
               q.add(step, p);
               soil.add(step, soil_p);
@@ -479,7 +478,7 @@ namespace PlateOnHalfspace
                      "operator/Storage = auto or dense), or refine the mesh "
                      "(Discretization/Subdivisions x and y, "
                      "Discretization/Initial refinements).";
-        throw ConjugateGradientsNotConverged(message.str());
+        throw ConjugateGradientsFailed(message.str());
       }
 
     // u = K^+ (P - N^T M T q) + R alpha, w = N u.

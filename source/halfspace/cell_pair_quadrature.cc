@@ -532,8 +532,7 @@ namespace PlateOnHalfspace
     // on a threshold, and rounding must not send a pair and its mirror
     // image to different rules.
     const double       rounded = std::round(separation * 1e6) * 1e-6;
-    const unsigned int rule =
-      kernel.separated_rule(rounded, std::max(dk.diameter, dl.diameter));
+    const unsigned int rule    = kernel.separated_rule(rounded);
     if (rule < n_stored_rules)
       integrate_regular(
         dk.tables[rule], dl.tables[rule], block, rows, columns, kernel);

@@ -25,13 +25,13 @@ namespace PlateOnHalfspace
     const FoundationSpace   &space,
     const std::vector<bool> &cell_in_foundation)
   {
-    const SurfaceKernel kernel = elastic->kernel(maximal_distance(space));
     AssertThrow(dynamic_cast<const HomogeneousHalfSpace *>(elastic.get()),
                 ExcMessage("Discretization/Flexibility = collocation is the "
                            "paper's closed-form operator of the homogeneous "
                            "half-space; with Foundation/Model = " +
                            elastic->name() + " use galerkin."));
-    const double alpha = kernel.alpha;
+    const SurfaceKernel kernel = elastic->kernel(maximal_distance(space));
+    const double        alpha  = kernel.alpha;
     build_mass_matrix(space, cell_in_foundation);
     use_identity_test_coupling();
     const unsigned int n = space.n_nodes();

@@ -70,7 +70,8 @@ namespace PlateOnHalfspace
 
   void
   check_dense_foundation_memory(const std::size_t n_foundation_nodes,
-                                const bool        iterative)
+                                const bool        iterative,
+                                const bool        suggest_hierarchical)
   {
     const std::size_t needed =
       dense_foundation_bytes(n_foundation_nodes, iterative);
@@ -86,7 +87,10 @@ namespace PlateOnHalfspace
         ") are available. Reduce the node count: Discretization/Subdivisions "
         "x and y, Discretization/Initial refinements, Adaptivity/Max cells "
         "or Adaptivity/Cycles (memory grows with the square of the nodes; "
-        "Discretization/Symmetry, where available, quarters it), or use "
-        "Foundation operator/Storage = hierarchical."));
+        "Discretization/Symmetry, where available, quarters it)" +
+        std::string(suggest_hierarchical ?
+                      ", or use Foundation operator/Storage = hierarchical." :
+                      "; the hierarchical storage's conjugate gradients "
+                      "failed on this scene (Contact/Solver = auto).")));
   }
 } // namespace PlateOnHalfspace

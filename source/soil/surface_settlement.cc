@@ -162,9 +162,8 @@ namespace PlateOnHalfspace
       const double distance = x.distance(cell.centre) / cell.diameter;
       if (distance >= 1.5)
         {
-          const GaussTable &table =
-            cell.gauss[kernel.separated_rule(distance, cell.diameter)];
-          double sum = 0, smooth = 0;
+          const GaussTable &table = cell.gauss[kernel.separated_rule(distance)];
+          double            sum = 0, smooth = 0;
           for (unsigned int q = 0; q < table.points.size(); ++q)
             {
               const double r = x.distance(table.points[q]);

@@ -94,11 +94,12 @@ namespace PlateOnHalfspace
 
   /**
    * The conjugate gradients of a contact set did not reach their tolerance
+   * or met a direction of non-positive curvature
    * (IterativeContactSolver::solve_on_set()); what() says why and what to
    * change. Contact/Solver = auto answers it by taking the direct solver
    * (doc/errors-and-limits.md, "Stiffness ratio").
    */
-  class ConjugateGradientsNotConverged : public std::runtime_error
+  class ConjugateGradientsFailed : public std::runtime_error
   {
   public:
     using std::runtime_error::runtime_error;
@@ -133,9 +134,10 @@ namespace PlateOnHalfspace
 
     /**
      * Projected conjugate gradients on the pressures of @p contact_set;
-     * throws ConjugateGradientsNotConverged if they do not reach
-     * @p tolerance within ConjugateGradientControl::max_iterations (never
-     * a silently inaccurate answer).
+     * throws ConjugateGradientsFailed if they do not reach
+     * @p tolerance within ConjugateGradientControl::max_iterations or meet
+     * a direction of non-positive curvature (never a silently inaccurate
+     * answer).
      */
     Vector<double>
     solve_on_set(const std::vector<bool> &contact_set,

@@ -125,12 +125,11 @@ namespace PlateOnHalfspace
      * block(a,b) = ∫_{cell k} ∫_{cell l} psi_a(x) psi_b(y) K(|x - y|) dy dx
      * for the kernel K(r) = alpha / r + R(r) of a soil (SurfaceKernel),
      * only the entries of @p rows and @p columns (empty: all). Singular
-     * pairs take alpha times their 1/r rules and R by add_smooth_kernel();
-     * separated pairs integrate the whole kernel on the Gauss rule that
-     * 1/r picks. That rule suffices for R: R is analytic within a distance
-     * of about the top layer's thickness of the real axis as well as at
-     * r = 0, so at a distance d it varies over no less than d, as 1/r does
-     * (doc/soil-models.md, "How the storages use it").
+     * pairs take alpha times their 1/r rules and R by integrate_smooth();
+     * separated pairs integrate the whole kernel on one Gauss rule
+     * (SurfaceKernel::separated_rule(): at least 3 points per direction
+     * with a remainder, which varies over the top layer's thickness at any
+     * distance; doc/soil-models.md, "How the storages use it").
      */
     void
     integrate_kernel(const unsigned int       k,

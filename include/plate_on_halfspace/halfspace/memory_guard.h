@@ -39,11 +39,13 @@ namespace PlateOnHalfspace
   /**
    * Throw an ExcMessage naming the bytes needed, the bytes available and
    * the entries that reduce the node count if dense_foundation_bytes()
-   * exceeds available_memory_bytes().
+   * exceeds available_memory_bytes(); with @p suggest_hierarchical, also
+   * the hierarchical storage (not after its iterations failed).
    */
   void
   check_dense_foundation_memory(const std::size_t n_foundation_nodes,
-                                const bool        iterative = false);
+                                const bool        iterative            = false,
+                                const bool        suggest_hierarchical = true);
 } // namespace PlateOnHalfspace
 
 #endif

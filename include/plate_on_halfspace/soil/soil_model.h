@@ -81,22 +81,17 @@ namespace PlateOnHalfspace
     /**
      * Which of the 2-, 3- and 5-point Gauss rules per direction (index 0,
      * 1, 2) integrates this kernel times quadratic shape functions over a
-     * cell of diameter @p diameter (the larger of a pair's) whose centre
-     * lies @p separation of its diameters from another cell's centre, or
-     * from a point, to about 1e-6 (doc/formulation.md, "Cell-pair
-     * quadrature"): 1/r needs 5 points nearer than 2.5 diameters, 3 nearer
-     * than 20 and 2 beyond; a remainder, which varies over its length scale
-     * at any distance, 3 on cells up to that wide and 5 on wider ones
+     * cell whose centre lies @p separation of its diameters from another
+     * cell's centre, or from a point (doc/formulation.md, "Cell-pair
+     * quadrature"): 5 points nearer than 2.5 diameters, 3 nearer than 20;
+     * beyond, 2 for 1/r alone, which varies over the distance, and 3 with
+     * a remainder, which varies over its length scale at any distance
      * (doc/soil-models.md, "How the storages use it").
      */
     unsigned int
-    separated_rule(const double separation, const double diameter) const
+    separated_rule(const double separation) const
     {
-      if (separation < 2.5)
-        return 2;
-      if (!remainder)
-        return separation < 20 ? 1 : 0;
-      return diameter <= remainder->length_scale() ? 1 : 2;
+      return separation < 2.5 ? 2 : (separation < 20 || remainder) ? 1 : 0;
     }
 
     double                                      alpha;

@@ -31,7 +31,7 @@ namespace PlateOnHalfspace
    * rule of a separated cell pair (SurfaceKernel::separated_rule()). Near
    * x, a smooth remainder is integrated by Gauss rules of 3, 5
    * or 3 + 3 H / l points per direction (CellPairIntegrator::
-   * add_smooth_kernel()'s choice). The points are split over the threads.
+   * integrate_smooth()'s choice). The points are split over the threads.
    */
   std::vector<double>
   settlement_at_points(const FoundationSpace       &space,
