@@ -742,27 +742,16 @@ namespace PlateOnHalfspace
           throw;
         // The dense block's memory, checked here so that a failure says
         // both why the iterations stopped and why the fallback cannot run.
-        const std::size_t needed    = dense_foundation_bytes(n);
-        const std::size_t available = available_memory_bytes();
-        if (available != 0 && needed > available)
-          {
-            std::ostringstream message;
-            message << "Contact/Solver = auto: the conjugate gradients on the "
-                       "contact pressures failed on "
-                    << n
-                    << " foundation nodes (the plate is far more flexible "
-                       "than the soil), and the direct solver's dense block "
-                       "would need about "
-                    << needed << " bytes (" << std::setprecision(3)
-                    << needed / 1073741824. << " GiB), more than the "
-                    << available
-                    << " available. Reduce the node count "
-                       "(Discretization/Subdivisions x and y, Discretization/"
-                       "Initial refinements, Adaptivity/Max cells or "
-                       "Adaptivity/Cycles). The iterations stopped with: "
-                    << failure.what();
-            throw ConjugateGradientsFailed(message.str());
-          }
+        const std::string shortfall =
+          dense_foundation_memory_shortfall(n, false, false);
+        if (!shortfall.empty())
+          throw ConjugateGradientsFailed(
+            "Contact/Solver = auto: the conjugate gradients on the contact "
+            "pressures failed on " +
+            std::to_string(n) +
+            " foundation nodes (the plate is far more flexible than the "
+            "soil), and the direct solver does not fit: " +
+            shortfall + " The iterations stopped with: " + failure.what());
         warn("Contact/Solver = auto: the conjugate gradients failed on " +
              std::to_string(n) +
              " foundation nodes (the plate is far more flexible than the "

@@ -68,29 +68,42 @@ namespace PlateOnHalfspace
     return available;
   }
 
+  std::string
+  dense_foundation_memory_shortfall(const std::size_t n_foundation_nodes,
+                                    const bool        iterative,
+                                    const bool        suggest_hierarchical)
+  {
+    const std::size_t needed =
+      dense_foundation_bytes(n_foundation_nodes, iterative);
+    const std::size_t available = available_memory_bytes();
+    if (available == 0 || needed <= available)
+      return {};
+    return "The dense foundation block of " +
+           std::to_string(n_foundation_nodes) + " nodes needs about " +
+           std::to_string(needed) + " bytes (" + gigabytes(needed) +
+           (iterative ? ", 3" : ", 7") + " n^2 doubles), but only " +
+           std::to_string(available) + " bytes (" + gigabytes(available) +
+           ") are available. Reduce the node count: Discretization/"
+           "Subdivisions x and y, Discretization/Initial refinements, "
+           "Adaptivity/Max cells or Adaptivity/Cycles (memory grows with the "
+           "square of the nodes; Discretization/Symmetry, where available, "
+           "quarters it)" +
+           std::string(
+             suggest_hierarchical ?
+               ", or use Foundation operator/Storage = hierarchical." :
+               "; the hierarchical storage's conjugate gradients "
+               "failed on this scene (Contact/Solver = auto).");
+  }
+
   void
   check_dense_foundation_memory(const std::size_t n_foundation_nodes,
                                 const bool        iterative,
                                 const bool        suggest_hierarchical)
   {
-    const std::size_t needed =
-      dense_foundation_bytes(n_foundation_nodes, iterative);
-    const std::size_t available = available_memory_bytes();
-    AssertThrow(
-      available == 0 || needed <= available,
-      dealii::ExcMessage(
-        "The dense foundation block of " + std::to_string(n_foundation_nodes) +
-        " nodes needs about " + std::to_string(needed) + " bytes (" +
-        gigabytes(needed) + (iterative ? ", 3" : ", 7") +
-        " n^2 doubles), but only " + std::to_string(available) + " bytes (" +
-        gigabytes(available) +
-        ") are available. Reduce the node count: Discretization/Subdivisions "
-        "x and y, Discretization/Initial refinements, Adaptivity/Max cells "
-        "or Adaptivity/Cycles (memory grows with the square of the nodes; "
-        "Discretization/Symmetry, where available, quarters it)" +
-        std::string(suggest_hierarchical ?
-                      ", or use Foundation operator/Storage = hierarchical." :
-                      "; the hierarchical storage's conjugate gradients "
-                      "failed on this scene (Contact/Solver = auto).")));
+    const std::string shortfall =
+      dense_foundation_memory_shortfall(n_foundation_nodes,
+                                        iterative,
+                                        suggest_hierarchical);
+    AssertThrow(shortfall.empty(), dealii::ExcMessage(shortfall));
   }
 } // namespace PlateOnHalfspace

@@ -10,6 +10,7 @@
 #define plate_on_halfspace_halfspace_memory_guard_h
 
 #include <cstddef>
+#include <string>
 
 namespace PlateOnHalfspace
 {
@@ -37,11 +38,18 @@ namespace PlateOnHalfspace
   available_memory_bytes();
 
   /**
-   * Throw an ExcMessage naming the bytes needed, the bytes available and
-   * the entries that reduce the node count if dense_foundation_bytes()
-   * exceeds available_memory_bytes(); with @p suggest_hierarchical, also
+   * "" if dense_foundation_bytes() fits available_memory_bytes(); otherwise
+   * the message naming the bytes needed, the bytes available and the
+   * entries that reduce the node count; with @p suggest_hierarchical, also
    * the hierarchical storage (not after its iterations failed).
    */
+  std::string
+  dense_foundation_memory_shortfall(const std::size_t n_foundation_nodes,
+                                    const bool        iterative,
+                                    const bool        suggest_hierarchical);
+
+  /** Throw an ExcMessage with dense_foundation_memory_shortfall()'s
+   *  message unless it is empty. */
   void
   check_dense_foundation_memory(const std::size_t n_foundation_nodes,
                                 const bool        iterative            = false,
