@@ -541,31 +541,6 @@ namespace PlateOnHalfspace
     slab_grid->match_refinement(triangulation);
     SolutionTransfer<2> transfer(mindlin_plate->get_dof_handler());
     triangulation.prepare_coarsening_and_refinement();
-    if (goal)
-      {
-        // The foundation nodes grow with the cells (about three per cell
-        // for the quadratic elements): a goal run ends its loop before a
-        // mesh whose estimate it could not afford.
-        unsigned int n_refined = 0;
-        for (const auto &cell : triangulation.active_cell_iterators())
-          n_refined += cell->refine_flag_set() ? 1 : 0;
-        const double predicted_nodes =
-          double(summary.count("n_foundation_dofs")) *
-          (triangulation.n_active_cells() + 3. * n_refined) /
-          triangulation.n_active_cells();
-        const unsigned int limit = soil->largest_goal_estimate();
-        if (predicted_nodes > limit)
-          {
-            for (const auto &cell : triangulation.active_cell_iterators())
-              cell->clear_refine_flag();
-            log << "Adaptivity/Goal: the next mesh would have about "
-                << static_cast<unsigned int>(predicted_nodes)
-                << " foundation nodes, more than the " << limit
-                << " the goal's estimate allows: no further cycles."
-                << std::endl;
-            return false;
-          }
-      }
     transfer.prepare_for_coarsening_and_refinement(old_field);
     triangulation.execute_coarsening_and_refinement();
     setup_plate();
@@ -653,19 +628,6 @@ namespace PlateOnHalfspace
     // Storage = auto and Solver = auto are decided for this cycle's mesh.
     const unsigned int n       = summary.count("n_foundation_dofs");
     const auto         storage = cycle_storage(n);
-    // A goal's half-space residual evaluates the settlement at every Gauss
-    // point of the contact cells against every cell (halfspace/
-    // surface_settlement.h), O(n^2) with no compression.
-    AssertThrow(!goal || n <= soil->largest_goal_estimate(),
-                ExcMessage("Adaptivity/Goal: the error estimate's half-space "
-                           "residual grows with the square of the foundation "
-                           "nodes; this cycle has " +
-                           std::to_string(n) + ", more than the " +
-                           std::to_string(soil->largest_goal_estimate()) +
-                           " it allows (about 75 s there on 2 cores). "
-                           "Coarsen the initial mesh (Discretization/"
-                           "Subdivisions x and y, Initial refinements), or "
-                           "leave Adaptivity/Goal empty."));
     if (storage == Parameters::FoundationOperator::Storage::dense)
       check_dense_foundation_memory(n,
                                     cycle_solver(n) ==

@@ -168,42 +168,12 @@ namespace PlateOnHalfspace
               spans.push_back(n_tree + 4 * c + v);
           span_ends[k] = spans.size();
         }
-      hmat_clustering_algorithm_t *median = hmat_create_clustering_median();
-      hmat_clustering_algorithm_t *clustering =
-        hmat_create_clustering_max_dof(median, leaf_size);
-      hmat_cluster_tree_builder_t *builder =
-        hmat_create_cluster_tree_builder(clustering);
-      hmat_cluster_tree_create_context_t context;
-      context.dimension        = 2;
-      context.number_of_points = coordinates.size() / 2;
-      context.coordinates      = coordinates.data();
-      context.number_of_dof    = n_tree;
-      context.span_offsets     = span_ends.data();
-      context.spans            = spans.data();
-      context.group_index      = nullptr;
-      context.builder          = builder;
-      hmat_cluster_tree_struct *tree =
-        hmat_create_cluster_tree_generic(&context);
-      hmat_delete_cluster_tree_builder(builder);
-      hmat_delete_clustering(clustering);
-      hmat_delete_clustering(median);
-      AssertThrow(tree != nullptr,
-                  ExcMessage("Foundation operator/Storage = hierarchical: "
-                             "hmat-oss could not build the cluster tree."));
-
-      const int *indices = hmat_cluster_get_indices(tree);
+      std::vector<unsigned int> position_to_unknown;
+      hmat_cluster_tree_struct *tree = HmatGlue::make_cluster_tree(
+        coordinates, span_ends, spans, leaf_size, position_to_unknown);
       hmat_to_node.resize(n_tree);
-      std::vector<bool> seen(n_tree, false);
       for (unsigned int k = 0; k < n_tree; ++k)
-        {
-          const int unknown = indices[k];
-          AssertThrow(unknown >= 0 && unknown < static_cast<int>(n_tree) &&
-                        !seen[unknown],
-                      ExcMessage("HierarchicalFlexibility: the cluster tree's "
-                                 "numbering is not a permutation."));
-          seen[unknown]   = true;
-          hmat_to_node[k] = node(unknown);
-        }
+        hmat_to_node[k] = node(position_to_unknown[k]);
       return tree;
     }
 

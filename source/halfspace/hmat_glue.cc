@@ -51,6 +51,52 @@ namespace PlateOnHalfspace
                              ")." + tolerance_advice));
     }
 
+    hmat_cluster_tree_t *
+    make_cluster_tree(std::vector<double>       &coordinates,
+                      std::vector<unsigned int> &span_ends,
+                      std::vector<unsigned int> &spans,
+                      const unsigned int         leaf_size,
+                      std::vector<unsigned int> &position_to_unknown)
+    {
+      const unsigned int           n      = span_ends.size();
+      hmat_clustering_algorithm_t *median = hmat_create_clustering_median();
+      hmat_clustering_algorithm_t *clustering =
+        hmat_create_clustering_max_dof(median, leaf_size);
+      hmat_cluster_tree_builder_t *builder =
+        hmat_create_cluster_tree_builder(clustering);
+      hmat_cluster_tree_create_context_t context;
+      context.dimension         = 2;
+      context.number_of_points  = coordinates.size() / 2;
+      context.coordinates       = coordinates.data();
+      context.number_of_dof     = n;
+      context.span_offsets      = span_ends.data();
+      context.spans             = spans.data();
+      context.group_index       = nullptr;
+      context.builder           = builder;
+      hmat_cluster_tree_t *tree = hmat_create_cluster_tree_generic(&context);
+      hmat_delete_cluster_tree_builder(builder);
+      hmat_delete_clustering(clustering);
+      hmat_delete_clustering(median);
+      AssertThrow(tree != nullptr,
+                  ExcMessage("Foundation operator/Storage = hierarchical: "
+                             "hmat-oss could not build the cluster tree."));
+
+      const int *indices = hmat_cluster_get_indices(tree);
+      position_to_unknown.resize(n);
+      std::vector<bool> seen(n, false);
+      for (unsigned int k = 0; k < n; ++k)
+        {
+          const int unknown = indices[k];
+          AssertThrow(unknown >= 0 && unknown < static_cast<int>(n) &&
+                        !seen[unknown],
+                      ExcMessage("HierarchicalFlexibility: the cluster tree's "
+                                 "numbering is not a permutation."));
+          seen[unknown]          = true;
+          position_to_unknown[k] = unknown;
+        }
+      return tree;
+    }
+
     bool
     all_finite(const double *values, const std::size_t n)
     {

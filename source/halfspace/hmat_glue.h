@@ -100,6 +100,23 @@ namespace PlateOnHalfspace
     };
 
     /**
+     * hmat-oss's cluster tree of unknowns 0 .. span_ends.size() - 1 in the
+     * plane: @p coordinates holds x, y of the points, and unknown k's
+     * extent is the points spans[span_ends[k - 1] .. span_ends[k]) (from 0
+     * for k = 0), the first of them its own location (hmat-oss 1.8.1 keeps
+     * only that one of a cluster's first unknown in the cluster's box).
+     * Median clustering down to @p leaf_size unknowns per leaf. Returns the
+     * tree and, in @p position_to_unknown, which unknown each of its
+     * positions holds; throws if hmat-oss fails.
+     */
+    hmat_cluster_tree_t *
+    make_cluster_tree(std::vector<double>       &coordinates,
+                      std::vector<unsigned int> &span_ends,
+                      std::vector<unsigned int> &spans,
+                      const unsigned int         leaf_size,
+                      std::vector<unsigned int> &position_to_unknown);
+
+    /**
      * The foundation nodes of a cluster tree: its k-th unknown is node
      * natural[k] (natural numbering); local[i] is the unknown of node i,
      * -1 for nodes not in the tree. Empty vectors: every node, in order.

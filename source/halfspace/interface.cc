@@ -3,10 +3,13 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <plate_on_halfspace/halfspace/collocation_operator.h>
+#include <plate_on_halfspace/halfspace/compressed_settlement.h>
 #include <plate_on_halfspace/halfspace/dense_liquid_operator.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
 #include <plate_on_halfspace/halfspace/interface.h>
+
+#include <algorithm>
 
 namespace PlateOnHalfspace
 {
@@ -230,6 +233,38 @@ namespace PlateOnHalfspace
            transform.memory_consumption();
   }
 
+  std::vector<double>
+  FoundationOperator::settlement_at_points(
+    const FoundationSpace       &space,
+    const Vector<double>        &nodal_pressure,
+    const std::vector<Point<2>> &points) const
+  {
+    const auto *elastic = dynamic_cast<const ElasticSoil *>(soil_model.get());
+    if (elastic != nullptr)
+      {
+        unsigned int loaded_cells = 0;
+        for (const auto &cell : space.cells)
+          for (const auto &shape : cell.expansion)
+            if (std::any_of(shape.begin(), shape.end(), [&](const auto &t) {
+                  return nodal_pressure[t.first] != 0;
+                }))
+              {
+                ++loaded_cells;
+                break;
+              }
+        if (double(points.size()) * loaded_cells >=
+            compressed_settlement_threshold)
+          return compressed_settlement_at_points(
+            space,
+            nodal_pressure,
+            points,
+            elastic->kernel(maximal_distance(space)),
+            elastic->singular_quadrature_order(),
+            compression_tolerance);
+      }
+    return soil_model->settlement_at_points(space, nodal_pressure, points);
+  }
+
   std::unique_ptr<FoundationOperator>
   create_foundation_operator(
     const SceneParameters                        &parameters,
@@ -253,12 +288,17 @@ namespace PlateOnHalfspace
                 ExcMessage("Foundation/Model = " + soil->name() +
                            " is stored sparse; leave Foundation "
                            "operator/Storage auto."));
+    std::unique_ptr<FoundationOperator> foundation;
     if (storage == Parameters::FoundationOperator::Storage::hierarchical)
-      return std::make_unique<HierarchicalGalerkinOperator>(
+      foundation = std::make_unique<HierarchicalGalerkinOperator>(
         elastic, parameters.foundation_operator.tolerance);
-    if (parameters.discretization.flexibility ==
-        Parameters::Discretization::Flexibility::galerkin)
-      return std::make_unique<BoussinesqGalerkinOperator>(elastic);
-    return std::make_unique<BoussinesqCollocationOperator>(elastic);
+    else if (parameters.discretization.flexibility ==
+             Parameters::Discretization::Flexibility::galerkin)
+      foundation = std::make_unique<BoussinesqGalerkinOperator>(elastic);
+    else
+      foundation = std::make_unique<BoussinesqCollocationOperator>(elastic);
+    foundation->set_compression_tolerance(
+      parameters.foundation_operator.tolerance);
+    return foundation;
   }
 } // namespace PlateOnHalfspace

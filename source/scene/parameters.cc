@@ -563,9 +563,11 @@ namespace PlateOnHalfspace
                         "1e-6",
                         Patterns::Double(0, 1),
                         "Relative accuracy of the compressed blocks "
-                        "(Storage = hierarchical); the H-Cholesky factor, "
-                        "which only preconditions, is recompressed at the "
-                        "larger of this and 1e-3.");
+                        "(Storage = hierarchical) and of a goal estimate's "
+                        "compressed settlement on large meshes (any "
+                        "storage); the H-Cholesky factor, which only "
+                        "preconditions, is recompressed at the larger of "
+                        "this and 1e-3.");
       prm.declare_entry("Hierarchical from",
                         "3000",
                         Patterns::Integer(0),

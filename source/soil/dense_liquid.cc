@@ -80,13 +80,6 @@ namespace PlateOnHalfspace
     return modulus;
   }
 
-  unsigned int
-  DenseLiquidSoil::largest_goal_estimate() const
-  {
-    // The settlement is local: O(n) at any size.
-    return std::numeric_limits<unsigned int>::max();
-  }
-
   double
   DenseLiquidSoil::radius_of_relative_stiffness(
     const double flexural_rigidity) const

@@ -29,14 +29,6 @@ namespace PlateOnHalfspace
                                                   singular_order);
   }
 
-  unsigned int
-  ElasticSoil::largest_goal_estimate() const
-  {
-    // About 75 s of settlement evaluations on 2 cores there
-    // (doc/errors-and-limits.md, "Goal-oriented refinement").
-    return 20000;
-  }
-
   double
   maximal_distance(const FoundationSpace &space)
   {

@@ -1,6 +1,9 @@
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/parallel.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/work_stream.h>
+
+#include <deal.II/numerics/rtree.h>
 
 #include <plate_on_halfspace/soil/boussinesq_kernel.h>
 #include <plate_on_halfspace/soil/surface_settlement.h>
@@ -12,95 +15,114 @@ namespace PlateOnHalfspace
 {
   namespace
   {
-    /** A cell's pressure at the points of one Gauss rule, with JxW. */
+    /**
+     * A cell's densities at the points of one Gauss rule, times JxW: with
+     * N = 1 the pressure q_h, with N = 9 the nine local Q2 shape functions
+     * (the influence of each, SettlementInfluence).
+     */
+    template <int N>
     struct GaussTable
     {
-      std::vector<Point<2>> points;
-      std::vector<double>   weighted_pressure; ///< JxW q_h
+      std::vector<Point<2>>              points;
+      std::vector<std::array<double, N>> weights; ///< JxW density
     };
 
     /** What the point loop needs of one cell. */
-    struct PressureCell
+    template <int N>
+    struct KernelCell
     {
-      BilinearQuadrilateral     geometry;
-      std::vector<Point<2>>     polygon;
-      std::array<double, 9>     q2_values; ///< q_h at the cell's Q2 nodes
-      Point<2>                  centre;
-      double                    diameter = 0;
-      std::array<GaussTable, 3> gauss; ///< 2, 3 and 5 points per direction
+      BilinearQuadrilateral        geometry;
+      std::vector<Point<2>>        polygon;
+      std::array<double, 9>        q2_values{}; ///< q_h at the Q2 nodes (N = 1)
+      Point<2>                     centre;
+      double                       diameter = 0;
+      std::array<GaussTable<N>, 3> gauss; ///< 2, 3 and 5 points per direction
       /** For a smooth remainder: 3, 5 and near_order points per direction. */
-      std::array<GaussTable, 3> smooth;
-      unsigned int              near_order = 0;
-      bool                      loaded     = false;
+      std::array<GaussTable<N>, 3> smooth;
+      unsigned int                 near_order = 0;
     };
 
-    GaussTable
-    make_table(const PressureCell &cell, const unsigned int order);
-
-    double
-    pressure_at(const PressureCell &cell, const Point<2> &reference)
+    /** The density at a reference point: q_h (N = 1) or the Q2 shapes. */
+    template <int N>
+    std::array<double, N>
+    density_at(const KernelCell<N> &cell, const Point<2> &reference)
     {
       const auto phi = q2_shape_values(reference);
-      double     q   = 0;
-      for (unsigned int i = 0; i < 9; ++i)
-        q += phi[i] * cell.q2_values[i];
-      return q;
-    }
-
-    PressureCell
-    make_cell(const FoundationSpace::Cell &space_cell,
-              const Vector<double>        &nodal_pressure)
-    {
-      PressureCell cell{space_cell.geometry, {}, {}, {}, 0, {}, {}, 0, false};
-      const auto  &v = cell.geometry.get_vertices();
-      cell.polygon   = {v[0], v[1], v[3], v[2]};
-      for (unsigned int i = 0; i < 9; ++i)
+      if constexpr (N == 1)
         {
-          cell.q2_values[i] = 0;
-          for (const auto &term : space_cell.expansion[i])
-            cell.q2_values[i] += term.second * nodal_pressure[term.first];
-          cell.loaded = cell.loaded || cell.q2_values[i] != 0;
+          double q = 0;
+          for (unsigned int i = 0; i < 9; ++i)
+            q += phi[i] * cell.q2_values[i];
+          return {{q}};
         }
-      cell.centre = cell.geometry.map(Point<2>(0.5, 0.5));
-      for (const Point<2> &p : v)
-        cell.diameter = std::max(cell.diameter, 2. * p.distance(cell.centre));
-      const std::array<unsigned int, 3> orders = {{2, 3, 5}};
-      for (unsigned int r = 0; r < 3; ++r)
-        cell.gauss[r] = make_table(cell, orders[r]);
-      return cell;
+      else
+        return phi;
     }
 
-    GaussTable
-    make_table(const PressureCell &cell, const unsigned int order)
+    template <int N>
+    GaussTable<N>
+    make_table(const KernelCell<N> &cell, const unsigned int order)
     {
-      GaussTable      table;
+      GaussTable<N>   table;
       const QGauss<2> rule(order);
       for (unsigned int q = 0; q < rule.size(); ++q)
         {
           const Point<2> &p = rule.point(q);
           table.points.push_back(cell.geometry.map(p));
-          table.weighted_pressure.push_back(
-            rule.weight(q) * cell.geometry.jacobian_determinant(p) *
-            pressure_at(cell, p));
+          const double JxW =
+            rule.weight(q) * cell.geometry.jacobian_determinant(p);
+          std::array<double, N> weight = density_at(cell, p);
+          for (double &v : weight)
+            v *= JxW;
+          table.weights.push_back(weight);
         }
       return table;
     }
 
-    /** The rules of a smooth remainder of length scale @p l. */
-    void
-    add_smooth_tables(PressureCell &cell, const double l)
+    /** The geometry and tables of @p space_cell; @p q2_values for N = 1. */
+    template <int N>
+    KernelCell<N>
+    make_cell(const FoundationSpace::Cell &space_cell,
+              const std::array<double, 9> &q2_values,
+              const SurfaceKernel         &kernel)
     {
-      cell.near_order = static_cast<unsigned int>(
-        std::min(12., 3. + std::floor(3. * cell.diameter / l)));
-      cell.smooth[0] = cell.gauss[1];
-      cell.smooth[1] = cell.gauss[2];
-      if (cell.near_order > 5)
-        cell.smooth[2] = make_table(cell, cell.near_order);
+      KernelCell<N> cell{space_cell.geometry, {}, q2_values, {}, 0, {}, {}, 0};
+      const auto   &v = cell.geometry.get_vertices();
+      cell.polygon    = {v[0], v[1], v[3], v[2]};
+      cell.centre     = cell.geometry.map(Point<2>(0.5, 0.5));
+      for (const Point<2> &p : v)
+        cell.diameter = std::max(cell.diameter, 2. * p.distance(cell.centre));
+      const std::array<unsigned int, 3> orders = {{2, 3, 5}};
+      for (unsigned int r = 0; r < 3; ++r)
+        cell.gauss[r] = make_table(cell, orders[r]);
+      if (kernel.remainder)
+        {
+          // the rules of a smooth remainder of length scale l
+          const double l  = kernel.remainder->length_scale();
+          cell.near_order = static_cast<unsigned int>(
+            std::min(12., 3. + std::floor(3. * cell.diameter / l)));
+          cell.smooth[0] = cell.gauss[1];
+          cell.smooth[1] = cell.gauss[2];
+          if (cell.near_order > 5)
+            cell.smooth[2] = make_table(cell, cell.near_order);
+        }
+      return cell;
     }
 
-    /** ∫_cell q_h(y) R(|x - y|) dy for a smooth R. */
-    double
-    smooth_integral(const PressureCell         &cell,
+    template <std::size_t N>
+    void
+    add_scaled(std::array<double, N>       &sum,
+               const double                 factor,
+               const std::array<double, N> &values)
+    {
+      for (std::size_t i = 0; i < N; ++i)
+        sum[i] += factor * values[i];
+    }
+
+    /** ∫_cell density(y) R(|x - y|) dy for a smooth R. */
+    template <int N>
+    std::array<double, N>
+    smooth_integral(const KernelCell<N>        &cell,
                     const Point<2>             &x,
                     const SmoothRadialFunction &R)
     {
@@ -108,77 +130,102 @@ namespace PlateOnHalfspace
         std::max(0., x.distance(cell.centre) - 0.5 * cell.diameter);
       const double needed =
         3. + std::floor(3. * cell.diameter / (R.length_scale() + separation));
-      const GaussTable &table = needed <= 3 ? cell.smooth[0] :
-                                needed <= 5 || cell.near_order <= 5 ?
-                                              cell.smooth[1] :
-                                              cell.smooth[2];
-      double            sum   = 0;
+      const GaussTable<N>  &table = needed <= 3 ? cell.smooth[0] :
+                                    needed <= 5 || cell.near_order <= 5 ?
+                                                  cell.smooth[1] :
+                                                  cell.smooth[2];
+      std::array<double, N> sum{};
       for (unsigned int q = 0; q < table.points.size(); ++q)
-        sum +=
-          table.weighted_pressure[q] * R.value(x.distance(table.points[q]));
+        add_scaled(sum, R.value(x.distance(table.points[q])), table.weights[q]);
       return sum;
     }
 
-    /** ∫_cell q_h(y) / |x - y| dy for x near the cell. */
-    double
-    near_inverse_distance_integral(const PressureCell &cell,
-                                   const Point<2>     &x,
-                                   const QDuffy       &duffy)
+    /** ∫_cell density(y) / |x - y| dy for x near the cell. */
+    template <int N>
+    std::array<double, N>
+    near_inverse_distance_integral(const KernelCell<N> &cell,
+                                   const Point<2>      &x,
+                                   const QDuffy        &duffy)
     {
-      // q_h(y) = (q_h(y) - q_h(split)) + q_h(split): the first part over
-      // r is bounded (Duffy rule split at x's reference point, clamped
-      // onto the cell), the second is exact (polygon integral).
+      // density(y) = (density(y) - density(split)) + density(split): the
+      // first part over r is bounded (Duffy rule split at x's reference
+      // point, clamped onto the cell), the second is exact (polygon
+      // integral).
       Point<2> split = cell.geometry.inverse_map(x);
       for (unsigned int d = 0; d < 2; ++d)
         split[d] = std::min(1., std::max(0., split[d]));
-      const double    q_split = pressure_at(cell, split);
-      const QSplit<2> rule(duffy, split);
-      double          sum =
-        q_split * integral_of_inverse_distance_over_polygon(x, cell.polygon);
+      const std::array<double, N> at_split = density_at(cell, split);
+      const QSplit<2>             rule(duffy, split);
+      std::array<double, N>       sum{};
+      add_scaled(sum,
+                 integral_of_inverse_distance_over_polygon(x, cell.polygon),
+                 at_split);
       for (unsigned int q = 0; q < rule.size(); ++q)
         {
           const Point<2> &y = rule.point(q);
           const double    r = x.distance(cell.geometry.map(y));
           if (r == 0.)
             continue; // a point of measure zero
-          sum += rule.weight(q) * cell.geometry.jacobian_determinant(y) *
-                 (pressure_at(cell, y) - q_split) / r;
+          const double JxW =
+            rule.weight(q) * cell.geometry.jacobian_determinant(y);
+          const std::array<double, N> density = density_at(cell, y);
+          for (int i = 0; i < N; ++i)
+            sum[i] += JxW * (density[i] - at_split[i]) / r;
         }
       return sum;
     }
 
     /**
-     * ∫_cell q_h(y) K(|x - y|) dy for the kernel K(r) = alpha / r + R(r):
-     * from 1.5 cell diameters on, the whole kernel on the cell-pair rule
-     * of that distance (SurfaceKernel::separated_rule()); nearer, the
+     * ∫_cell density(y) K(|x - y|) dy for the kernel K(r) = alpha / r +
+     * R(r): from 1.5 cell diameters on, the whole kernel on the cell-pair
+     * rule of that distance (SurfaceKernel::separated_rule()); nearer, the
      * singular 1/r rule and R's own rule.
      */
-    double
-    kernel_integral(const PressureCell  &cell,
+    template <int N>
+    std::array<double, N>
+    kernel_integral(const KernelCell<N> &cell,
                     const Point<2>      &x,
                     const QDuffy        &duffy,
                     const SurfaceKernel &kernel)
     {
-      const double distance = x.distance(cell.centre) / cell.diameter;
+      const double          distance = x.distance(cell.centre) / cell.diameter;
+      std::array<double, N> integral{};
       if (distance >= 1.5)
         {
-          const GaussTable &table = cell.gauss[kernel.separated_rule(distance)];
-          double            sum = 0, smooth = 0;
+          const GaussTable<N> &table =
+            cell.gauss[kernel.separated_rule(distance)];
+          std::array<double, N> smooth{};
           for (unsigned int q = 0; q < table.points.size(); ++q)
             {
               const double r = x.distance(table.points[q]);
-              sum += table.weighted_pressure[q] / r;
+              for (int i = 0; i < N; ++i)
+                integral[i] += table.weights[q][i] / r;
               if (kernel.remainder)
-                smooth +=
-                  table.weighted_pressure[q] * kernel.remainder->value(r);
+                add_scaled(smooth,
+                           kernel.remainder->value(r),
+                           table.weights[q]);
             }
-          return kernel.alpha * sum + smooth;
+          for (int i = 0; i < N; ++i)
+            integral[i] = kernel.alpha * integral[i] + smooth[i];
+          return integral;
         }
-      double integral =
-        kernel.alpha * near_inverse_distance_integral(cell, x, duffy);
+      add_scaled(integral,
+                 kernel.alpha,
+                 near_inverse_distance_integral(cell, x, duffy));
       if (kernel.remainder)
-        integral += smooth_integral(cell, x, *kernel.remainder);
+        add_scaled(integral, 1., smooth_integral(cell, x, *kernel.remainder));
       return integral;
+    }
+
+    /** The points at which the images' pressure acts for a point x:
+     *  |R x - y| for each reflection R (the identity first). */
+    std::vector<std::array<double, 2>>
+    image_factors(const FoundationSpace &space)
+    {
+      std::vector<std::array<double, 2>> images = {{{1., 1.}}};
+      for (const auto &r : space.symmetry.reflections())
+        images.push_back(r);
+      return images;
     }
   } // namespace
 
@@ -189,20 +236,21 @@ namespace PlateOnHalfspace
                        const SurfaceKernel         &kernel,
                        const unsigned int           singular_order)
   {
-    std::vector<PressureCell> cells;
+    std::vector<KernelCell<1>> cells;
     for (const auto &space_cell : space.cells)
       {
-        PressureCell cell = make_cell(space_cell, nodal_pressure);
-        if (kernel.remainder)
-          add_smooth_tables(cell, kernel.remainder->length_scale());
-        if (cell.loaded)
-          cells.push_back(std::move(cell));
+        std::array<double, 9> q2_values{};
+        bool                  loaded = false;
+        for (unsigned int i = 0; i < 9; ++i)
+          {
+            for (const auto &term : space_cell.expansion[i])
+              q2_values[i] += term.second * nodal_pressure[term.first];
+            loaded = loaded || q2_values[i] != 0;
+          }
+        if (loaded)
+          cells.push_back(make_cell<1>(space_cell, q2_values, kernel));
       }
-    // the images' pressure acts at the mirrored point: |R x - y| for the
-    // reflection R of the computed part's y
-    std::vector<std::array<double, 2>> images = {{{1., 1.}}};
-    for (const auto &r : space.symmetry.reflections())
-      images.push_back(r);
+    const auto images = image_factors(space);
 
     const QDuffy        duffy(singular_order, 1.0);
     std::vector<double> settlement(points.size(), 0.);
@@ -217,13 +265,144 @@ namespace PlateOnHalfspace
               {
                 const Point<2> x(image[0] * points[p][0],
                                  image[1] * points[p][1]);
-                for (const PressureCell &cell : cells)
-                  sum += kernel_integral(cell, x, duffy, kernel);
+                for (const KernelCell<1> &cell : cells)
+                  sum += kernel_integral(cell, x, duffy, kernel)[0];
               }
             settlement[p] = sum;
           }
       },
       16);
     return settlement;
+  }
+
+  namespace
+  {
+    /** The distance in cell diameters below which settlement_at_points()
+     *  leaves the 3-point rule (SurfaceKernel::separated_rule()). */
+    constexpr double near_distance = 2.5;
+
+    /** The index of the 3 x 3 rule in KernelCell::gauss. */
+    constexpr unsigned int three_point_rule = 1;
+
+    template <int N>
+    std::array<double, N>
+    three_point_integral(const KernelCell<N> &cell,
+                         const Point<2>      &x,
+                         const SurfaceKernel &kernel)
+    {
+      const GaussTable<N>  &table = cell.gauss[three_point_rule];
+      std::array<double, N> integral{}, smooth{};
+      for (unsigned int q = 0; q < table.points.size(); ++q)
+        {
+          const double r = x.distance(table.points[q]);
+          for (int i = 0; i < N; ++i)
+            integral[i] += table.weights[q][i] / r;
+          if (kernel.remainder)
+            add_scaled(smooth, kernel.remainder->value(r), table.weights[q]);
+        }
+      for (int i = 0; i < N; ++i)
+        integral[i] = kernel.alpha * integral[i] + smooth[i];
+      return integral;
+    }
+  } // namespace
+
+  struct SettlementInfluence::Cells
+  {
+    std::vector<KernelCell<9>> cells;
+    /** Each cell's box of near_distance diameters around its centre. */
+    RTree<std::pair<BoundingBox<2>, unsigned int>> near_zones;
+  };
+
+  SettlementInfluence::SettlementInfluence(const FoundationSpace &space,
+                                           const SurfaceKernel   &kernel,
+                                           const unsigned int singular_order)
+    : space(space)
+    , kernel(kernel)
+    , duffy(std::make_unique<QDuffy>(singular_order, 1.0))
+    , images(image_factors(space))
+    , tables(std::make_unique<Cells>())
+    , node_cells(space.n_nodes())
+  {
+    tables->cells.reserve(space.cells.size());
+    std::vector<std::pair<BoundingBox<2>, unsigned int>> zones;
+    for (unsigned int c = 0; c < space.cells.size(); ++c)
+      {
+        tables->cells.push_back(make_cell<9>(space.cells[c], {}, kernel));
+        const KernelCell<9> &cell   = tables->cells.back();
+        const double         radius = near_distance * cell.diameter;
+        zones.emplace_back(BoundingBox<2>(
+                             std::make_pair(Point<2>(cell.centre[0] - radius,
+                                                     cell.centre[1] - radius),
+                                            Point<2>(cell.centre[0] + radius,
+                                                     cell.centre[1] + radius))),
+                           c);
+        for (const unsigned int i : space.cells[c].nodes())
+          node_cells[i].push_back(c);
+      }
+    tables->near_zones = pack_rtree(zones);
+  }
+
+  SettlementInfluence::~SettlementInfluence() = default;
+
+  std::array<double, 9>
+  SettlementInfluence::far_influences(const unsigned int c,
+                                      const Point<2>    &x,
+                                      const unsigned int needed) const
+  {
+    const GaussTable<9>  &table = tables->cells[c].gauss[three_point_rule];
+    std::array<double, 9> sum{};
+    unsigned int          shapes[9], n_shapes = 0;
+    for (unsigned int i = 0; i < 9; ++i)
+      if (needed & (1u << i))
+        shapes[n_shapes++] = i;
+    for (const auto &image : images)
+      {
+        const Point<2> y(image[0] * x[0], image[1] * x[1]);
+        for (unsigned int q = 0; q < table.points.size(); ++q)
+          {
+            const double r = y.distance(table.points[q]);
+            double       k = kernel.alpha / r;
+            if (kernel.remainder)
+              k += kernel.remainder->value(r);
+            for (unsigned int s = 0; s < n_shapes; ++s)
+              sum[shapes[s]] += k * table.weights[q][shapes[s]];
+          }
+      }
+    return sum;
+  }
+
+  std::array<double, 9>
+  SettlementInfluence::near_corrections(const unsigned int c,
+                                        const Point<2>    &x) const
+  {
+    const KernelCell<9>  &cell = tables->cells[c];
+    std::array<double, 9> sum{};
+    for (const auto &image : images)
+      {
+        const Point<2> y(image[0] * x[0], image[1] * x[1]);
+        if (y.distance(cell.centre) >= near_distance * cell.diameter)
+          continue;
+        add_scaled(sum, 1., kernel_integral(cell, y, *duffy, kernel));
+        add_scaled(sum, -1., three_point_integral(cell, y, kernel));
+      }
+    return sum;
+  }
+
+  std::vector<unsigned int>
+  SettlementInfluence::near_cells(const Point<2> &x) const
+  {
+    std::vector<unsigned int> cells;
+    for (const auto &image : images)
+      {
+        const Point<2> y(image[0] * x[0], image[1] * x[1]);
+        for (auto it =
+               tables->near_zones.qbegin(boost::geometry::index::intersects(y));
+             it != tables->near_zones.qend();
+             ++it)
+          cells.push_back(it->second);
+      }
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    return cells;
   }
 } // namespace PlateOnHalfspace

@@ -114,15 +114,31 @@ namespace PlateOnHalfspace
     /**
      * The settlement u(x) of the soil surface under the pressure with the
      * nodal values @p nodal_pressure at each of @p points of the computed
-     * part: the soil model's own law (SoilModel::settlement_at_points()),
-     * which a goal's error estimate needs between the nodes.
+     * part, which a goal's error estimate needs between the nodes: the
+     * soil model's own law (SoilModel::settlement_at_points()), or, for a
+     * continuum soil where points × loaded cells exceed
+     * compressed_settlement_threshold, the same integrals through a
+     * compressed influence matrix at Foundation operator/Tolerance
+     * (halfspace/compressed_settlement.h).
      */
     std::vector<double>
     settlement_at_points(const FoundationSpace       &space,
                          const Vector<double>        &nodal_pressure,
-                         const std::vector<Point<2>> &points) const
+                         const std::vector<Point<2>> &points) const;
+
+    /**
+     * Points × loaded cells from which settlement_at_points() compresses:
+     * about where the compressed evaluation becomes the faster
+     * (doc/performance.md, "Goal error estimate").
+     */
+    static constexpr double compressed_settlement_threshold = 2e8;
+
+    /** The accuracy of compressed evaluations (Foundation
+     *  operator/Tolerance); create_foundation_operator() sets it. */
+    void
+    set_compression_tolerance(const double tolerance)
     {
-      return soil_model->settlement_at_points(space, nodal_pressure, points);
+      compression_tolerance = tolerance;
     }
 
     /** The soil model whose flexibility this operator stores. */
@@ -262,6 +278,7 @@ namespace PlateOnHalfspace
 
     /** Set by each variant's constructor. */
     std::shared_ptr<const SoilModel> soil_model;
+    double                           compression_tolerance = 1e-6;
 
     SparsityPattern      mass_sparsity;
     SparseMatrix<double> mass;

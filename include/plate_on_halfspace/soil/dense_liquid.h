@@ -32,9 +32,6 @@ namespace PlateOnHalfspace
     double
     patch_stiffness(const double size) const override;
 
-    unsigned int
-    largest_goal_estimate() const override;
-
     double
     radius_of_relative_stiffness(const double flexural_rigidity) const override;
 

@@ -146,14 +146,6 @@ namespace PlateOnHalfspace
     patch_stiffness(const double size) const = 0;
 
     /**
-     * The most foundation nodes for which a goal's error estimate is
-     * affordable: settlement_at_points() at every Gauss point of the
-     * contact cells costs O(n^2) for a continuum, O(n) for a local model.
-     */
-    virtual unsigned int
-    largest_goal_estimate() const = 0;
-
-    /**
      * The radius of relative stiffness of a plate of flexural rigidity
      * @p flexural_rigidity on this soil: the length l at which the plate's
      * bending stiffness D k^4 equals the soil's 1/G(k), k = 1/l
@@ -209,9 +201,6 @@ namespace PlateOnHalfspace
     settlement_at_points(const FoundationSpace       &space,
                          const Vector<double>        &nodal_pressure,
                          const std::vector<Point<2>> &points) const override;
-
-    unsigned int
-    largest_goal_estimate() const override;
 
     unsigned int
     singular_quadrature_order() const

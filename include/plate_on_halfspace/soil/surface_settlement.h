@@ -14,7 +14,14 @@
 #include <plate_on_halfspace/plate/foundation_space.h>
 #include <plate_on_halfspace/soil/soil_model.h>
 
+#include <array>
+#include <memory>
 #include <vector>
+
+namespace dealii
+{
+  class QDuffy;
+}
 
 namespace PlateOnHalfspace
 {
@@ -39,6 +46,72 @@ namespace PlateOnHalfspace
                        const std::vector<Point<2>> &points,
                        const SurfaceKernel         &kernel,
                        const unsigned int           singular_order);
+
+  /**
+   * settlement_at_points() split for a compressed evaluation
+   * (halfspace/compressed_settlement.h): per cell and for its nine local Q2
+   * shape functions N_k (FE_Q<2>(2) numbering), with the cell's mirror
+   * images (through the images of x),
+   *  - far_influences(): ∫ K(|x - y|) N_k(y) dy on the cell's 3 x 3 Gauss
+   *    rule, whatever the distance: a smooth function of x away from the
+   *    cell, which ACA compresses well;
+   *  - near_corrections(): what settlement_at_points() integrates minus
+   *    that, on the cells within 2.5 of their diameters of x (the singular
+   *    rule and the 5-point rule there; near_cells() finds them), zero
+   *    elsewhere.
+   * Their sum is settlement_at_points() where it uses the 3-point rule
+   * (from 2.5 to 20 diameters, and beyond for a kernel with a remainder);
+   * beyond 20 diameters a pure alpha / r keeps the 3-point rule where
+   * settlement_at_points() takes 2 points (the better of the two).
+   * A node's influence is the sum over its cells of these times its weights
+   * in the cells' expansions (FoundationSpace::Cell).
+   */
+  class SettlementInfluence
+  {
+  public:
+    /** @p space must outlive this object. */
+    SettlementInfluence(const FoundationSpace &space,
+                        const SurfaceKernel   &kernel,
+                        const unsigned int     singular_order);
+    ~SettlementInfluence();
+
+    /** Only the shape functions whose bit is set in @p needed (bit k for
+     *  N_k) are integrated; the others read 0. */
+    std::array<double, 9>
+    far_influences(const unsigned int c,
+                   const Point<2>    &x,
+                   const unsigned int needed = 0x1ff) const;
+
+    std::array<double, 9>
+    near_corrections(const unsigned int c, const Point<2> &x) const;
+
+    /** The cells whose near_corrections() at @p x may be non-zero. */
+    std::vector<unsigned int>
+    near_cells(const Point<2> &x) const;
+
+    /** The cells of the space whose expansion contains node @p i. */
+    const std::vector<unsigned int> &
+    cells_containing(const unsigned int i) const
+    {
+      return node_cells[i];
+    }
+
+    const FoundationSpace &
+    foundation_space() const
+    {
+      return space;
+    }
+
+  private:
+    struct Cells;
+
+    const FoundationSpace                 &space;
+    const SurfaceKernel                    kernel;
+    std::unique_ptr<const QDuffy>          duffy;
+    std::vector<std::array<double, 2>>     images;
+    std::unique_ptr<Cells>                 tables;
+    std::vector<std::vector<unsigned int>> node_cells;
+  };
 } // namespace PlateOnHalfspace
 
 #endif
