@@ -19,9 +19,8 @@ namespace PlateOnHalfspace
 
   namespace
   {
-    /** The context of the assembly: the entries, the two numberings and
-     *  the first error. */
-    struct InfluenceContext
+    /** What the block entries read: the influences and both numberings. */
+    struct InfluenceColumns
     {
       const SettlementInfluence   *influence;
       const std::vector<Point<2>> *points;
@@ -29,48 +28,7 @@ namespace PlateOnHalfspace
        *  not a column). */
       const std::vector<unsigned int> *column_nodes;
       const std::vector<int>          *column_unknowns;
-      std::string                      error;
     };
-
-    struct InfluenceRequest
-    {
-      InfluenceContext *context;
-      int               row_start, column_start;
-      const int        *row_hmat_to_point, *column_hmat_to_unknown,
-        *column_unknown_to_hmat;
-    };
-
-    void
-    release_request(void *data)
-    {
-      delete static_cast<InfluenceRequest *>(data);
-    }
-
-    void
-    prepare_influence_block(int                row_start,
-                            int                row_count,
-                            int                column_start,
-                            int                column_count,
-                            int               *row_hmat_to_point,
-                            int               *row_point_to_hmat,
-                            int               *column_hmat_to_unknown,
-                            int               *column_unknown_to_hmat,
-                            void              *context,
-                            hmat_block_info_t *info)
-    {
-      (void)row_count;
-      (void)column_count;
-      (void)row_point_to_hmat;
-      info->block_type = hmat_block_full;
-      info->user_data =
-        new InfluenceRequest{static_cast<InfluenceContext *>(context),
-                             row_start,
-                             column_start,
-                             row_hmat_to_point,
-                             column_hmat_to_unknown,
-                             column_unknown_to_hmat};
-      info->release_user_data = release_request;
-    }
 
     /**
      * The sub-block (rows row_begin + [0, n_rows), columns column_begin +
@@ -81,18 +39,18 @@ namespace PlateOnHalfspace
      * the number of threads.
      */
     void
-    compute_influence_block(const InfluenceRequest &request,
-                            const int               row_begin,
-                            const int               n_rows,
-                            const int               column_begin,
-                            const int               n_columns,
-                            double                 *out)
+    compute_influence_block(const InfluenceColumns        &context,
+                            const HmatGlue::BlockPosition &block,
+                            const int                      row_begin,
+                            const int                      n_rows,
+                            const int                      column_begin,
+                            const int                      n_columns,
+                            double                        *out)
     {
-      const InfluenceContext    &context   = *request.context;
       const SettlementInfluence &influence = *context.influence;
       const FoundationSpace     &space     = influence.foundation_space();
-      const int                  first_row = request.row_start + row_begin;
-      const int first_column = request.column_start + column_begin;
+      const int                  first_row = block.row_start + row_begin;
+      const int first_column               = block.column_start + column_begin;
 
       // The block's columns in each cell of their supports: which local
       // shape function, with which weight, adds to which column.
@@ -111,8 +69,9 @@ namespace PlateOnHalfspace
       std::vector<unsigned int> cell_list;
       for (int q = 0; q < n_columns; ++q)
         {
-          const unsigned int node = (*context.column_nodes)
-            [request.column_hmat_to_unknown[first_column + q]];
+          const unsigned int node =
+            (*context
+                .column_nodes)[block.column_hmat_to_unknown[first_column + q]];
           for (const unsigned int c : influence.cells_containing(node))
             cell_list.push_back(c);
         }
@@ -130,7 +89,7 @@ namespace PlateOnHalfspace
                 if (unknown < 0)
                   continue;
                 const int q =
-                  request.column_unknown_to_hmat[unknown] - first_column;
+                  block.column_unknown_to_hmat[unknown] - first_column;
                 if (q < 0 || q >= n_columns)
                   continue;
                 support.needed |= 1u << i;
@@ -156,7 +115,7 @@ namespace PlateOnHalfspace
 
       std::fill(out, out + std::size_t(n_rows) * n_columns, 0.);
       const auto point_of = [&](const int r) {
-        return (*context.points)[request.row_hmat_to_point[first_row + r]];
+        return (*context.points)[block.row_hmat_to_unknown[first_row + r]];
       };
       if (n_rows > 1)
         parallel::apply_to_subranges(
@@ -190,34 +149,6 @@ namespace PlateOnHalfspace
           for (const auto &sum : sums)
             for (int q = 0; q < n_columns; ++q)
               out[q] += sum[q];
-        }
-    }
-
-    /** hmat-oss's block callback; an exception is kept and rethrown, which
-     *  makes hmat-oss abandon the assembly with a non-zero status. */
-    void
-    compute_influence_callback(void *data,
-                               int   row_begin,
-                               int   n_rows,
-                               int   column_begin,
-                               int   n_columns,
-                               void *values)
-    {
-      const InfluenceRequest &request = *static_cast<InfluenceRequest *>(data);
-      try
-        {
-          compute_influence_block(request,
-                                  row_begin,
-                                  n_rows,
-                                  column_begin,
-                                  n_columns,
-                                  static_cast<double *>(values));
-        }
-      catch (const std::exception &e)
-        {
-          if (request.context->error.empty())
-            request.context->error = e.what();
-          throw;
         }
     }
 
@@ -264,39 +195,22 @@ namespace PlateOnHalfspace
     const SettlementInfluence influence(space, kernel, singular_order);
     const unsigned int        leaf_size = 48;
 
-    // Column tree: a node, then the vertices of its cells (its support).
+    // Column tree: each node's extent its support.
     InfluenceMatrix           column_holder;
     std::vector<unsigned int> column_order;
-    {
-      const unsigned int  n_columns = column_nodes.size();
-      std::vector<double> coordinates;
-      for (const unsigned int i : column_nodes)
-        {
-          coordinates.push_back(space.node_locations[i][0]);
-          coordinates.push_back(space.node_locations[i][1]);
-        }
-      for (const auto &cell : space.cells)
-        for (const Point<2> &v : cell.geometry.get_vertices())
-          {
-            coordinates.push_back(v[0]);
-            coordinates.push_back(v[1]);
-          }
-      std::vector<unsigned int> span_ends, spans;
-      for (unsigned int k = 0; k < n_columns; ++k)
-        {
-          spans.push_back(k);
-          for (const unsigned int c :
-               influence.cells_containing(column_nodes[k]))
-            for (unsigned int v = 0; v < 4; ++v)
-              spans.push_back(n_columns + 4 * c + v);
-          span_ends.push_back(spans.size());
-        }
-      column_holder.columns = HmatGlue::make_cluster_tree(
-        coordinates, span_ends, spans, leaf_size, column_order);
-    }
+    column_holder.columns = HmatGlue::make_support_cluster_tree(
+      space.node_locations,
+      column_nodes,
+      space.cells,
+      space.cells.size(),
+      [&](const unsigned int i) -> const std::vector<unsigned int> & {
+        return influence.cells_containing(i);
+      },
+      leaf_size,
+      column_order);
     std::vector<double> x(column_order.size());
     for (unsigned int k = 0; k < x.size(); ++k)
-      x[k] = nodal_pressure[column_nodes[column_order[k]]];
+      x[k] = nodal_pressure[column_order[k]];
 
     // The points in batches, so that one batch's H-matrix is held at a
     // time: its memory grows like points^1.3 (doc/performance.md).
@@ -327,46 +241,40 @@ namespace PlateOnHalfspace
           held.rows = HmatGlue::make_cluster_tree(
             coordinates, span_ends, spans, leaf_size, row_order);
         }
-        hmat_admissibility_param_t admissibility_parameters;
-        hmat_init_admissibility_param(&admissibility_parameters);
-        admissibility_parameters.eta = 2.;
-        hmat_admissibility_t *admissibility =
-          hmat_create_admissibility(&admissibility_parameters);
-        held.matrix = hmat().create_empty_hmatrix_admissibility(
-          held.rows, column_holder.columns, 0, admissibility);
-        hmat_delete_admissibility(admissibility);
-        AssertThrow(held.matrix != nullptr,
-                    ExcMessage("Adaptivity/Goal: hmat-oss could not create "
-                               "the settlement's influence matrix."));
-        hmat().set_low_rank_epsilon(held.matrix, tolerance);
-
-        InfluenceContext context{
-          &influence, &batch, &column_nodes, &column_unknowns, ""};
-        hmat_assemble_context_t assembly;
-        hmat_assemble_context_init(&assembly);
-        hmat_compression_algorithm_t *compression =
-          hmat_create_compression_aca_plus(tolerance);
-        assembly.compression     = compression;
-        assembly.user_context    = &context;
-        assembly.prepare         = prepare_influence_block;
-        assembly.block_compute   = compute_influence_callback;
-        assembly.lower_symmetric = 0;
-        assembly.factorization   = hmat_factorization_none;
-        assembly.progress        = nullptr;
-        int                 status;
+        held.matrix = HmatGlue::make_empty_hmatrix(
+          held.rows,
+          column_holder.columns,
+          false,
+          2.,
+          tolerance,
+          "Adaptivity/Goal: hmat-oss could not create the settlement's "
+          "influence matrix.");
+        const InfluenceColumns context{&influence,
+                                       &batch,
+                                       &column_nodes,
+                                       &column_unknowns};
+        HmatGlue::assemble_with_aca(
+          held.matrix,
+          false,
+          tolerance,
+          [&](const HmatGlue::BlockPosition &block,
+              const int                      row_begin,
+              const int                      n_rows,
+              const int                      column_begin,
+              const int                      n_columns,
+              double                        *out) {
+            compute_influence_block(
+              context, block, row_begin, n_rows, column_begin, n_columns, out);
+          },
+          nullptr,
+          "Adaptivity/Goal: integrating the settlement's influence matrix "
+          "failed: ",
+          "the assembly of the settlement's influence matrix");
+        // u = G q in hmat-oss's numbering, back to the points'
         std::vector<double> y(row_order.size(), 0.);
         {
           const HmatGlue::SingleThreadedBlas single_threaded_blas;
-          status = hmat().assemble_generic(held.matrix, &assembly);
-          hmat_delete_compression(compression);
-          AssertThrow(context.error.empty(),
-                      ExcMessage("Adaptivity/Goal: integrating the "
-                                 "settlement's influence matrix failed: " +
-                                 context.error));
-          check_hmat(status,
-                     "the assembly of the settlement's influence matrix");
-          // u = G q in hmat-oss's numbering, back to the points'
-          const double one = 1., zero = 0.;
+          const double                       one = 1., zero = 0.;
           check_hmat(
             hmat().gemm_dense(
               'N', 'N', 'L', &one, held.matrix, x.data(), &zero, y.data(), 1),
@@ -381,14 +289,9 @@ namespace PlateOnHalfspace
 
 
     // q_h at each cell's Q2 nodes, for the near corrections and the check.
-    std::vector<std::array<double, 9>> q2(space.cells.size());
-    for (unsigned int c = 0; c < space.cells.size(); ++c)
-      for (unsigned int i = 0; i < 9; ++i)
-        {
-          q2[c][i] = 0;
-          for (const auto &term : space.cells[c].expansion[i])
-            q2[c][i] += term.second * nodal_pressure[term.first];
-        }
+    std::vector<std::array<double, 9>> q2;
+    for (const auto &cell : space.cells)
+      q2.push_back(cell.local_values(nodal_pressure));
     const auto add = [&](const std::array<double, 9> &influences,
                          const unsigned int           c) {
       double sum = 0;

@@ -119,14 +119,9 @@ namespace PlateOnHalfspace
   namespace
   {
     /**
-     * The cluster tree of @p nodes (natural numbers, empty: all). Points:
-     * the nodes, then the vertices of the computed cells; the extent
-     * ("span") of node i is the node itself and the vertices of the cells
-     * containing it, its support. hmat-oss 1.8.1 leaves out all but the
-     * first span point of the first node of a cluster from the cluster's
-     * bounding box, so that first point is the node itself, which always
-     * lies in the box. Returns the tree and its numbering (position k
-     * holds node natural[k] of the block).
+     * The cluster tree of @p nodes (natural numbers, empty: all), each
+     * node's extent its support (HmatGlue::make_support_cluster_tree()):
+     * the computed cells of @p summation that contain it.
      */
     hmat_cluster_tree_struct *
     make_cluster_tree(const std::vector<FoundationSpace::Cell> &cells,
@@ -136,45 +131,16 @@ namespace PlateOnHalfspace
                       const unsigned int                        leaf_size,
                       std::vector<unsigned int>                &hmat_to_node)
     {
-      const unsigned int n_computed = summation.n_computed_cells();
-      const unsigned int n_tree =
-        nodes.empty() ? node_locations.size() : nodes.size();
-      const auto node = [&](const unsigned int k) {
-        return nodes.empty() ? k : nodes[k];
-      };
-      std::vector<double> coordinates;
-      coordinates.reserve(2 * (n_tree + 4 * n_computed));
-      for (unsigned int k = 0; k < n_tree; ++k)
-        {
-          coordinates.push_back(node_locations[node(k)][0]);
-          coordinates.push_back(node_locations[node(k)][1]);
-        }
-      for (unsigned int c = 0; c < n_computed; ++c)
-        for (const Point<2> &v : cells[c].geometry.get_vertices())
-          {
-            coordinates.push_back(v[0]);
-            coordinates.push_back(v[1]);
-          }
-      std::vector<unsigned int> span_ends(n_tree), spans;
-      for (unsigned int k = 0; k < n_tree; ++k)
-        {
-          AssertThrow(!summation.cells_containing(node(k)).empty(),
-                      ExcMessage("HierarchicalFlexibility: foundation node " +
-                                 std::to_string(node(k)) +
-                                 " lies in no cell."));
-          spans.push_back(k);
-          for (const unsigned int c : summation.cells_containing(node(k)))
-            for (unsigned int v = 0; v < 4; ++v)
-              spans.push_back(n_tree + 4 * c + v);
-          span_ends[k] = spans.size();
-        }
-      std::vector<unsigned int> position_to_unknown;
-      hmat_cluster_tree_struct *tree = HmatGlue::make_cluster_tree(
-        coordinates, span_ends, spans, leaf_size, position_to_unknown);
-      hmat_to_node.resize(n_tree);
-      for (unsigned int k = 0; k < n_tree; ++k)
-        hmat_to_node[k] = node(position_to_unknown[k]);
-      return tree;
+      return HmatGlue::make_support_cluster_tree(
+        node_locations,
+        nodes,
+        cells,
+        summation.n_computed_cells(),
+        [&](const unsigned int i) -> const std::vector<unsigned int> & {
+          return summation.cells_containing(i);
+        },
+        leaf_size,
+        hmat_to_node);
     }
 
     /** Each node's place in @p nodes, -1 if absent (empty if all). */
@@ -231,22 +197,14 @@ namespace PlateOnHalfspace
                                       settings.leaf_size,
                                       hmat_to_column);
 
-    hmat_admissibility_param_t admissibility_parameters;
-    hmat_init_admissibility_param(&admissibility_parameters);
-    admissibility_parameters.eta = settings.eta;
-    hmat_admissibility_t *admissibility =
-      hmat_create_admissibility(&admissibility_parameters);
-    matrix = hmat().create_empty_hmatrix_admissibility(row_tree,
-                                                       column_tree,
-                                                       symmetric ? 1 : 0,
-                                                       admissibility);
-    hmat_delete_admissibility(admissibility);
-    AssertThrow(matrix != nullptr,
-                ExcMessage("Foundation operator/Storage = hierarchical: "
-                           "hmat-oss could not create the H-matrix."));
-    // Without this, hmat-oss recompresses at its default 1e-4 whatever the
-    // assembly tolerance.
-    hmat().set_low_rank_epsilon(matrix, settings.tolerance);
+    matrix = HmatGlue::make_empty_hmatrix(
+      row_tree,
+      column_tree,
+      symmetric,
+      settings.eta,
+      settings.tolerance,
+      "Foundation operator/Storage = hierarchical: hmat-oss could not create "
+      "the H-matrix.");
 
     timer.restart();
     const double integration_time = HmatGlue::assemble_flexibility(

@@ -1,6 +1,9 @@
 #include "hmat_glue.h"
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/timer.h>
+
+#include <plate_on_halfspace/base/progress.h>
 
 #include <dlfcn.h>
 #include <fcntl.h>
@@ -95,6 +98,201 @@ namespace PlateOnHalfspace
           position_to_unknown[k] = unknown;
         }
       return tree;
+    }
+
+    hmat_matrix_t *
+    make_empty_hmatrix(hmat_cluster_tree_t *rows,
+                       hmat_cluster_tree_t *columns,
+                       const bool           lower_symmetric,
+                       const double         eta,
+                       const double         tolerance,
+                       const std::string   &failure)
+    {
+      hmat_admissibility_param_t parameters;
+      hmat_init_admissibility_param(&parameters);
+      parameters.eta = eta;
+      hmat_admissibility_t *admissibility =
+        hmat_create_admissibility(&parameters);
+      hmat_matrix_t *matrix = hmat().create_empty_hmatrix_admissibility(
+        rows, columns, lower_symmetric ? 1 : 0, admissibility);
+      hmat_delete_admissibility(admissibility);
+      AssertThrow(matrix != nullptr, ExcMessage(failure));
+      hmat().set_low_rank_epsilon(matrix, tolerance);
+      return matrix;
+    }
+
+    hmat_cluster_tree_t *
+    make_support_cluster_tree(
+      const std::vector<Point<2>>              &node_locations,
+      const std::vector<unsigned int>          &nodes,
+      const std::vector<FoundationSpace::Cell> &cells,
+      const unsigned int                        n_cells,
+      const std::function<const std::vector<unsigned int> &(unsigned int)>
+                                &cells_containing,
+      const unsigned int         leaf_size,
+      std::vector<unsigned int> &hmat_to_node)
+    {
+      const unsigned int n_tree =
+        nodes.empty() ? node_locations.size() : nodes.size();
+      const auto node = [&](const unsigned int k) {
+        return nodes.empty() ? k : nodes[k];
+      };
+      std::vector<double> coordinates;
+      coordinates.reserve(2 * (n_tree + 4 * n_cells));
+      for (unsigned int k = 0; k < n_tree; ++k)
+        {
+          coordinates.push_back(node_locations[node(k)][0]);
+          coordinates.push_back(node_locations[node(k)][1]);
+        }
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (const Point<2> &v : cells[c].geometry.get_vertices())
+          {
+            coordinates.push_back(v[0]);
+            coordinates.push_back(v[1]);
+          }
+      std::vector<unsigned int> span_ends(n_tree), spans;
+      for (unsigned int k = 0; k < n_tree; ++k)
+        {
+          const std::vector<unsigned int> &support = cells_containing(node(k));
+          AssertThrow(!support.empty(),
+                      ExcMessage("HierarchicalFlexibility: foundation node " +
+                                 std::to_string(node(k)) +
+                                 " lies in no cell."));
+          spans.push_back(k);
+          for (const unsigned int c : support)
+            for (unsigned int v = 0; v < 4; ++v)
+              spans.push_back(n_tree + 4 * c + v);
+          span_ends[k] = spans.size();
+        }
+      std::vector<unsigned int> position_to_unknown;
+      hmat_cluster_tree_t      *tree = make_cluster_tree(
+        coordinates, span_ends, spans, leaf_size, position_to_unknown);
+      hmat_to_node.resize(n_tree);
+      for (unsigned int k = 0; k < n_tree; ++k)
+        hmat_to_node[k] = node(position_to_unknown[k]);
+      return tree;
+    }
+
+    namespace
+    {
+      /** The context of an assembly: the entries and the first error. */
+      struct AssemblyContext
+      {
+        const BlockEntries *entries;
+        ProgressReport     *progress;
+        std::string         error;
+        double              entries_time = 0;
+      };
+
+      /** What the prepare callback hands to the compute callback. */
+      struct PreparedBlock
+      {
+        AssemblyContext *context;
+        BlockPosition    position;
+      };
+
+      /** hmat-oss is done with a block (full, or compressed by ACA+). */
+      void
+      release_block(void *data)
+      {
+        const PreparedBlock *block = static_cast<PreparedBlock *>(data);
+        if (block->context->progress != nullptr)
+          block->context->progress->add();
+        delete block;
+      }
+
+      void
+      prepare_block(int                row_start,
+                    int                row_count,
+                    int                column_start,
+                    int                column_count,
+                    int               *row_hmat_to_unknown,
+                    int               *row_unknown_to_hmat,
+                    int               *column_hmat_to_unknown,
+                    int               *column_unknown_to_hmat,
+                    void              *context,
+                    hmat_block_info_t *info)
+      {
+        (void)row_count;
+        (void)column_count;
+        info->block_type = hmat_block_full;
+        info->user_data =
+          new PreparedBlock{static_cast<AssemblyContext *>(context),
+                            {row_start,
+                             column_start,
+                             row_hmat_to_unknown,
+                             row_unknown_to_hmat,
+                             column_hmat_to_unknown,
+                             column_unknown_to_hmat}};
+        info->release_user_data = release_block;
+      }
+
+      /**
+       * hmat-oss's block callback. An exception must not cross the C
+       * interface unannounced: keep its message for the caller and
+       * rethrow, which makes hmat-oss abandon the assembly with a non-zero
+       * status.
+       */
+      void
+      compute_block(void *data,
+                    int   row_begin,
+                    int   n_rows,
+                    int   column_begin,
+                    int   n_columns,
+                    void *values)
+      {
+        const PreparedBlock &block   = *static_cast<PreparedBlock *>(data);
+        AssemblyContext     &context = *block.context;
+        const Timer          timer;
+        try
+          {
+            (*context.entries)(block.position,
+                               row_begin,
+                               n_rows,
+                               column_begin,
+                               n_columns,
+                               static_cast<double *>(values));
+            context.entries_time += timer.wall_time();
+          }
+        catch (const std::exception &e)
+          {
+            if (context.error.empty())
+              context.error = e.what();
+            throw;
+          }
+      }
+    } // namespace
+
+    double
+    assemble_with_aca(hmat_matrix_t      *matrix,
+                      const bool          lower_symmetric,
+                      const double        tolerance,
+                      const BlockEntries &entries,
+                      ProgressReport     *progress,
+                      const std::string  &failure,
+                      const std::string  &what)
+    {
+      AssemblyContext         context{&entries, progress, "", 0};
+      hmat_assemble_context_t assembly;
+      hmat_assemble_context_init(&assembly);
+      hmat_compression_algorithm_t *compression =
+        hmat_create_compression_aca_plus(tolerance);
+      assembly.compression     = compression;
+      assembly.user_context    = &context;
+      assembly.prepare         = prepare_block;
+      assembly.block_compute   = compute_block;
+      assembly.lower_symmetric = lower_symmetric ? 1 : 0;
+      assembly.factorization   = hmat_factorization_none;
+      assembly.progress        = nullptr; // hmat-oss's own bar is on stdout
+      int status;
+      {
+        const SingleThreadedBlas single_threaded_blas;
+        status = hmat().assemble_generic(matrix, &assembly);
+      }
+      hmat_delete_compression(compression);
+      AssertThrow(context.error.empty(), ExcMessage(failure + context.error));
+      check_hmat(status, what);
+      return context.entries_time;
     }
 
     bool

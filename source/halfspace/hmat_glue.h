@@ -10,15 +10,19 @@
 #ifndef plate_on_halfspace_source_halfspace_hmat_glue_h
 #define plate_on_halfspace_source_halfspace_hmat_glue_h
 
+#include <plate_on_halfspace/plate/foundation_space.h>
+
 #include <hmat/hmat.h>
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace PlateOnHalfspace
 {
   class CellPairSummation;
+  class ProgressReport;
 
   namespace HmatGlue
   {
@@ -115,6 +119,83 @@ namespace PlateOnHalfspace
                       std::vector<unsigned int> &spans,
                       const unsigned int         leaf_size,
                       std::vector<unsigned int> &position_to_unknown);
+
+    /**
+     * An empty H-matrix on the trees @p rows and @p columns (lower-symmetric
+     * storage if @p lower_symmetric) with Hackbusch's admissibility of
+     * parameter @p eta, recompressing at @p tolerance (hmat-oss's low-rank
+     * epsilon; without it hmat-oss recompresses at its default 1e-4
+     * whatever the assembly's tolerance). Throws @p failure if hmat-oss
+     * fails.
+     */
+    hmat_matrix_t *
+    make_empty_hmatrix(hmat_cluster_tree_t *rows,
+                       hmat_cluster_tree_t *columns,
+                       const bool           lower_symmetric,
+                       const double         eta,
+                       const double         tolerance,
+                       const std::string   &failure);
+
+    /**
+     * The cluster tree of the foundation nodes @p nodes (natural numbers;
+     * empty: all of @p node_locations), each with its support as extent:
+     * the node itself, then the vertices of the cells @p cells_containing
+     * it (indices into the first @p n_cells of @p cells, whose vertices are
+     * the tree's points). Returns the tree and, in
+     * @p hmat_to_node, the node at each of its positions. Throws if a node
+     * lies in no cell.
+     */
+    hmat_cluster_tree_t *
+    make_support_cluster_tree(
+      const std::vector<Point<2>>              &node_locations,
+      const std::vector<unsigned int>          &nodes,
+      const std::vector<FoundationSpace::Cell> &cells,
+      const unsigned int                        n_cells,
+      const std::function<const std::vector<unsigned int> &(unsigned int)>
+                                &cells_containing,
+      const unsigned int         leaf_size,
+      std::vector<unsigned int> &hmat_to_node);
+
+    /**
+     * One leaf block as hmat-oss prepares it: its first row and column in
+     * hmat-oss's numbering, and the maps between that numbering and the
+     * unknowns of the row and column trees.
+     */
+    struct BlockPosition
+    {
+      int        row_start, column_start;
+      const int *row_hmat_to_unknown, *row_unknown_to_hmat;
+      const int *column_hmat_to_unknown, *column_unknown_to_hmat;
+    };
+
+    /**
+     * Fill the sub-block (rows row_begin + [0, n_rows), columns
+     * column_begin + [0, n_columns)) of a block, column-major into out:
+     * the whole block (near field), or one row or column (ACA+).
+     */
+    using BlockEntries = std::function<void(const BlockPosition &block,
+                                            int                  row_begin,
+                                            int                  n_rows,
+                                            int                  column_begin,
+                                            int                  n_columns,
+                                            double              *out)>;
+
+    /**
+     * Assemble the empty H-matrix @p matrix with ACA+ at @p tolerance,
+     * every entry from @p entries, with one BLAS thread. @p progress, if
+     * given, counts the blocks done. An exception of @p entries is kept and
+     * rethrown after hmat-oss has abandoned the assembly, as ExcMessage
+     * @p failure followed by its message; a failed hmat-oss status throws
+     * naming @p what. Returns the wall time spent inside @p entries.
+     */
+    double
+    assemble_with_aca(hmat_matrix_t      *matrix,
+                      const bool          lower_symmetric,
+                      const double        tolerance,
+                      const BlockEntries &entries,
+                      ProgressReport     *progress,
+                      const std::string  &failure,
+                      const std::string  &what);
 
     /**
      * The foundation nodes of a cluster tree: its k-th unknown is node

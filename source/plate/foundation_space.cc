@@ -196,6 +196,16 @@ namespace PlateOnHalfspace
     return result;
   }
 
+  std::array<double, 9>
+  FoundationSpace::Cell::local_values(const Vector<double> &nodal_values) const
+  {
+    std::array<double, 9> values{};
+    for (unsigned int i = 0; i < 9; ++i)
+      for (const auto &term : expansion[i])
+        values[i] += term.second * nodal_values[term.first];
+    return values;
+  }
+
   double
   FoundationSpace::area() const
   {

@@ -239,15 +239,11 @@ namespace PlateOnHalfspace
     std::vector<KernelCell<1>> cells;
     for (const auto &space_cell : space.cells)
       {
-        std::array<double, 9> q2_values{};
-        bool                  loaded = false;
-        for (unsigned int i = 0; i < 9; ++i)
-          {
-            for (const auto &term : space_cell.expansion[i])
-              q2_values[i] += term.second * nodal_pressure[term.first];
-            loaded = loaded || q2_values[i] != 0;
-          }
-        if (loaded)
+        const std::array<double, 9> q2_values =
+          space_cell.local_values(nodal_pressure);
+        if (std::any_of(q2_values.begin(), q2_values.end(), [](double q) {
+              return q != 0;
+            }))
           cells.push_back(make_cell<1>(space_cell, q2_values, kernel));
       }
     const auto images = image_factors(space);
@@ -284,25 +280,33 @@ namespace PlateOnHalfspace
     /** The index of the 3 x 3 rule in KernelCell::gauss. */
     constexpr unsigned int three_point_rule = 1;
 
-    template <int N>
-    std::array<double, N>
-    three_point_integral(const KernelCell<N> &cell,
-                         const Point<2>      &x,
-                         const SurfaceKernel &kernel)
+    /**
+     * @p sum += @p sign ∫ K(|y - z|) N_k(z) dz on the cell's 3 x 3 Gauss
+     * rule, for the shapes N_k whose bit is set in @p needed.
+     */
+    void
+    add_three_point_integral(const KernelCell<9>   &cell,
+                             const Point<2>        &y,
+                             const SurfaceKernel   &kernel,
+                             const unsigned int     needed,
+                             const double           sign,
+                             std::array<double, 9> &sum)
     {
-      const GaussTable<N>  &table = cell.gauss[three_point_rule];
-      std::array<double, N> integral{}, smooth{};
+      const GaussTable<9> &table = cell.gauss[three_point_rule];
+      unsigned int         shapes[9], n_shapes = 0;
+      for (unsigned int i = 0; i < 9; ++i)
+        if (needed & (1u << i))
+          shapes[n_shapes++] = i;
       for (unsigned int q = 0; q < table.points.size(); ++q)
         {
-          const double r = x.distance(table.points[q]);
-          for (int i = 0; i < N; ++i)
-            integral[i] += table.weights[q][i] / r;
+          const double r = y.distance(table.points[q]);
+          double       k = kernel.alpha / r;
           if (kernel.remainder)
-            add_scaled(smooth, kernel.remainder->value(r), table.weights[q]);
+            k += kernel.remainder->value(r);
+          k *= sign;
+          for (unsigned int s = 0; s < n_shapes; ++s)
+            sum[shapes[s]] += k * table.weights[q][shapes[s]];
         }
-      for (int i = 0; i < N; ++i)
-        integral[i] = kernel.alpha * integral[i] + smooth[i];
-      return integral;
     }
   } // namespace
 
@@ -349,25 +353,14 @@ namespace PlateOnHalfspace
                                       const Point<2>    &x,
                                       const unsigned int needed) const
   {
-    const GaussTable<9>  &table = tables->cells[c].gauss[three_point_rule];
     std::array<double, 9> sum{};
-    unsigned int          shapes[9], n_shapes = 0;
-    for (unsigned int i = 0; i < 9; ++i)
-      if (needed & (1u << i))
-        shapes[n_shapes++] = i;
     for (const auto &image : images)
-      {
-        const Point<2> y(image[0] * x[0], image[1] * x[1]);
-        for (unsigned int q = 0; q < table.points.size(); ++q)
-          {
-            const double r = y.distance(table.points[q]);
-            double       k = kernel.alpha / r;
-            if (kernel.remainder)
-              k += kernel.remainder->value(r);
-            for (unsigned int s = 0; s < n_shapes; ++s)
-              sum[shapes[s]] += k * table.weights[q][shapes[s]];
-          }
-      }
+      add_three_point_integral(tables->cells[c],
+                               Point<2>(image[0] * x[0], image[1] * x[1]),
+                               kernel,
+                               needed,
+                               1.,
+                               sum);
     return sum;
   }
 
@@ -383,7 +376,7 @@ namespace PlateOnHalfspace
         if (y.distance(cell.centre) >= near_distance * cell.diameter)
           continue;
         add_scaled(sum, 1., kernel_integral(cell, y, *duffy, kernel));
-        add_scaled(sum, -1., three_point_integral(cell, y, kernel));
+        add_three_point_integral(cell, y, kernel, 0x1ff, -1., sum);
       }
     return sum;
   }

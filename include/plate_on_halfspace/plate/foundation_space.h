@@ -55,6 +55,11 @@ namespace PlateOnHalfspace
        *  appearance in the expansion. */
       std::vector<unsigned int>
       nodes() const;
+
+      /** The values at the cell's nine Q2 nodes (FE_Q<2>(2) numbering) of
+       *  the field with the nodal values @p nodal_values. */
+      std::array<double, 9>
+      local_values(const Vector<double> &nodal_values) const;
     };
 
     /** Location of each foundation node (x, y). */
