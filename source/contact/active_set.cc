@@ -210,6 +210,13 @@ namespace PlateOnHalfspace
     return false;
   }
 
+  void
+  ActiveSetUpdate::forget_visited_sets()
+  {
+    visited.clear();
+    single_pivot_mode = false;
+  }
+
   bool
   ActiveSetUpdate::detect_cycle()
   {

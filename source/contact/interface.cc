@@ -24,12 +24,16 @@ namespace PlateOnHalfspace
     // The mechanism message suggests the weight only to a weightless plate.
     set_plate_weightless(!(parameters.plate.unit_weight > 0));
     if (solver == Parameters::Contact::Solver::iterative)
-      return std::make_unique<IterativeContactSolver>(
-        parameters.contact,
-        parameters.foundation.tensionless,
-        ConjugateGradientControl(),
-        verbosity,
-        log);
+      {
+        ConjugateGradientControl control;
+        control.constrained_start = parameters.contact.constrained_start;
+        return std::make_unique<IterativeContactSolver>(
+          parameters.contact,
+          parameters.foundation.tensionless,
+          control,
+          verbosity,
+          log);
+      }
     return std::make_unique<DirectContactSolver>(
       parameters.contact, parameters.foundation.tensionless, verbosity, log);
   }

@@ -52,6 +52,20 @@ namespace PlateOnHalfspace
             const Vector<double> &x,
             Vector<double>       &soil) const;
 
+      /**
+       * The same product on every node, not only on C: y = (F + B N K^+
+       * N^T M T) q and @p soil = F q with q the zero extension of @p x.
+       * Off C, y - d - G alpha is the gap of the nodes out of contact.
+       */
+      void
+      vmult_on_all_nodes(Vector<double>       &y,
+                         const Vector<double> &x,
+                         Vector<double>       &soil) const;
+
+      /** (G^T G)^{-1} G^T @p defect: the rigid-motion amplitudes alpha. */
+      Vector<double>
+      least_squares_amplitudes(const Vector<double> &defect) const;
+
       /** y = (F̃^{-1})_CC x. */
       void
       precondition(Vector<double> &y, const Vector<double> &x) const;
@@ -64,15 +78,20 @@ namespace PlateOnHalfspace
       void
       make_equilibrated(Vector<double> &q) const;
 
-      /** alpha = (G^T G)^{-1} G^T (H q - d). */
+      /** alpha = (G^T G)^{-1} G^T (H q - d), given @p hq = H q. */
       Vector<double>
-      rigid_motion_amplitudes(const Vector<double> &q) const;
+      rigid_motion_amplitudes(const Vector<double> &hq) const;
 
-      /** r = Pi (d - H q) and @p soil = (F q)_C. */
+      /**
+       * r = Pi (d - H q) and @p soil = (F q)_C; @p product_on_all_nodes
+       * and @p soil_on_all_nodes receive vmult_on_all_nodes() of q.
+       */
       void
       projected_residual(const Vector<double> &q,
                          Vector<double>       &r,
-                         Vector<double>       &soil) const;
+                         Vector<double>       &soil,
+                         Vector<double>       &product_on_all_nodes,
+                         Vector<double>       &soil_on_all_nodes) const;
 
       /** Zero extension of a vector on C to all nodes. */
       Vector<double>
@@ -177,22 +196,42 @@ namespace PlateOnHalfspace
     }
 
     void
+    ContactSetProblem::vmult_on_all_nodes(Vector<double>       &y,
+                                          const Vector<double> &x,
+                                          Vector<double>       &soil) const
+    {
+      // F q + B N K^+ N^T M T q with q the zero extension of x (F = T^T A
+      // T, B = T^T M in the positive basis).
+      const Vector<double> q = extend_by_zero(x);
+      Vector<double> forces(q.size()), plate_w, plate_settlement(q.size());
+      soil.reinit(q.size());
+      foundation.apply(q, soil);
+      force_coupling.vmult(forces, q);
+      plate.foundation_flexibility(forces, plate_w);
+      test_coupling.vmult(plate_settlement, plate_w);
+      y = soil;
+      y += plate_settlement;
+    }
+
+    void
     ContactSetProblem::vmult(Vector<double>       &y,
                              const Vector<double> &x,
                              Vector<double>       &soil) const
     {
-      // H x = (F q)_C + (B N K^+ N^T M T q)_C with q the zero extension of
-      // x (F = T^T A T, B = T^T M in the positive basis).
-      const Vector<double> q = extend_by_zero(x);
-      Vector<double>       settlement(q.size()), forces(q.size()), plate_w,
-        plate_settlement(q.size());
-      foundation.apply(q, settlement);
-      force_coupling.vmult(forces, q);
-      plate.foundation_flexibility(forces, plate_w);
-      test_coupling.vmult(plate_settlement, plate_w);
-      soil = restrict_to_contact_set(settlement);
-      settlement += plate_settlement;
-      y = restrict_to_contact_set(settlement);
+      Vector<double> y_all, soil_all;
+      vmult_on_all_nodes(y_all, x, soil_all);
+      soil = restrict_to_contact_set(soil_all);
+      y    = restrict_to_contact_set(y_all);
+    }
+
+    Vector<double>
+    ContactSetProblem::least_squares_amplitudes(
+      const Vector<double> &defect) const
+    {
+      Vector<double> amplitudes(g.size());
+      if (!g.empty())
+        gram_inverse.vmult(amplitudes, constraint_values(defect));
+      return amplitudes;
     }
 
     void
@@ -237,23 +276,24 @@ namespace PlateOnHalfspace
     }
 
     Vector<double>
-    ContactSetProblem::rigid_motion_amplitudes(const Vector<double> &q) const
+    ContactSetProblem::rigid_motion_amplitudes(const Vector<double> &hq) const
     {
-      Vector<double> hq(q.size()), amplitudes(g.size()), soil;
-      vmult(hq, q, soil);
-      hq -= d;
-      if (!g.empty())
-        gram_inverse.vmult(amplitudes, constraint_values(hq));
-      return amplitudes;
+      Vector<double> defect(hq);
+      defect -= d;
+      return least_squares_amplitudes(defect);
     }
 
     void
-    ContactSetProblem::projected_residual(const Vector<double> &q,
-                                          Vector<double>       &r,
-                                          Vector<double>       &soil) const
+    ContactSetProblem::projected_residual(
+      const Vector<double> &q,
+      Vector<double>       &r,
+      Vector<double>       &soil,
+      Vector<double>       &product_on_all_nodes,
+      Vector<double>       &soil_on_all_nodes) const
     {
-      r.reinit(q.size());
-      vmult(r, q, soil);
+      vmult_on_all_nodes(product_on_all_nodes, q, soil_on_all_nodes);
+      soil = restrict_to_contact_set(soil_on_all_nodes);
+      r    = restrict_to_contact_set(product_on_all_nodes);
       r.sadd(-1., 1., d);
       project(r);
     }
@@ -264,6 +304,8 @@ namespace PlateOnHalfspace
       unsigned int iterations        = 0;
       double       relative_residual = 0;
       bool         converged         = false;
+      /** vmult_on_all_nodes() of the final q: H q and F q. */
+      Vector<double> product_on_all_nodes, soil_on_all_nodes;
     };
 
     /**
@@ -295,7 +337,8 @@ namespace PlateOnHalfspace
       problem.make_equilibrated(q);
       while (true)
         {
-          problem.projected_residual(q, r, soil);
+          problem.projected_residual(
+            q, r, soil, result.product_on_all_nodes, result.soil_on_all_nodes);
           result.relative_residual =
             r.l2_norm() / std::max(soil.l2_norm(), 1e-300);
           if (r.l2_norm() <= control.tolerance * soil.l2_norm() ||
@@ -421,6 +464,153 @@ namespace PlateOnHalfspace
       motion_loads[j] = motions[j] * load;
   }
 
+  std::vector<bool>
+  IterativeContactSolver::predict_contact_set(const std::vector<bool> &seed,
+                                              ContactState            &state)
+  {
+    if (!control.constrained_start)
+      return seed;
+    const FoundationSpace   &space     = plate->get_foundation_space();
+    const std::vector<bool> &supported = foundation->supported_nodes();
+    const unsigned int       n         = supported.size();
+    std::vector<bool>        contact_set(supported);
+    if (seed.size() == n && contact_set_supports_plate(space, seed))
+      for (unsigned int i = 0; i < n; ++i)
+        contact_set[i] = supported[i] && seed[i];
+    if (!contact_set_supports_plate(space, contact_set))
+      return seed;
+    const double tolerance    = changing_set_tolerance();
+    const auto   make_problem = [&](const std::vector<bool> &set) {
+      return std::make_unique<ContactSetProblem>(set,
+                                                 foundation->test_coupling(),
+                                                 foundation->force_coupling(),
+                                                 *inverse,
+                                                 *foundation,
+                                                 *preconditioner,
+                                                 tested_plate_load,
+                                                 tested_motions,
+                                                 motion_loads);
+    };
+
+    // q on the set (equilibrated), and H q and F q on every node, kept
+    // up to date by the steps and recomputed when the set loses nodes.
+    std::unique_ptr<ContactSetProblem> problem = make_problem(contact_set);
+    Vector<double>                     q(problem->size()), y_all, soil_all;
+    problem->make_equilibrated(q);
+    problem->vmult_on_all_nodes(y_all, q, soil_all);
+
+    unsigned int   iterations = 0, set_changes = 0;
+    bool           restart = true, converged = false;
+    double         rz = 0;
+    Vector<double> r, z, p, hp, hp_all, soil_p_all;
+    // An estimate only: where the conjugate gradients converge slowly (a
+    // plate far more flexible than the soil) the active set's own solves
+    // decide, so the estimate stops early rather than double their cost.
+    const unsigned int max_iterations = std::min(control.max_iterations, 200u);
+    while (iterations < max_iterations)
+      {
+        // a safe point (base/interruption.h)
+        Interruption::check();
+        // The gap on every node: y - d - G alpha, alpha fitted on C; on C
+        // it is minus the projected residual.
+        Vector<double> gap(y_all);
+        gap -= tested_plate_load;
+        const Vector<double> alpha = problem->least_squares_amplitudes(
+          problem->restrict_to_contact_set(gap));
+        for (unsigned int j = 0; j < alpha.size(); ++j)
+          gap.add(-alpha[j], tested_motions[j]);
+        r = problem->restrict_to_contact_set(gap);
+        r *= -1.;
+        problem->project(r);
+
+        // A node off the set whose gap is closed beyond the solve's
+        // accuracy joins it, with no pressure yet (the equilibrium holds).
+        double settlement_scale = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          settlement_scale =
+            std::max(settlement_scale, std::abs(soil_all[i] - gap[i]));
+        std::vector<bool> next(contact_set);
+        bool              joined = false;
+        for (unsigned int i = 0; i < n; ++i)
+          if (supported[i] && !contact_set[i] &&
+              gap[i] < -tolerance * settlement_scale)
+            next[i] = joined = true;
+        const double soil_norm =
+          problem->restrict_to_contact_set(soil_all).l2_norm();
+        if (!joined && r.l2_norm() <= tolerance * soil_norm)
+          {
+            converged = true;
+            break;
+          }
+        if (joined)
+          {
+            const Vector<double> q_all = problem->extend_by_zero(q);
+            contact_set                = next;
+            problem                    = make_problem(contact_set);
+            q       = problem->restrict_to_contact_set(q_all);
+            restart = true;
+            ++set_changes;
+            continue;
+          }
+
+        problem->precondition(z, r);
+        problem->project(z);
+        const double rz_next = r * z;
+        if (restart)
+          p = z;
+        else
+          p.sadd(rz_next / rz, 1., z);
+        rz      = rz_next;
+        restart = false;
+        problem->vmult_on_all_nodes(hp_all, p, soil_p_all);
+        hp = problem->restrict_to_contact_set(hp_all);
+        problem->project(hp);
+        const double curvature = p * hp;
+        if (!(curvature > 0 && rz > 0))
+          break; // the active set's own solves report this
+        const double step = rz / curvature;
+        q.add(step, p);
+        y_all.add(step, hp_all);
+        soil_all.add(step, soil_p_all);
+        ++iterations;
+
+        // A node whose pressure turned tensile leaves the set with none;
+        // re-equilibrate. A set that would no longer carry the plate ends
+        // the prediction: the active set's own steps handle such a set.
+        Vector<double> q_all = problem->extend_by_zero(q);
+        next                 = contact_set;
+        bool left            = false;
+        for (unsigned int i = 0; i < n; ++i)
+          if (contact_set[i] && q_all[i] < 0)
+            {
+              next[i]  = false;
+              q_all[i] = 0;
+              left     = true;
+            }
+        if (left)
+          {
+            if (!contact_set_supports_plate(space, next))
+              break;
+            contact_set = next;
+            problem     = make_problem(contact_set);
+            q           = problem->restrict_to_contact_set(q_all);
+            problem->make_equilibrated(q);
+            problem->vmult_on_all_nodes(y_all, q, soil_all);
+            restart = true;
+            ++set_changes;
+          }
+      }
+    state.q                     = problem->extend_by_zero(q);
+    state.prediction_iterations = iterations;
+    if (verbosity > 0)
+      log << "   contact set prediction: constrained conjugate gradients "
+          << iterations << " iterations, " << set_changes
+          << " set changes, nodes in contact "
+          << std::count(contact_set.begin(), contact_set.end(), true)
+          << (converged ? "" : " (not converged)") << std::endl;
+    return contact_set;
+  }
+
   Vector<double>
   IterativeContactSolver::solve_on_set(const std::vector<bool> &contact_set,
                                        const double             tolerance,
@@ -482,10 +672,12 @@ namespace PlateOnHalfspace
       }
 
     // u = K^+ (P - N^T M T q) + R alpha, w = N u.
-    const auto          &foundation_dofs = plate->get_foundation_dofs();
-    const auto          &motions         = inverse->rigid_motions();
-    const Vector<double> alpha           = problem.rigid_motion_amplitudes(q);
-    state.q                              = problem.extend_by_zero(q);
+    const auto &foundation_dofs = plate->get_foundation_dofs();
+    const auto &motions         = inverse->rigid_motions();
+    // alpha and F q from the product the last stopping test made at q.
+    const Vector<double> alpha = problem.rigid_motion_amplitudes(
+      problem.restrict_to_contact_set(cg.product_on_all_nodes));
+    state.q = problem.extend_by_zero(q);
     Vector<double> forces(n), f(plate_load), u;
     foundation->force_coupling().vmult(forces, state.q);
     for (unsigned int i = 0; i < n; ++i)
@@ -501,7 +693,7 @@ namespace PlateOnHalfspace
 
     // gap = F q - B w (B w = T^T M w).
     Vector<double> plate_settlement;
-    foundation->apply(state.q, state.gap);
+    state.gap = cg.soil_on_all_nodes;
     foundation->plate_settlement(state.w, plate_settlement);
     state.gap -= plate_settlement;
     state.in_contact = contact_set;

@@ -919,6 +919,16 @@ namespace PlateOnHalfspace
         "= galerkin and Contact/Method = active set; coupled_matrix_rcond "
         "is not estimated and reads 1; a plate far more flexible than the "
         "soil needs direct).");
+      prm.declare_entry(
+        "Constrained start",
+        "true",
+        Patterns::Bool(),
+        "Iterative solver, tensionless: start the active set from the "
+        "contact set that constrained conjugate gradients estimate (the set "
+        "changes inside one CG loop: tensile nodes leave, penetrating ones "
+        "join), which the active set then checks and corrects; false: from "
+        "the previous cycle's set (or all nodes), one solve per set. The "
+        "answer is the same; the active-set steps and the time differ.");
       prm.leave_subsection();
     }
 
@@ -934,6 +944,7 @@ namespace PlateOnHalfspace
       solver                 = (name == "iterative" ? Solver::iterative :
                                 name == "direct"    ? Solver::direct :
                                                       Solver::automatic);
+      constrained_start      = prm.get_bool("Constrained start");
       prm.leave_subsection();
       require(tolerance > 0,
               "Contact/Tolerance must lie in (0, 1]" + got(tolerance) + ".");

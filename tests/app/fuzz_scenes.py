@@ -93,6 +93,7 @@ end
 subsection Contact
   set Method         = active set
   set Max iterations = 100
+  set Constrained start = true
 end
 subsection Adaptivity
   set Cycles       = 2
@@ -144,6 +145,7 @@ choices = {
     "Initial refinements": ["0", "1", "-1", "11", "x"],
     "Cycles": ["1", "2", "0", "31"],
     "Max iterations": ["1", "2", "0", "100"],
+    "Constrained start": ["true", "false", "maybe", "", "1"],
     "Rectangular patches": ["", "0,0,1,1,100", "1,0,0,1,10", "0,0,1", "5,5,6,6,1",
                             "-3,-3,3,3,10", "0,0,1,1,nan", "0,0,1,1,-1e9", ";;", "a,b,c,d,e"],
     "Circular patches": ["", "0,0,0.3,50", "0,0,0,50", "0,0,-1,50", "9,9,1,1", "0,0,5,10"],

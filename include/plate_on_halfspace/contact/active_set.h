@@ -111,6 +111,14 @@ namespace PlateOnHalfspace
          const unsigned int    verbosity,
          std::ostream         &log);
 
+    /**
+     * The sets seen so far were judged by solves of a coarser accuracy
+     * than the next ones: returning to one of them is a correction, not a
+     * cycle. Forget them (and leave single pivots).
+     */
+    void
+    forget_visited_sets();
+
   private:
     /** Size of the current contact set. */
     unsigned int

@@ -70,6 +70,21 @@ namespace PlateOnHalfspace
                  const double             tolerance,
                  ContactState            &state) = 0;
 
+    /**
+     * A first contact set for the active set, from @p seed (the previous
+     * cycle's set, or empty): a solver that can move the contact boundary
+     * more cheaply than a solve per set returns its estimate, and may leave
+     * its pressures in state.q as the warm start. The active set then
+     * checks and corrects it, so the estimate decides only how many steps
+     * follow, never the answer. By default the seed itself.
+     */
+    virtual std::vector<bool>
+    predict_contact_set(const std::vector<bool> &seed, ContactState &state)
+    {
+      (void)state;
+      return seed;
+    }
+
     /** Relative accuracy of the solves while the active set changes. */
     virtual double
     changing_set_tolerance() const

@@ -95,6 +95,12 @@ namespace PlateOnHalfspace
        *  (recomputed, not the recursive estimate). */
       double relative_residual = 0;
     };
+    /**
+     * Conjugate gradient iterations of the iterative solver's estimate of
+     * the contact set before the active set
+     * (IterativeContactSolver::predict_contact_set(); 0 if none).
+     */
+    unsigned int prediction_iterations = 0;
     /** One entry per contact iteration (iterative solvers only). */
     std::vector<LinearSolve> linear_solves;
   };

@@ -90,6 +90,12 @@ namespace PlateOnHalfspace
      * before the last); the last set is always solved to tolerance.
      */
     double changing_set_tolerance = 1e-4;
+    /**
+     * Start the active set from the constrained conjugate gradients'
+     * estimate of the contact set (predict_contact_set()); false: from the
+     * seed, one solve per set.
+     */
+    bool constrained_start = true;
   };
 
   /**
@@ -143,6 +149,20 @@ namespace PlateOnHalfspace
     solve_on_set(const std::vector<bool> &contact_set,
                  const double             tolerance,
                  ContactState            &state) override;
+
+    /**
+     * Constrained conjugate gradients in the spirit of Polonsky and Keer
+     * (doc/formulation.md, "Tensionless contact"): the projected
+     * conjugate gradients of solve_on_set(), but the contact set changes
+     * inside the one loop: a pressure that turns negative drops its node,
+     * a node off the set whose gap closes joins it, and either restarts
+     * the directions. Ends when a set is solved to the changing-set
+     * tolerance and nothing more changes; leaves its pressures in
+     * state.q.
+     */
+    std::vector<bool>
+    predict_contact_set(const std::vector<bool> &seed,
+                        ContactState            &state) override;
 
     double
     changing_set_tolerance() const override;

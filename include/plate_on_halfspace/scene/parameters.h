@@ -298,6 +298,8 @@ namespace PlateOnHalfspace
       unsigned int max_iterations;
       double       tolerance;
       Solver       solver;
+      /** IterativeContactSolver: start from predict_contact_set(). */
+      bool constrained_start = true;
 
       static void
       declare_parameters(ParameterHandler &prm);
