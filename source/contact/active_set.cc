@@ -144,18 +144,25 @@ namespace PlateOnHalfspace
     state.max_penetration = std::max(penetration, 0.);
   }
 
+  std::vector<bool>
+  initial_contact_set(const FoundationSpace   &space,
+                      const std::vector<bool> &supported,
+                      const std::vector<bool> &seed)
+  {
+    std::vector<bool> set(supported);
+    if (seed.size() == set.size() && contact_set_supports_plate(space, seed))
+      for (unsigned int i = 0; i < set.size(); ++i)
+        set[i] = set[i] && seed[i];
+    return set;
+  }
+
   ActiveSetUpdate::ActiveSetUpdate(const FoundationSpace   &space,
                                    const std::vector<bool> &supported,
                                    const std::vector<bool> &initial_contact)
     : space(space)
     , supported(supported)
-    , active(supported)
-  {
-    if (initial_contact.size() == active.size() &&
-        contact_set_supports_plate(space, initial_contact))
-      for (unsigned int i = 0; i < active.size(); ++i)
-        active[i] = active[i] && initial_contact[i];
-  }
+    , active(initial_contact_set(space, supported, initial_contact))
+  {}
 
   unsigned int
   ActiveSetUpdate::n_contact_nodes() const

@@ -62,10 +62,6 @@ namespace PlateOnHalfspace
                          const Vector<double> &x,
                          Vector<double>       &soil) const;
 
-      /** (G^T G)^{-1} G^T @p defect: the rigid-motion amplitudes alpha. */
-      Vector<double>
-      least_squares_amplitudes(const Vector<double> &defect) const;
-
       /** y = (F̃^{-1})_CC x. */
       void
       precondition(Vector<double> &y, const Vector<double> &x) const;
@@ -224,16 +220,6 @@ namespace PlateOnHalfspace
       y    = restrict_to_contact_set(y_all);
     }
 
-    Vector<double>
-    ContactSetProblem::least_squares_amplitudes(
-      const Vector<double> &defect) const
-    {
-      Vector<double> amplitudes(g.size());
-      if (!g.empty())
-        gram_inverse.vmult(amplitudes, constraint_values(defect));
-      return amplitudes;
-    }
-
     void
     ContactSetProblem::precondition(Vector<double>       &y,
                                     const Vector<double> &x) const
@@ -278,9 +264,11 @@ namespace PlateOnHalfspace
     Vector<double>
     ContactSetProblem::rigid_motion_amplitudes(const Vector<double> &hq) const
     {
-      Vector<double> defect(hq);
+      Vector<double> defect(hq), amplitudes(g.size());
       defect -= d;
-      return least_squares_amplitudes(defect);
+      if (!g.empty())
+        gram_inverse.vmult(amplitudes, constraint_values(defect));
+      return amplitudes;
     }
 
     void
@@ -473,10 +461,7 @@ namespace PlateOnHalfspace
     const FoundationSpace   &space     = plate->get_foundation_space();
     const std::vector<bool> &supported = foundation->supported_nodes();
     const unsigned int       n         = supported.size();
-    std::vector<bool>        contact_set(supported);
-    if (seed.size() == n && contact_set_supports_plate(space, seed))
-      for (unsigned int i = 0; i < n; ++i)
-        contact_set[i] = supported[i] && seed[i];
+    std::vector<bool> contact_set = initial_contact_set(space, supported, seed);
     if (!contact_set_supports_plate(space, contact_set))
       return seed;
     const double tolerance    = changing_set_tolerance();
@@ -513,10 +498,10 @@ namespace PlateOnHalfspace
         Interruption::check();
         // The gap on every node: y - d - G alpha, alpha fitted on C; on C
         // it is minus the projected residual.
+        const Vector<double> alpha = problem->rigid_motion_amplitudes(
+          problem->restrict_to_contact_set(y_all));
         Vector<double> gap(y_all);
         gap -= tested_plate_load;
-        const Vector<double> alpha = problem->least_squares_amplitudes(
-          problem->restrict_to_contact_set(gap));
         for (unsigned int j = 0; j < alpha.size(); ++j)
           gap.add(-alpha[j], tested_motions[j]);
         r = problem->restrict_to_contact_set(gap);

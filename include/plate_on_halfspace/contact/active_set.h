@@ -59,6 +59,16 @@ namespace PlateOnHalfspace
                               ContactState            &state);
 
   /**
+   * The first contact set of an active set: the @p supported nodes,
+   * restricted to @p seed (e.g. the previous cycle's set) if that has the
+   * right size and can carry the plate.
+   */
+  std::vector<bool>
+  initial_contact_set(const FoundationSpace   &space,
+                      const std::vector<bool> &supported,
+                      const std::vector<bool> &seed);
+
+  /**
    * The set update of the primal-dual active set method (doc/formulation.md,
    * "Tensionless contact"; deal.II step-41): C = {i : q_i + c g_i > 0}.
    * On C the gap is zero and off C the pressure is, so the test reads
@@ -75,11 +85,7 @@ namespace PlateOnHalfspace
   class ActiveSetUpdate
   {
   public:
-    /**
-     * Start from the @p supported nodes, restricted to @p initial_contact
-     * (e.g. the previous cycle's set) if that has the right size and can
-     * carry the plate.
-     */
+    /** Start from initial_contact_set(@p supported, @p initial_contact). */
     ActiveSetUpdate(const FoundationSpace   &space,
                     const std::vector<bool> &supported,
                     const std::vector<bool> &initial_contact);
