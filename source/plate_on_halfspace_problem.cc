@@ -7,6 +7,7 @@
 #include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/contact/iterative_solver.h>
+#include <plate_on_halfspace/contact/pressure_preconditioner.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/plate/field_extrema.h>
 #include <plate_on_halfspace/plate/load_checks.h>
@@ -626,8 +627,24 @@ namespace PlateOnHalfspace
     TimerOutput::Scope scope(timer_output, "build foundation operator");
     Timer              phase;
     // Storage = auto and Solver = auto are decided for this cycle's mesh.
-    const unsigned int n       = summary.count("n_foundation_dofs");
-    const auto         storage = cycle_storage(n);
+    const unsigned int n = summary.count("n_foundation_dofs");
+    // Decided once for the cycle, and by all ranks alike (the free memory
+    // differs between them and between calls).
+    direct_for_flexible_plate_cycle =
+      !direct_after_failed_iterations &&
+      Utilities::MPI::min(direct_for_flexible_plate(n) ? 1u : 0u,
+                          communicator) == 1u;
+    const auto storage = cycle_storage(n);
+    if (parameters.output.verbosity > 0 && direct_for_flexible_plate_cycle)
+      log << "Contact/Solver = auto: direct with dense storage, the plate is "
+             "so much more flexible than the soil that rounding would leave "
+             "the iterative solver's pressures about "
+          << std::setprecision(1)
+          << estimate_preconditioners(*mindlin_plate, *soil).rounding_floor
+          << std::setprecision(6)
+          << " of the settlement (doc/errors-and-limits.md, \"Stiffness "
+             "ratio\")"
+          << std::endl;
     if (storage == Parameters::FoundationOperator::Storage::dense)
       check_dense_foundation_memory(n,
                                     cycle_solver(n) ==
@@ -731,6 +748,8 @@ namespace PlateOnHalfspace
         solve_with(Parameters::Contact::Solver::direct);
       }
     pressure_field = mindlin_plate->foundation_field_to_solution(contact.q);
+    warn_rounding_floor(contact.rounding_limited_residual,
+                        "on " + std::to_string(n) + " foundation nodes");
     // The solver's factorisation of the flexibility belongs to the
     // foundation's time (doc/outputs.md, the time split); so does a
     // rebuild after failed iterations, whose time the solve had.
@@ -749,16 +768,54 @@ namespace PlateOnHalfspace
   PlateOnHalfspaceProblem::cycle_storage(
     const unsigned int n_foundation_nodes) const
   {
-    return direct_after_failed_iterations ?
+    return direct_after_failed_iterations || direct_for_flexible_plate_cycle ?
              Parameters::FoundationOperator::Storage::dense :
              parameters.foundation_storage(n_foundation_nodes);
+  }
+
+  void
+  PlateOnHalfspaceProblem::warn_rounding_floor(const double       residual,
+                                               const std::string &what)
+  {
+    if (!(residual > 0))
+      return;
+    std::ostringstream w;
+    w << "Contact/Solver = iterative: " << what
+      << " the gap on the contact set is solved to " << std::setprecision(2)
+      << residual
+      << " of the soil's settlement, not to the tolerance 1e-10: the "
+         "plate's deflections exceed the settlement so far that rounding "
+         "sets that floor (a plate far more flexible than the soil; "
+         "doc/errors-and-limits.md, \"Stiffness ratio\").";
+    if (foundation_operator->storage_name() != "sparse")
+      w << " Contact/Solver = direct with Foundation operator/Storage = "
+           "dense reaches the tolerance.";
+    warn(w.str());
+  }
+
+  bool
+  PlateOnHalfspaceProblem::direct_for_flexible_plate(
+    const unsigned int n_foundation_nodes) const
+  {
+    using Storage = Parameters::FoundationOperator::Storage;
+    if (parameters.contact.solver != Parameters::Contact::Solver::automatic ||
+        parameters.foundation_operator.storage != Storage::automatic ||
+        parameters.foundation_storage(n_foundation_nodes) !=
+          Storage::hierarchical)
+      return false;
+    // a tenth of the accepted floor: the estimate is good to a factor ten
+    const PreconditionerEstimate estimate =
+      estimate_preconditioners(*mindlin_plate, *soil);
+    return estimate.rounding_floor > 0.1 * accepted_rounding_floor &&
+           dense_foundation_memory_shortfall(n_foundation_nodes, false, false)
+             .empty();
   }
 
   Parameters::Contact::Solver
   PlateOnHalfspaceProblem::cycle_solver(
     const unsigned int n_foundation_nodes) const
   {
-    return direct_after_failed_iterations ?
+    return direct_after_failed_iterations || direct_for_flexible_plate_cycle ?
              Parameters::Contact::Solver::direct :
              parameters.contact_solver(n_foundation_nodes);
   }
@@ -781,6 +838,8 @@ namespace PlateOnHalfspace
       pressure_field,
       *contact_solver,
       GoalEstimateScene{computed_loads, *foundation_operator});
+    warn_rounding_floor(goal_estimate.adjoint_rounding_limited_residual,
+                        "in the goal's adjoint problem");
     add_goal_results(*goal,
                      value,
                      goal_estimate,
@@ -817,12 +876,14 @@ namespace PlateOnHalfspace
       return;
     const auto solver = create_contact_solver(
       parameters, cycle_solver(summary.count("n_foundation_dofs")), 0, log);
-    standing_solution = solver
-                          ->solve(*mindlin_plate,
-                                  *foundation_operator,
-                                  mindlin_plate->load_vector(standing),
-                                  contact.active_set)
-                          .plate_solution;
+    const ContactState state =
+      solver->solve(*mindlin_plate,
+                    *foundation_operator,
+                    mindlin_plate->load_vector(standing),
+                    contact.active_set);
+    warn_rounding_floor(state.rounding_limited_residual,
+                        "under the standing loads (for the joints' LTE)");
+    standing_solution = state.plate_solution;
   }
 
   void
@@ -855,6 +916,7 @@ namespace PlateOnHalfspace
     const Parameters::Loads &loads      = parameters.loads;
     std::vector<bool>        warm_start = contact.active_set;
     std::vector<SweepRow>    rows;
+    double                   rounding_limited_residual = 0;
     for (unsigned int step = 0; step < loads.sweep_steps; ++step)
       {
         Interruption::check();
@@ -881,6 +943,8 @@ namespace PlateOnHalfspace
             state            = contact_solver->solve_linearised(load);
             state.in_contact = contact.in_contact;
           }
+        rounding_limited_residual =
+          std::max(rounding_limited_residual, state.rounding_limited_residual);
         SweepRow row;
         row.position     = offset;
         row.applied_load = symmetry.n_copies() * mindlin_plate->resultant(load);
@@ -940,6 +1004,8 @@ namespace PlateOnHalfspace
                                " is not a finite number or beyond 3.4e37; "
                                "the sweep is not written (doc/"
                                "errors-and-limits.md, \"Finite results\")."));
+    warn_rounding_floor(rounding_limited_residual,
+                        "at the worst of the sweep's positions");
     output->write_sweep(rows);
     bool all_converged = true;
     for (const auto &s : cycle_summaries)

@@ -153,6 +153,25 @@ namespace PlateOnHalfspace
     cycle_solver(const unsigned int n_foundation_nodes) const;
 
     /**
+     * Whether Storage and Solver = auto take dense and direct for
+     * @p n_foundation_nodes although the scene's choice is hierarchical
+     * and iterative: where the plate is so much more flexible than the
+     * soil that rounding would stop the iterative solver's pressures near
+     * or above accepted_rounding_floor (contact/pressure_preconditioner.h),
+     * and the dense block fits the memory.
+     */
+    bool
+    direct_for_flexible_plate(const unsigned int n_foundation_nodes) const;
+
+    /**
+     * Warn if @p state's solve stopped at the rounding floor above the
+     * tolerance (ContactState::rounding_limited_residual); @p what names
+     * the solve.
+     */
+    void
+    warn_rounding_floor(const double residual, const std::string &what);
+
+    /**
      * The goal's value and the dual-weighted residual estimate of its
      * error (doc/formulation.md, "Goal-oriented refinement"): the adjoint
      * problem on the cycle's contact set, solved by the cycle's contact
@@ -260,6 +279,9 @@ namespace PlateOnHalfspace
      *  that and every later cycle use dense storage and the direct
      *  solver. */
     bool direct_after_failed_iterations = false;
+    /** direct_for_flexible_plate() of this cycle, decided once by all
+     *  ranks together in build_foundation_operator(). */
+    bool direct_for_flexible_plate_cycle = false;
     /** The active set of the previous cycle on the current mesh. */
     std::vector<bool> seed;
     ContactState      contact;

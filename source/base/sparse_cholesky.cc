@@ -36,6 +36,17 @@ namespace PlateOnHalfspace
     return data->n;
   }
 
+  std::size_t
+  SparseCholesky::memory_consumption() const
+  {
+    const cholmod_factor *f = data->factor;
+    if (f == nullptr)
+      return 0;
+    // supernodal: xsize values and ssize row indices; simplicial: nzmax
+    return f->is_super ? f->xsize * sizeof(double) + f->ssize * sizeof(int) :
+                         f->nzmax * (sizeof(double) + sizeof(int));
+  }
+
   void
   SparseCholesky::factorize(const SparseMatrix<double>                 &matrix,
                             const std::vector<types::global_dof_index> &rows)

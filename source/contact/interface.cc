@@ -27,6 +27,7 @@ namespace PlateOnHalfspace
       {
         ConjugateGradientControl control;
         control.constrained_start = parameters.contact.constrained_start;
+        control.preconditioner    = parameters.contact.preconditioner;
         return std::make_unique<IterativeContactSolver>(
           parameters.contact,
           parameters.foundation.tensionless,

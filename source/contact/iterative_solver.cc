@@ -6,6 +6,7 @@
 #include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/iterative_solver.h>
+#include <plate_on_halfspace/contact/pressure_preconditioner.h>
 #include <plate_on_halfspace/halfspace/interface.h>
 #include <plate_on_halfspace/plate/generalized_inverse.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace PlateOnHalfspace
@@ -35,7 +37,7 @@ namespace PlateOnHalfspace
                         const SparseMatrix<double>        &force_coupling,
                         const PlateGeneralizedInverse     &plate,
                         const FoundationOperator          &foundation,
-                        const ApproximateInverse          &preconditioner,
+                        const PressurePreconditioner      &preconditioner,
                         const Vector<double>              &tested_plate_load,
                         const std::vector<Vector<double>> &tested_motions,
                         const Vector<double>              &motion_loads);
@@ -62,7 +64,7 @@ namespace PlateOnHalfspace
                          const Vector<double> &x,
                          Vector<double>       &soil) const;
 
-      /** y = (F̃^{-1})_CC x. */
+      /** y = (P^{-1})_CC x (pressure_preconditioner.h). */
       void
       precondition(Vector<double> &y, const Vector<double> &x) const;
 
@@ -113,7 +115,7 @@ namespace PlateOnHalfspace
       const SparseMatrix<double>    &force_coupling;
       const PlateGeneralizedInverse &plate;
       const FoundationOperator      &foundation;
-      const ApproximateInverse      &preconditioner;
+      const PressurePreconditioner  &preconditioner;
       std::vector<unsigned int>      nodes;
       Vector<double>                 d;
       std::vector<Vector<double>>    g; ///< the columns of G
@@ -127,7 +129,7 @@ namespace PlateOnHalfspace
       const SparseMatrix<double>        &force_coupling,
       const PlateGeneralizedInverse     &plate,
       const FoundationOperator          &foundation,
-      const ApproximateInverse          &preconditioner,
+      const PressurePreconditioner      &preconditioner,
       const Vector<double>              &tested_plate_load,
       const std::vector<Vector<double>> &tested_motions,
       const Vector<double>              &motion_loads)
@@ -292,6 +294,9 @@ namespace PlateOnHalfspace
       unsigned int iterations        = 0;
       double       relative_residual = 0;
       bool         converged         = false;
+      /** The residual that rounding allows, relative like
+       *  relative_residual (see projected_conjugate_gradients()). */
+      double rounding_floor = 0;
       /** vmult_on_all_nodes() of the final q: H q and F q. */
       Vector<double> product_on_all_nodes, soil_on_all_nodes;
     };
@@ -314,6 +319,11 @@ namespace PlateOnHalfspace
      * recomputed one (restarting from the iterate if rounding made them
      * differ).
      */
+    /** The rounding floor of the residual in units of eps |H q|: 50 was
+     *  measured on a plate with l = h/10 (doc/performance.md,
+     *  "Preconditioning the contact pressures"). */
+    constexpr double rounding_floor_factor = 100;
+
     ConjugateGradientResult
     projected_conjugate_gradients(const ContactSetProblem        &problem,
                                   const ConjugateGradientControl &control,
@@ -323,16 +333,37 @@ namespace PlateOnHalfspace
       const unsigned int      m = problem.size();
       Vector<double>          r(m), soil(m), z(m), p(m), hp(m), soil_p(m);
       problem.make_equilibrated(q);
+      unsigned int restarts_after_convergence = 0;
       while (true)
         {
           problem.projected_residual(
             q, r, soil, result.product_on_all_nodes, result.soil_on_all_nodes);
           result.relative_residual =
             r.l2_norm() / std::max(soil.l2_norm(), 1e-300);
+          // The residual is a difference of deflections of size |H q|, so
+          // rounding bounds it below by some eps |H q|: where the plate's
+          // deflections dwarf the soil's settlement (a plate far more
+          // flexible than the soil) that floor lies above the tolerance,
+          // and reaching it is convergence (doc/formulation.md,
+          // "Preconditioning the contact pressures").
+          result.rounding_floor =
+            rounding_floor_factor * std::numeric_limits<double>::epsilon() *
+            problem.restrict_to_contact_set(result.product_on_all_nodes)
+              .l2_norm() /
+            std::max(soil.l2_norm(), 1e-300);
           if (r.l2_norm() <= control.tolerance * soil.l2_norm() ||
               r.l2_norm() == 0.)
             {
               result.converged = true;
+              return result;
+            }
+          // Only once restarts have shown that the recursive residual's
+          // convergence does not carry over to the recomputed one.
+          if (restarts_after_convergence >= 2 &&
+              result.relative_residual <= result.rounding_floor)
+            {
+              result.converged =
+                result.relative_residual <= accepted_rounding_floor;
               return result;
             }
           if (result.iterations >= control.max_iterations)
@@ -349,6 +380,16 @@ namespace PlateOnHalfspace
               Interruption::check();
               problem.vmult(hp, p, soil_p);
               const double curvature = p * hp;
+              // A residual already at the rounding floor has no digits
+              // left for the curvature: recompute it instead (as a restart
+              // after convergence, since the recursive residual has gone as
+              // far as rounding lets it).
+              if (!(curvature > 0 && rz > 0) &&
+                  r.l2_norm() <= result.rounding_floor * soil.l2_norm())
+                {
+                  ++restarts_after_convergence;
+                  break;
+                }
               if (!(curvature > 0 && rz > 0))
                 throw ConjugateGradientsFailed(
                   "The conjugate gradients on the contact pressures met a "
@@ -369,7 +410,10 @@ namespace PlateOnHalfspace
               r.add(-step, hp);
               ++result.iterations;
               if (r.l2_norm() <= control.tolerance * soil.l2_norm())
-                break;
+                {
+                  ++restarts_after_convergence;
+                  break;
+                }
               problem.precondition(z, r);
               problem.project(z);
               const double rz_next = r * z;
@@ -412,10 +456,30 @@ namespace PlateOnHalfspace
                            "nodes; the collocation operator stays on the "
                            "direct solver."));
     {
-      const Timer timer;
-      preconditioner             = foundation.make_approximate_inverse();
-      state.factorization_time_s = timer.wall_time();
+      using Choice  = Parameters::Contact::Preconditioner;
+      Choice choice = control.preconditioner;
+      if (choice == Choice::automatic)
+        {
+          const PreconditionerEstimate estimate =
+            estimate_preconditioners(plate, foundation.soil());
+          choice = estimate.plate_on_springs < estimate.soil_inverse ?
+                     Choice::plate_on_springs :
+                     Choice::soil_inverse;
+          if (verbosity > 0)
+            log << "   pressure preconditioner: estimated condition "
+                << std::setprecision(2) << estimate.soil_inverse
+                << " (soil inverse), " << estimate.plate_on_springs
+                << " (plate on springs)" << std::setprecision(6) << std::endl;
+        }
+      preconditioner =
+        choice == Choice::plate_on_springs ?
+          make_plate_on_springs_preconditioner(plate, foundation) :
+          make_soil_inverse_preconditioner(foundation);
+      state.factorization_time_s = preconditioner->factorization_time();
       state.factor_memory_bytes  = preconditioner->memory_consumption();
+      if (verbosity > 0)
+        log << "   pressure preconditioner: " << preconditioner->name()
+            << std::endl;
     }
 
     // Once per cycle: K^+ and R, and the contact-set independent parts
@@ -479,6 +543,10 @@ namespace PlateOnHalfspace
 
     // q on the set (equilibrated), and H q and F q on every node, kept
     // up to date by the steps and recomputed when the set loses nodes.
+    // The preconditioner of the first set serves the whole estimate.
+    preconditioner->use_contact_set(contact_set);
+    state.factorization_time_s = preconditioner->factorization_time();
+    state.factor_memory_bytes  = preconditioner->memory_consumption();
     std::unique_ptr<ContactSetProblem> problem = make_problem(contact_set);
     Vector<double>                     q(problem->size()), y_all, soil_all;
     problem->make_equilibrated(q);
@@ -601,7 +669,10 @@ namespace PlateOnHalfspace
                                        const double             tolerance,
                                        ContactState            &state)
   {
-    const unsigned int       n = foundation->n_nodes();
+    const unsigned int n = foundation->n_nodes();
+    preconditioner->use_contact_set(contact_set);
+    state.factorization_time_s = preconditioner->factorization_time();
+    state.factor_memory_bytes  = preconditioner->memory_consumption();
     const ContactSetProblem  problem(contact_set,
                                     foundation->test_coupling(),
                                     foundation->force_coupling(),
@@ -624,12 +695,39 @@ namespace PlateOnHalfspace
     record.iterations        = cg.iterations;
     record.relative_residual = cg.relative_residual;
     state.linear_solves.push_back(record);
+    const bool at_floor = cg.converged && cg.relative_residual > tolerance;
+    state.rounding_limited_residual = at_floor ? cg.relative_residual : 0.;
     if (verbosity > 0)
       log << "   contact iteration " << record.contact_iteration
           << ": conjugate gradients " << cg.iterations
           << " iterations, relative residual " << std::scientific
           << std::setprecision(1) << cg.relative_residual << std::defaultfloat
-          << std::endl;
+          << (at_floor ? " (the rounding floor)" : "") << std::endl;
+    if (!cg.converged && cg.relative_residual <= cg.rounding_floor &&
+        cg.relative_residual > accepted_rounding_floor)
+      {
+        std::ostringstream message;
+        message
+          << "The contact pressures cannot be solved to better than "
+          << std::scientific << std::setprecision(2) << cg.relative_residual
+          << " of the soil's settlement: the plate's deflections "
+             "exceed the settlement so far that rounding leaves no "
+             "more digits (at most "
+          << accepted_rounding_floor
+          << " is accepted). The plate is far more flexible than the soil "
+             "over its size (the floor grows like (L/l)^3 with the plate's "
+             "diameter L over its radius of relative stiffness l, not with "
+             "the mesh): ";
+        if (std::string(foundation->storage_name()) == "sparse")
+          message << "the dense liquid has only the iterative solver; check "
+                     "Foundation/Modulus of subgrade reaction against "
+                     "Plate/Thickness and Plate/Young's modulus.";
+        else
+          message << "use Contact/Solver = direct with Foundation "
+                     "operator/Storage = dense (or both auto), which has no "
+                     "such floor.";
+        throw ConjugateGradientsFailed(message.str());
+      }
     if (!cg.converged)
       {
         std::ostringstream message;
@@ -638,21 +736,23 @@ namespace PlateOnHalfspace
                 << std::scientific << std::setprecision(2)
                 << cg.relative_residual << " after " << cg.iterations
                 << " iterations (tolerance " << tolerance
-                << "). The plate is far more flexible than the soil: its "
-                   "characteristic length is well below the element size. ";
-        // The dense liquid always takes this solver (its Contact/Solver =
-        // direct is refused), so only a finer mesh or another k helps.
-        if (std::string(foundation->storage_name()) == "sparse")
-          message << "Refine the mesh until the cells are smaller than the "
-                     "radius of relative stiffness (D/k)^(1/4) "
-                     "(Discretization/Subdivisions x and y, "
-                     "Discretization/Initial refinements), or check "
-                     "Foundation/Modulus of subgrade reaction.";
+                << ") with Contact/Preconditioner = " << preconditioner->name()
+                << ". ";
+        // Each preconditioner fails at the other end of the stiffness
+        // ratio (doc/formulation.md, "Preconditioning the contact
+        // pressures").
+        if (preconditioner->name() == "soil inverse")
+          message << "The plate is far more flexible than the soil over "
+                     "the cells: use Contact/Preconditioner = plate on "
+                     "springs (or auto).";
         else
-          message << "Use Contact/Solver = direct (with Foundation "
-                     "operator/Storage = auto or dense), or refine the mesh "
-                     "(Discretization/Subdivisions x and y, "
-                     "Discretization/Initial refinements).";
+          message << "The plate is far stiffer than the soil over the "
+                     "cells: use Contact/Preconditioner = soil inverse (or "
+                     "auto).";
+        if (std::string(foundation->storage_name()) != "sparse")
+          message << " Contact/Solver = direct (with Foundation "
+                     "operator/Storage = auto or dense) solves without "
+                     "iterations.";
         throw ConjugateGradientsFailed(message.str());
       }
 

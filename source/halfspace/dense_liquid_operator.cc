@@ -113,6 +113,15 @@ namespace PlateOnHalfspace
           block(i, position[entry->column()]) = entry->value();
   }
 
+  Vector<double>
+  DenseLiquidOperator::flexibility_diagonal() const
+  {
+    Vector<double> diagonal(n_nodes());
+    for (unsigned int i = 0; i < n_nodes(); ++i)
+      diagonal[i] = flexibility.diag_element(i);
+    return diagonal;
+  }
+
   std::unique_ptr<ApproximateInverse>
   DenseLiquidOperator::make_approximate_inverse()
   {

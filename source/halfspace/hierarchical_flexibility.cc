@@ -320,6 +320,23 @@ namespace PlateOnHalfspace
   }
 
   void
+  HierarchicalFlexibility::diagonal(Vector<double> &dst) const
+  {
+    AssertThrow(matrix != nullptr && symmetric,
+                ExcMessage("HierarchicalFlexibility::diagonal before "
+                           "build(), or of a block off the diagonal."));
+    const unsigned int  n_rows = hmat_to_row.size();
+    std::vector<double> values(n_rows);
+    check_hmat(hmat().extract_diagonal(matrix, values.data(), n_rows),
+               "the diagonal of the flexibility");
+    // hmat-oss gives the diagonal in the order of the unknowns the cluster
+    // tree was made from (the block's nodes), not in its own positions.
+    dst.reinit(n_nodes);
+    for (unsigned int k = 0; k < n_rows; ++k)
+      dst[row_nodes.empty() ? k : row_nodes[k]] = values[k];
+  }
+
+  void
   HierarchicalFlexibility::factorize()
   {
     AssertThrow(matrix != nullptr && symmetric,

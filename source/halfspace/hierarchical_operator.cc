@@ -156,6 +156,23 @@ namespace PlateOnHalfspace
       s = settlement;
   }
 
+  Vector<double>
+  HierarchicalGalerkinOperator::flexibility_diagonal() const
+  {
+    // Each rank's diagonal block holds its own nodes' entries.
+    Vector<double> values_diagonal;
+    flexibility.diagonal(values_diagonal);
+    if (rows_are_split())
+      sum_over_ranks(values_diagonal, communicator);
+    if (!positive_basis)
+      return values_diagonal;
+    Vector<double> diagonal(values_diagonal.size());
+    for (unsigned int j = 0; j < transform.m(); ++j)
+      for (auto t = transform.begin(j); t != transform.end(j); ++t)
+        diagonal[t->column()] += t->value() * t->value() * values_diagonal[j];
+    return diagonal;
+  }
+
   void
   HierarchicalGalerkinOperator::coefficients_from_values(
     const Vector<double> &x,

@@ -80,6 +80,21 @@ namespace PlateOnHalfspace
       }
   }
 
+  Vector<double>
+  FoundationOperator::flexibility_diagonal() const
+  {
+    Vector<double>            diagonal(n_nodes());
+    LAPACKFullMatrix<double>  entry;
+    std::vector<unsigned int> node(1);
+    for (unsigned int i = 0; i < n_nodes(); ++i)
+      {
+        node[0] = i;
+        copy_block(node, entry);
+        diagonal[i] = entry(0, 0);
+      }
+    return diagonal;
+  }
+
   void
   FoundationOperator::copy_dense_block(const LAPACKFullMatrix<double>  &matrix,
                                        const std::vector<unsigned int> &nodes,

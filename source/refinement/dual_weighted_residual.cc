@@ -523,11 +523,14 @@ namespace PlateOnHalfspace
       plate.foundation_field_to_solution(reaction);
     const FoundationResidualData soil{
       contact.q, contact.active_set, adjoint_pressure, scene.foundation, terms};
-    return estimate_goal_error(plate,
-                               contact.plate_solution,
-                               pressure_field,
-                               adjoint.plate_solution,
-                               soil,
-                               scene.loads);
+    GoalErrorEstimate estimate = estimate_goal_error(plate,
+                                                     contact.plate_solution,
+                                                     pressure_field,
+                                                     adjoint.plate_solution,
+                                                     soil,
+                                                     scene.loads);
+    estimate.adjoint_rounding_limited_residual =
+      adjoint.rounding_limited_residual;
+    return estimate;
   }
 } // namespace PlateOnHalfspace

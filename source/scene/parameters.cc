@@ -908,17 +908,18 @@ namespace PlateOnHalfspace
         "auto",
         Patterns::Selection("auto|direct|iterative"),
         "How each contact set is solved: auto (iterative with the "
-        "hierarchical half-space operator, direct with a dense one; where "
-        "the iterations fail, with Foundation operator/Storage = auto, "
-        "direct with a dense one from that cycle on), direct "
+        "hierarchical half-space operator, direct with a dense one; with "
+        "Foundation operator/Storage = auto also direct with a dense one "
+        "for a plate so much more flexible than the soil that rounding "
+        "would leave the iterated pressures less accurate than 1e-6, and "
+        "where the iterations fail, from that cycle on), direct "
         "(the plate condensed onto "
         "the foundation nodes into a dense matrix, factorised by LAPACK) or "
         "iterative (conjugate gradients on the contact pressures with the "
         "sparse plate stiffness and the half-space preconditioned by its "
         "inverse; no dense coupled matrix; needs Discretization/Flexibility "
         "= galerkin and Contact/Method = active set; coupled_matrix_rcond "
-        "is not estimated and reads 1; a plate far more flexible than the "
-        "soil needs direct).");
+        "is not estimated and reads 1; see Contact/Preconditioner).");
       prm.declare_entry(
         "Constrained start",
         "true",
@@ -929,6 +930,21 @@ namespace PlateOnHalfspace
         "join), which the active set then checks and corrects; false: from "
         "the previous cycle's set (or all nodes), one solve per set. The "
         "answer is the same; the active-set steps and the time differ.");
+      prm.declare_entry(
+        "Preconditioner",
+        "auto",
+        Patterns::Selection("auto|soil inverse|plate on springs"),
+        "Iterative solver: the preconditioner of the conjugate gradients on "
+        "the contact pressures. soil inverse: the half-space operator's "
+        "approximate inverse (suits a plate stiffer than the soil over its "
+        "size); plate on springs: the plate's sparse stiffness with the "
+        "soil as independent springs, factorised once per contact set "
+        "(suits a plate whose radius of relative stiffness is not much "
+        "larger than the cells); auto: the one whose spectral estimate "
+        "from the radius of relative stiffness, the smallest cell and the "
+        "plate's diameter is smaller (doc/formulation.md, "
+        "\"Preconditioning the contact pressures\"). The answer is the "
+        "same; the iterations and the time differ.");
       prm.leave_subsection();
     }
 
@@ -945,6 +961,11 @@ namespace PlateOnHalfspace
                                 name == "direct"    ? Solver::direct :
                                                       Solver::automatic);
       constrained_start      = prm.get_bool("Constrained start");
+      const std::string p    = prm.get("Preconditioner");
+      preconditioner =
+        (p == "soil inverse"     ? Preconditioner::soil_inverse :
+         p == "plate on springs" ? Preconditioner::plate_on_springs :
+                                   Preconditioner::automatic);
       prm.leave_subsection();
       require(tolerance > 0,
               "Contact/Tolerance must lie in (0, 1]" + got(tolerance) + ".");

@@ -14,7 +14,10 @@
 //   Foundation operator/Hierarchical from and hierarchical from it on,
 //   cycle by cycle, and stays dense for the paper's collocation operator;
 // - an absurd tolerance (1) and the direct solver are refused with clear
-//   messages.
+//   messages;
+// - the diagonal of the flexibility (for the plate-on-springs
+//   preconditioner) within a factor 3 of the dense operator's (measured:
+//   1 ... 2.7, the cross terms of T^T A T dropped).
 
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/scene/input_checks.h>
@@ -93,6 +96,29 @@ namespace
     AssertThrow(same_set && difference <= 1e-5 &&
                   h.text("foundation_storage") == "hierarchical",
                 ExcMessage(label + ": differs from dense"));
+
+    // The diagonal of F = T^T A T that the plate-on-springs preconditioner
+    // takes: the H-matrix's from A's diagonal alone (the cross terms of a
+    // mid-side and its vertices dropped), the dense one exact.
+    const Vector<double> exact = dense->foundation().flexibility_diagonal();
+    const Vector<double> approximate =
+      hierarchical->foundation().flexibility_diagonal();
+    double low = 1e300, high = 0;
+    for (unsigned int i = 0; i < exact.size(); ++i)
+      {
+        low  = std::min(low, approximate[i] / exact[i]);
+        high = std::max(high, approximate[i] / exact[i]);
+      }
+    const bool close =
+      exact.size() == approximate.size() && low >= 1. / 3 && high <= 3;
+    deallog << label
+            << ": the hierarchical diagonal of F within a factor 3 "
+               "of the dense one: "
+            << (close ? "ok" : "FAILED") << std::endl;
+    AssertThrow(close,
+                ExcMessage(label + ": diagonal ratio in [" +
+                           std::to_string(low) + ", " + std::to_string(high) +
+                           "]"));
   }
 } // namespace
 

@@ -44,6 +44,10 @@ namespace PlateOnHalfspace
     unsigned int
     size() const;
 
+    /** Bytes of the factor's values and indices (0 before factorize()). */
+    std::size_t
+    memory_consumption() const;
+
     /**
      * Solve in place for @p n_columns right-hand sides stored column by
      * column in @p block (size() * n_columns values).

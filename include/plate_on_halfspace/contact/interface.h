@@ -101,6 +101,12 @@ namespace PlateOnHalfspace
      * (IterativeContactSolver::predict_contact_set(); 0 if none).
      */
     unsigned int prediction_iterations = 0;
+    /**
+     * The relative residual of the last solve where rounding stopped the
+     * iterations above their tolerance (a plate far more flexible than
+     * the soil, iterative_solver.h); 0 where the tolerance was reached.
+     */
+    double rounding_limited_residual = 0;
     /** One entry per contact iteration (iterative solvers only). */
     std::vector<LinearSolve> linear_solves;
   };

@@ -71,8 +71,8 @@ namespace PlateOnHalfspace
 {
   using namespace dealii;
 
-  class ApproximateInverse;
   class PlateGeneralizedInverse;
+  class PressurePreconditioner;
 
   /** Settings of the conjugate gradient iteration of each contact set. */
   struct ConjugateGradientControl
@@ -96,6 +96,9 @@ namespace PlateOnHalfspace
      * seed, one solve per set.
      */
     bool constrained_start = true;
+    /** Contact/Preconditioner (pressure_preconditioner.h). */
+    Parameters::Contact::Preconditioner preconditioner =
+      Parameters::Contact::Preconditioner::automatic;
   };
 
   /**
@@ -172,7 +175,7 @@ namespace PlateOnHalfspace
 
   private:
     const ConjugateGradientControl           control;
-    std::unique_ptr<ApproximateInverse>      preconditioner;
+    std::unique_ptr<PressurePreconditioner>  preconditioner;
     std::unique_ptr<PlateGeneralizedInverse> inverse;
     /** The load P of the current solve, B N K^+ P, the columns B N R,
      *  and R^T P (see the file doc). */

@@ -46,6 +46,9 @@ namespace PlateOnHalfspace
     void
     copy_block(const std::vector<unsigned int> &nodes,
                LAPACKFullMatrix<double>        &block) const override;
+    /** The diagonal of the sparse flexibility. */
+    Vector<double>
+    flexibility_diagonal() const override;
     /** The sparse Cholesky factor of F (CHOLMOD): exact. */
     std::unique_ptr<ApproximateInverse>
     make_approximate_inverse() override;

@@ -158,6 +158,13 @@ namespace PlateOnHalfspace
     vmult(Vector<double> &dst, const Vector<double> &src) const;
 
     /**
+     * @p dst = the diagonal of A on the block's rows (other entries zero),
+     * natural numbering; the block must be symmetric (a diagonal block).
+     */
+    void
+    diagonal(Vector<double> &dst) const;
+
+    /**
      * H-Cholesky factorisation A ≈ L L^T of a copy of A (the product keeps
      * using A), with every recompression at the larger of the tolerance
      * and the factor tolerance. Checks the factor by solving for a known

@@ -102,6 +102,17 @@ namespace PlateOnHalfspace
                LAPACKFullMatrix<double>        &block) const;
 
     /**
+     * The diagonal F_ii of apply()'s F: the flexibility of each pressure
+     * coefficient on its own, the soil's part of the contact
+     * preconditioner that models the soil as independent springs
+     * (contact/pressure_preconditioner.h). The default applies the
+     * operator to unit vectors (n products); each storage that can gives
+     * it directly.
+     */
+    virtual Vector<double>
+    flexibility_diagonal() const;
+
+    /**
      * An approximate inverse of apply()'s F on all nodes (built with every
      * cell in the foundation). The default is the Cholesky factor of the
      * dense F (n^2 memory, n^3/3 operations); a compressed storage gives

@@ -29,6 +29,8 @@ namespace PlateOnHalfspace
      * refinement"), or the contact area's half band.
      */
     double estimated_error = 0;
+    /** ContactState::rounding_limited_residual of the adjoint solve. */
+    double adjoint_rounding_limited_residual = 0;
     /** eta = sum of eta_i, the estimate of J(u) - J(u_h) (signed). */
     bool   has_dwr = false;
     double dwr     = 0;

@@ -300,6 +300,15 @@ namespace PlateOnHalfspace
       Solver       solver;
       /** IterativeContactSolver: start from predict_contact_set(). */
       bool constrained_start = true;
+      /** IterativeContactSolver: how the pressures are preconditioned
+       *  (contact/pressure_preconditioner.h). */
+      enum class Preconditioner
+      {
+        automatic,       ///< the smaller estimated condition number
+        soil_inverse,    ///< the soil's approximate inverse
+        plate_on_springs ///< the plate with the soil as springs
+      };
+      Preconditioner preconditioner = Preconditioner::automatic;
 
       static void
       declare_parameters(ParameterHandler &prm);
