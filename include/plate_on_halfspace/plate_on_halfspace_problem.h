@@ -164,9 +164,9 @@ namespace PlateOnHalfspace
     direct_for_flexible_plate(const unsigned int n_foundation_nodes) const;
 
     /**
-     * Warn if @p state's solve stopped at the rounding floor above the
-     * tolerance (ContactState::rounding_limited_residual); @p what names
-     * the solve.
+     * Warn if a solve stopped at the rounding floor above the tolerance:
+     * @p residual is its ContactState::rounding_limited_residual (0: it
+     * did not), @p what names the solve.
      */
     void
     warn_rounding_floor(const double residual, const std::string &what);
