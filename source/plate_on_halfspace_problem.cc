@@ -102,8 +102,10 @@ namespace PlateOnHalfspace
        {{"foundation_factorization_time_s"},
         "s",
         "the contact solver's factorisation of the flexibility: the "
-        "approximate inverse of the iterative solver (H-Cholesky or dense "
-        "Cholesky factor), or the direct solver's first contact block F_CC"},
+        "iterative solver's preconditioner (`Contact/Preconditioner`: the "
+        "H-Cholesky or dense Cholesky factor of the soil inverse, or every "
+        "factorisation of the plate on springs), or the direct solver's "
+        "first contact block F_CC"},
        {{"solve_time_s"},
         "s",
         "the contact solve without that factorisation: the plate's "
@@ -130,8 +132,9 @@ namespace PlateOnHalfspace
        {{"foundation_memory_bytes"},
         "bytes",
         "memory held by the half-space operator's matrices and by the "
-        "contact solver's factor of the flexibility (on several processes: "
-        "rank 0's share)",
+        "contact solver's factor of the flexibility, or of the plate on "
+        "springs (on several processes: rank 0's share; the springs' MUMPS "
+        "factor is not counted)",
         ResultKind::count},
        {{"foundation_nodes_per_rank"},
         "–",
