@@ -296,6 +296,11 @@ namespace PlateOnHalfspace
       project(r);
     }
 
+    /** The rounding floor of the residual in units of eps |H q|: 50 was
+     *  measured on a plate with l = h/10 (doc/performance.md,
+     *  "Preconditioning the contact pressures"). */
+    constexpr double rounding_floor_factor = 100;
+
     /** Outcome of one projected conjugate gradient solve. */
     struct ConjugateGradientResult
     {
@@ -327,11 +332,6 @@ namespace PlateOnHalfspace
      * recomputed one (restarting from the iterate if rounding made them
      * differ).
      */
-    /** The rounding floor of the residual in units of eps |H q|: 50 was
-     *  measured on a plate with l = h/10 (doc/performance.md,
-     *  "Preconditioning the contact pressures"). */
-    constexpr double rounding_floor_factor = 100;
-
     ConjugateGradientResult
     projected_conjugate_gradients(const ContactSetProblem        &problem,
                                   const ConjugateGradientControl &control,
