@@ -2,7 +2,7 @@
 """Scale: the hierarchical foundation operator with the iterative contact
 solver against the dense operator.
 
-    python3 benchmarks/hierarchical_scaling.py build/plate-on-halfspace [MAX_N [DIRECT_MAX_N [DENSE_MAX_N [SCENE]]]]
+    python3 benchmarks/hierarchical_scaling.py build/plate-on-halfspace [MAX_N [DIRECT_MAX_N [DENSE_MAX_N [SCENE [PATHS]]]]]
 
 Scenes: parameters/example2.prm made Galerkin + active set (tensionless,
 lifts off) and parameters/example2-bonded.prm (bonded), both solved on a
@@ -18,7 +18,11 @@ the quarter: n = 3 N^2 + 4 N + 1), up to MAX_N (default 100000). Paths:
                    doubles), up to DENSE_MAX_N (default 21000);
   hierarchical-1e-8  hierarchical at Tolerance = 1e-8 instead of the
                    default 1e-6, up to DENSE_MAX_N (what probes within 1e-6
-                   of dense cost).
+                   of dense cost);
+  fft              Storage = fft (the split kernel), Solver = iterative
+                   (all sizes).
+PATHS (comma-separated, default all) runs only those paths; SCENE "all"
+runs both scenes.
 Per run: n, the time split of summary.json (plate assembly; foundation
 operator: integration, compression, factorisation; contact solve = all
 active-set iterations; total wall time), the peak memory of the process
@@ -57,6 +61,8 @@ PATHS = {
     "dense-iterative": "subsection Foundation operator\n set Storage = "
                        "dense\nend\nsubsection Contact\n set Solver = "
                        "iterative\nend\n",
+    "fft": "subsection Foundation operator\n set Storage = fft\nend\n"
+           "subsection Contact\n set Solver = iterative\nend\n",
     "hierarchical-1e-8": "subsection Foundation operator\n set Storage = "
                          "hierarchical\n set Tolerance = 1e-8\nend\n"
                          "subsection Contact\n set Solver = iterative\n"
@@ -139,15 +145,27 @@ def main():
     direct_max = int(sys.argv[3]) if len(sys.argv) > 3 else 3500
     dense_max = int(sys.argv[4]) if len(sys.argv) > 4 else 21000
     only = sys.argv[5] if len(sys.argv) > 5 else None
+    if only == "all":
+        only = None
     if only is not None and only not in SCENES:
         print(__doc__)
         sys.exit(2)
+    if len(sys.argv) > 6:
+        chosen = sys.argv[6].split(",")
+        if any(p not in PATHS for p in chosen):
+            print(__doc__)
+            sys.exit(2)
+        for p in list(PATHS):
+            if p not in chosen:
+                del PATHS[p]
     scenes = [only] if only else list(SCENES)
-    name = "hierarchical_scaling" + (f"-{only}" if only else "")
+    name = "hierarchical_scaling" + (f"-{only}" if only else "") + \
+        (f"-{sys.argv[6].replace(',', '-')}" if len(sys.argv) > 6 else "")
     out = os.path.join(ROOT, "output", "benchmarks")
     os.makedirs(out, exist_ok=True)
     limits = {"hierarchical": max_n, "dense": direct_max,
-              "dense-iterative": dense_max, "hierarchical-1e-8": dense_max}
+              "dense-iterative": dense_max, "hierarchical-1e-8": dense_max,
+              "fft": max_n}
     rows = []
     for scene in scenes:
         for cells in CELLS:
@@ -172,7 +190,8 @@ def main():
     lines = ["# Hierarchical against dense", "",
              "Command: `python3 benchmarks/hierarchical_scaling.py "
              f"build/plate-on-halfspace {max_n} {direct_max} {dense_max}"
-             f"{' ' + only if only else ''}`", "",
+             f"{' ' + (only or 'all') if len(sys.argv) > 5 else ''}"
+             f"{' ' + sys.argv[6] if len(sys.argv) > 6 else ''}`", "",
              "| scene | path | n | plate assembly [s] | integration [s] | "
              "compression [s] | factorisation [s] | contact solve [s] | "
              "total [s] | peak memory [MB] | active-set its | CG its | "
@@ -192,7 +211,8 @@ def main():
         for path in PATHS:
             s = slope([r for r in rows if r["scene"] == scene and
                        r["path"] == path],
-                      9000 if path.startswith("hierarchical") else 1000)
+                      9000 if path.startswith("hierarchical") or
+                      path == "fft" else 1000)
             lines.append(f"- {scene}, {path}: "
                          f"{'-' if s is None else f'{s:.2f}'}")
     lines += ["", "Hierarchical against the fastest dense path at the same "

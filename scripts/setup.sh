@@ -10,10 +10,12 @@ cd "$(dirname "$0")/.."
 
 # deal.II 9.4 (with Trilinos, UMFPACK, LAPACK), OpenBLAS (not optional: the
 # reference BLAS makes every dense factorisation ~20x slower), hmat-oss (the
-# hierarchical-matrix flexibility), numdiff (the deal.II test macros need
+# hierarchical-matrix flexibility), FFTW (the split-kernel storage's far
+# field), numdiff (the deal.II test macros need
 # it), nlohmann-json (summary.json), gnuplot (plots).
 packages="cmake make g++ perl libdeal.ii-dev libopenblas0-pthread
-          libhmat-oss-dev numdiff nlohmann-json3-dev gnuplot-nox python3"
+          libhmat-oss-dev libfftw3-dev numdiff nlohmann-json3-dev
+          gnuplot-nox python3"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" \

@@ -660,6 +660,9 @@ namespace PlateOnHalfspace
         operator_storage = storage;
       }
     foundation_operator->build(mindlin_plate->get_foundation_space(), {});
+    if (parameters.output.verbosity > 0 &&
+        !foundation_operator->build_report().empty())
+      log << foundation_operator->build_report() << std::endl;
     const std::string kernel_report = soil->kernel_report();
     if (!kernel_report.empty() && kernel_report != last_kernel_report)
       log << kernel_report << std::endl;

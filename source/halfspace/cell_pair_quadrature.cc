@@ -137,6 +137,19 @@ namespace PlateOnHalfspace
   }
 
   void
+  CellPairIntegrator::tabulate(const unsigned int     c,
+                               const Quadrature<2>   &rule,
+                               std::vector<Point<2>> &points,
+                               std::vector<double>   &weighted_values) const
+  {
+    const Table table = make_table(c, rule);
+    points.resize(table.x.size());
+    for (unsigned int q = 0; q < points.size(); ++q)
+      points[q] = Point<2>(table.x[q], table.y[q]);
+    weighted_values = table.weighted_values;
+  }
+
+  void
   CellPairIntegrator::node_shape_values(const unsigned int   c,
                                         const Point<2>      &p,
                                         std::vector<double> &values) const

@@ -135,25 +135,20 @@ namespace PlateOnHalfspace
   HierarchicalGalerkinOperator::apply(const Vector<double> &q,
                                       Vector<double>       &s) const
   {
-    // s = T^T A T q (doc/formulation.md's weak settlement in the contact basis)
-    Vector<double> values, settlement(q.size());
-    nodal_pressure(q, values);
-    flexibility.vmult(settlement, values);
-    if (rows_are_split())
-      {
-        Vector<double> rest;
-        for (const auto &block : off_diagonal)
+    apply_in_pressure_basis(
+      q, s, [this](const Vector<double> &values, Vector<double> &settlement) {
+        flexibility.vmult(settlement, values);
+        if (rows_are_split())
           {
-            block->vmult(rest, values);
-            settlement += rest;
+            Vector<double> rest;
+            for (const auto &block : off_diagonal)
+              {
+                block->vmult(rest, values);
+                settlement += rest;
+              }
+            sum_over_ranks(settlement, communicator);
           }
-        sum_over_ranks(settlement, communicator);
-      }
-    s.reinit(q.size());
-    if (positive_basis)
-      transform.Tvmult(s, settlement);
-    else
-      s = settlement;
+      });
   }
 
   Vector<double>
@@ -171,43 +166,6 @@ namespace PlateOnHalfspace
       for (auto t = transform.begin(j); t != transform.end(j); ++t)
         diagonal[t->column()] += t->value() * t->value() * values_diagonal[j];
     return diagonal;
-  }
-
-  void
-  HierarchicalGalerkinOperator::coefficients_from_values(
-    const Vector<double> &x,
-    Vector<double>       &y) const
-  {
-    // T y = x: vertex rows are identity rows, so y_c = x_c first, then
-    // each mid-side row y_m = (x_m - sum_c T_mc y_c) / T_mm.
-    y = x;
-    for (unsigned int i = 0; i < transform.m(); ++i)
-      if (transform.diag_element(i) != 1.)
-        {
-          double rest = x[i];
-          for (auto t = transform.begin(i); t != transform.end(i); ++t)
-            if (t->column() != i)
-              rest -= t->value() * x[t->column()];
-          y[i] = rest / transform.diag_element(i);
-        }
-  }
-
-  void
-  HierarchicalGalerkinOperator::apply_inverse_transpose_transform(
-    const Vector<double> &x,
-    Vector<double>       &y) const
-  {
-    // T^T y = x: a mid-side column of T holds only its diagonal, so
-    // y_m = x_m / T_mm first; then y_c = x_c - sum_m T_mc y_m.
-    y = x;
-    for (unsigned int i = 0; i < transform.m(); ++i)
-      if (transform.diag_element(i) != 1.)
-        y[i] = x[i] / transform.diag_element(i);
-    for (unsigned int i = 0; i < transform.m(); ++i)
-      if (transform.diag_element(i) != 1.)
-        for (auto t = transform.begin(i); t != transform.end(i); ++t)
-          if (t->column() != i)
-            y[t->column()] -= t->value() * y[i];
   }
 
   void

@@ -8,6 +8,7 @@
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
 #include <plate_on_halfspace/halfspace/hierarchical_operator.h>
 #include <plate_on_halfspace/halfspace/interface.h>
+#include <plate_on_halfspace/halfspace/split_kernel_operator.h>
 
 #include <algorithm>
 
@@ -280,6 +281,60 @@ namespace PlateOnHalfspace
     return soil_model->settlement_at_points(space, nodal_pressure, points);
   }
 
+  void
+  FoundationOperator::apply_in_pressure_basis(
+    const Vector<double> &q,
+    Vector<double>       &s,
+    const std::function<void(const Vector<double> &, Vector<double> &)>
+      &apply_to_values) const
+  {
+    // s = T^T A T q (doc/formulation.md's weak settlement in the contact
+    // basis)
+    Vector<double> values, settlement(q.size());
+    nodal_pressure(q, values);
+    apply_to_values(values, settlement);
+    s.reinit(q.size());
+    if (positive_basis)
+      transform.Tvmult(s, settlement);
+    else
+      s = settlement;
+  }
+
+  void
+  FoundationOperator::coefficients_from_values(const Vector<double> &x,
+                                               Vector<double>       &y) const
+  {
+    // T y = x: vertex rows are identity rows, so y_c = x_c first, then
+    // each mid-side row y_m = (x_m - sum_c T_mc y_c) / T_mm.
+    y = x;
+    for (unsigned int i = 0; i < transform.m(); ++i)
+      if (transform.diag_element(i) != 1.)
+        {
+          double rest = x[i];
+          for (auto t = transform.begin(i); t != transform.end(i); ++t)
+            if (t->column() != i)
+              rest -= t->value() * x[t->column()];
+          y[i] = rest / transform.diag_element(i);
+        }
+  }
+
+  void
+  FoundationOperator::apply_inverse_transpose_transform(const Vector<double> &x,
+                                                        Vector<double> &y) const
+  {
+    // T^T y = x: a mid-side column of T holds only its diagonal, so
+    // y_m = x_m / T_mm first; then y_c = x_c - sum_m T_mc y_m.
+    y = x;
+    for (unsigned int i = 0; i < transform.m(); ++i)
+      if (transform.diag_element(i) != 1.)
+        y[i] = x[i] / transform.diag_element(i);
+    for (unsigned int i = 0; i < transform.m(); ++i)
+      if (transform.diag_element(i) != 1.)
+        for (auto t = transform.begin(i); t != transform.end(i); ++t)
+          if (t->column() != i)
+            y[t->column()] -= t->value() * y[i];
+  }
+
   std::unique_ptr<FoundationOperator>
   create_foundation_operator(
     const SceneParameters                        &parameters,
@@ -306,6 +361,9 @@ namespace PlateOnHalfspace
     std::unique_ptr<FoundationOperator> foundation;
     if (storage == Parameters::FoundationOperator::Storage::hierarchical)
       foundation = std::make_unique<HierarchicalGalerkinOperator>(
+        elastic, parameters.foundation_operator.tolerance);
+    else if (storage == Parameters::FoundationOperator::Storage::fft)
+      foundation = std::make_unique<SplitKernelFftOperator>(
         elastic, parameters.foundation_operator.tolerance);
     else if (parameters.discretization.flexibility ==
              Parameters::Discretization::Flexibility::galerkin)

@@ -549,25 +549,31 @@ namespace PlateOnHalfspace
       prm.enter_subsection("Foundation operator");
       prm.declare_entry("Storage",
                         "auto",
-                        Patterns::Selection("auto|dense|hierarchical"),
+                        Patterns::Selection("auto|dense|hierarchical|fft"),
                         "How the half-space block is stored: dense (LAPACK), "
                         "hierarchical (an H-matrix of hmat-oss, compressed "
-                        "to Tolerance; needs Contact/Solver = iterative or "
+                        "to Tolerance), fft (the kernel split into a sparse "
+                        "near field and a smooth far field applied by the "
+                        "FFT, accurate to Tolerance; the homogeneous "
+                        "half-space only); hierarchical and fft need "
+                        "Contact/Solver = iterative or "
                         "auto, Flexibility = galerkin and, on a tensionless "
-                        "foundation, Contact/Method = active set) or auto: "
+                        "foundation, Contact/Method = active set; or auto: "
                         "hierarchical in the cycles with at least "
                         "Hierarchical from foundation nodes where the scene "
                         "allows it (the conditions above, Contact/Solver not "
                         "direct), dense otherwise.");
-      prm.declare_entry("Tolerance",
-                        "1e-6",
-                        Patterns::Double(0, 1),
-                        "Relative accuracy of the compressed blocks "
-                        "(Storage = hierarchical) and of a goal estimate's "
-                        "compressed settlement on large meshes (any "
-                        "storage); the H-Cholesky factor, which only "
-                        "preconditions, is recompressed at the larger of "
-                        "this and 1e-3.");
+      prm.declare_entry(
+        "Tolerance",
+        "1e-6",
+        Patterns::Double(0, 1),
+        "Relative accuracy of the compressed blocks "
+        "(Storage = hierarchical), of the split kernel's "
+        "far field and cutoff (Storage = fft), and of a goal estimate's "
+        "compressed settlement on large meshes (any "
+        "storage); the H-Cholesky factor, which only "
+        "preconditions, is recompressed at the larger of "
+        "this and 1e-3.");
       prm.declare_entry("Hierarchical from",
                         "3000",
                         Patterns::Integer(0),
@@ -585,6 +591,7 @@ namespace PlateOnHalfspace
       const std::string name = prm.get("Storage");
       storage                = (name == "dense"        ? Storage::dense :
                                 name == "hierarchical" ? Storage::hierarchical :
+                                name == "fft"          ? Storage::fft :
                                                          Storage::automatic);
       tolerance              = prm.get_double("Tolerance");
       hierarchical_from      = prm.get_integer("Hierarchical from");

@@ -58,20 +58,24 @@ namespace PlateOnHalfspace
      * auto stays dense.
      */
     std::string
-    hierarchical_storage_obstacle(const SceneParameters &parameters)
+    hierarchical_storage_obstacle(const SceneParameters &parameters,
+                                  const std::string &storage = "hierarchical")
     {
       if (parameters.contact.solver == Parameters::Contact::Solver::direct)
-        return "Foundation operator/Storage = hierarchical needs Contact/"
+        return "Foundation operator/Storage = " + storage +
+               " needs Contact/"
                "Solver = iterative or auto (the direct solver forms the "
-               "dense block the hierarchical matrix avoids).";
+               "dense block the compressed storage avoids).";
       if (parameters.discretization.flexibility !=
           Parameters::Discretization::Flexibility::galerkin)
-        return "Foundation operator/Storage = hierarchical needs the "
+        return "Foundation operator/Storage = " + storage +
+               " needs the "
                "symmetric half-space operator, Discretization/Flexibility "
                "= galerkin.";
       if (parameters.foundation.tensionless &&
           parameters.contact.method != Parameters::Contact::Method::active_set)
-        return "Foundation operator/Storage = hierarchical needs Contact/"
+        return "Foundation operator/Storage = " + storage +
+               " needs Contact/"
                "Method = active set (element exclusion rebuilds the "
                "operator).";
       return "";
@@ -211,6 +215,18 @@ namespace PlateOnHalfspace
       {
         const std::string obstacle = hierarchical_storage_obstacle(*this);
         require(obstacle.empty(), obstacle);
+      }
+    if (foundation_operator.storage ==
+        Parameters::FoundationOperator::Storage::fft)
+      {
+        const std::string obstacle =
+          hierarchical_storage_obstacle(*this, "fft");
+        require(obstacle.empty(), obstacle);
+        require(foundation.model == Parameters::Foundation::Model::half_space,
+                "Foundation operator/Storage = fft holds the homogeneous "
+                "half-space only (Foundation/Model = half-space); a layered "
+                "soil or the dense liquid needs Storage = auto, dense or "
+                "hierarchical.");
       }
     if (adaptivity.goal.functional)
       {

@@ -96,6 +96,9 @@ subsection Contact
   set Constrained start = true
   set Preconditioner = auto
 end
+subsection Foundation operator
+  set Storage = auto
+end
 subsection Adaptivity
   set Cycles       = 2
   set Refinement   = adaptive
@@ -148,6 +151,7 @@ choices = {
     "Max iterations": ["1", "2", "0", "100"],
     "Constrained start": ["true", "false", "maybe", "", "1"],
     "Preconditioner": ["auto", "soil inverse", "plate on springs", "jacobi", ""],
+    "Storage": ["auto", "dense", "hierarchical", "fft", "fast", ""],
     "Rectangular patches": ["", "0,0,1,1,100", "1,0,0,1,10", "0,0,1", "5,5,6,6,1",
                             "-3,-3,3,3,10", "0,0,1,1,nan", "0,0,1,1,-1e9", ";;", "a,b,c,d,e"],
     "Circular patches": ["", "0,0,0.3,50", "0,0,0,50", "0,0,-1,50", "9,9,1,1", "0,0,5,10"],

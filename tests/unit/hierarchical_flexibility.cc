@@ -15,13 +15,9 @@
 //    tolerances outside (0, 1] stop with a message naming Foundation
 //    operator/Tolerance instead of returning a wrong matrix.
 
-#include <deal.II/grid/tria.h>
 
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
 #include <plate_on_halfspace/halfspace/hierarchical_flexibility.h>
-#include <plate_on_halfspace/plate/mindlin_plate.h>
-#include <plate_on_halfspace/plate/plate_mesh.h>
-#include <plate_on_halfspace/scene/mirror_symmetry.h>
 #include <plate_on_halfspace/soil/boussinesq_kernel.h>
 
 #include <cmath>
@@ -30,6 +26,8 @@
 #include <sstream>
 
 #include "../tests.h"
+
+#include "../foundation_scene.h"
 
 using namespace PlateOnHalfspace;
 
@@ -44,42 +42,7 @@ namespace
     AssertThrow(condition, ExcMessage("check '" + name + "' failed"));
   }
 
-  /** The foundation space of a scene, its alpha and quadrature order. */
-  struct Scene
-  {
-    FoundationSpace space;
-    double          alpha;
-    unsigned int    singular_order;
-  };
-
-  /** parameters/@p file with @p extra appended, cut to its symmetric part
-   *  as the program does (plate_on_halfspace_problem.cc). */
-  Scene
-  make_scene(const std::string &file, const std::string &extra)
-  {
-    SceneParameters parameters;
-    parameters.read_from_string("include " SOURCE_DIR "/../../parameters/" +
-                                file + "\nset Output directory = results\n" +
-                                extra);
-    Triangulation<2> mesh;
-    make_coarse_plate_mesh(parameters.plate, parameters.discretization, mesh);
-    const MirrorSymmetry symmetry = choose_mirror_symmetry(
-      parameters, mesh, [&](const unsigned int axis, const double tolerance) {
-        return reason_loads_not_symmetric(make_loads(parameters.loads, 0.),
-                                          axis,
-                                          tolerance);
-      });
-    cut_to_computed_part(symmetry, mesh);
-    mesh.refine_global(parameters.discretization.initial_refinements);
-    MindlinPlate plate(parameters.plate, parameters.discretization);
-    plate.set_mirror_symmetry(symmetry);
-    plate.setup(mesh);
-    return {
-      plate.get_foundation_space(),
-      boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
-                                      parameters.foundation.poissons_ratio),
-      parameters.discretization.singular_quadrature_order};
-  }
+  using Scene = TestTools::FoundationScene;
 
   /** A vector with smooth and node-to-node parts (no special structure). */
   Vector<double>
@@ -207,26 +170,26 @@ main()
 {
   initlog();
 
-  const Scene rectangle =
-    make_scene("example2-bonded.prm",
-               "subsection Discretization\n set Subdivisions x = 24\n"
-               " set Subdivisions y = 16\n set Symmetry = none\nend\n");
+  const Scene rectangle = TestTools::make_foundation_scene(
+    "example2-bonded.prm",
+    "subsection Discretization\n set Subdivisions x = 24\n"
+    " set Subdivisions y = 16\n set Symmetry = none\nend\n");
   const LAPACKFullMatrix<double> rectangle_dense = dense_flexibility(rectangle);
   compare("rectangle", rectangle, rectangle_dense, 1e-6, true);
 
   {
-    const Scene disk =
-      make_scene("rigid-disk.prm",
-                 "subsection Discretization\n set Initial refinements = 3\n"
-                 " set Symmetry = none\nend\n");
+    const Scene disk = TestTools::make_foundation_scene(
+      "rigid-disk.prm",
+      "subsection Discretization\n set Initial refinements = 3\n"
+      " set Symmetry = none\nend\n");
     compare("disk", disk, dense_flexibility(disk), 1e-6, true);
   }
   {
-    const Scene quarter =
-      make_scene("flexible-square.prm",
-                 "subsection Discretization\n set Flexibility = galerkin\n"
-                 " set Subdivisions x = 48\n set Subdivisions y = 48\n"
-                 " set Symmetry = xy\nend\n");
+    const Scene quarter = TestTools::make_foundation_scene(
+      "flexible-square.prm",
+      "subsection Discretization\n set Flexibility = galerkin\n"
+      " set Subdivisions x = 48\n set Subdivisions y = 48\n"
+      " set Symmetry = xy\nend\n");
     AssertThrow(quarter.space.symmetry.n_copies() == 4,
                 ExcMessage("the square must be computed as a quarter"));
     compare("quarter square", quarter, dense_flexibility(quarter), 1e-6, true);

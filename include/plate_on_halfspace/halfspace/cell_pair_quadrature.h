@@ -139,6 +139,17 @@ namespace PlateOnHalfspace
                      const std::vector<bool> &rows,
                      const std::vector<bool> &columns) const;
 
+    /**
+     * The node shape functions of cell @p c on @p rule (reference points):
+     * the physical points, and JxW times psi_a at point q in
+     * @p weighted_values[q * nodes(c).size() + a].
+     */
+    void
+    tabulate(const unsigned int     c,
+             const Quadrature<2>   &rule,
+             std::vector<Point<2>> &points,
+             std::vector<double>   &weighted_values) const;
+
   private:
     /**
      * Node shape functions of one cell on one Gauss rule, stored flat so

@@ -93,15 +93,6 @@ namespace PlateOnHalfspace
     }
 
   private:
-    /** y = T^{-1} x (nodal values to coefficients). */
-    void
-    coefficients_from_values(const Vector<double> &x, Vector<double> &y) const;
-
-    /** y = T^{-T} x. */
-    void
-    apply_inverse_transpose_transform(const Vector<double> &x,
-                                      Vector<double>       &y) const;
-
     const std::shared_ptr<const ElasticSoil> elastic;
     const double                             tolerance;
     /** The whole A on one process, else this rank's diagonal block. */

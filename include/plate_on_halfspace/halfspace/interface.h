@@ -4,7 +4,7 @@
  * an operator built on the foundation space of the plate that applies the
  * soil's flexibility to pressures and couples it to the plate. Every model
  * (the elastic half-space, the dense liquid), every storage (dense,
- * hierarchical, sparse) and every flexibility (Galerkin, collocation)
+ * hierarchical, fft, sparse) and every flexibility (Galerkin, collocation)
  * honours all of it; how a
  * contact solver factorises or preconditions the flexibility is the solver's
  * business, built from what this interface offers.
@@ -36,6 +36,7 @@
 #include <plate_on_halfspace/scene/parameters.h>
 #include <plate_on_halfspace/soil/soil_model.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -163,6 +164,16 @@ namespace PlateOnHalfspace
     virtual bool
     is_symmetric() const = 0;
 
+    /**
+     * What build() chose that a user should see in the log, such as a
+     * split or a grid (empty: nothing beyond the storage's name).
+     */
+    virtual std::string
+    build_report() const
+    {
+      return "";
+    }
+
     /** "dense", "sparse" (the dense liquid) or a compressed storage. */
     virtual std::string
     storage_name() const = 0;
@@ -261,6 +272,32 @@ namespace PlateOnHalfspace
     void
     set_pressure_basis(const FoundationSpace &space,
                        const bool             positive_pressure_basis);
+
+    /**
+     * y = T^{-1} x (nodal values to coefficients of the positive basis):
+     * a vertex row of T is the identity row, a mid-side row holds
+     * 1 - 2 alpha and alpha for its two ends. Call only with the positive
+     * basis.
+     */
+    void
+    coefficients_from_values(const Vector<double> &x, Vector<double> &y) const;
+
+    /**
+     * @p s = T^T A T @p q for an A given on nodal values by
+     * @p apply_to_values(values, settlement) (settlement sized already):
+     * a storage of the plain A in the contact basis.
+     */
+    void
+    apply_in_pressure_basis(
+      const Vector<double> &q,
+      Vector<double>       &s,
+      const std::function<void(const Vector<double> &, Vector<double> &)>
+        &apply_to_values) const;
+
+    /** y = T^{-T} x (with the positive basis only). */
+    void
+    apply_inverse_transpose_transform(const Vector<double> &x,
+                                      Vector<double>       &y) const;
 
     /** Make the test coupling B the identity (collocation). */
     void

@@ -105,7 +105,8 @@ namespace PlateOnHalfspace
         dense,        ///< every entry (LAPACK)
         hierarchical, ///< an H-matrix (hmat-oss)
         automatic,    ///< hierarchical from Hierarchical from nodes
-        sparse        ///< the dense liquid's mass matrix (never an entry)
+        sparse,       ///< the dense liquid's mass matrix (never an entry)
+        fft           ///< split kernel: sparse near field, FFT far field
       };
       Storage storage;
       double  tolerance;

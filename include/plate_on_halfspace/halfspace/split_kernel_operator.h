@@ -1,0 +1,134 @@
+/**
+ * The Galerkin half-space operator with the flexibility A split into a
+ * sparse near field and a smooth far field applied by the FFT:
+ * Foundation operator/Storage = fft (doc/formulation.md, "Split-kernel FFT
+ * storage"). With the kernel alpha / r split at the length sigma,
+ *
+ *   alpha / r = alpha erfc(r / sigma) / r  +  alpha erf(r / sigma) / r,
+ *
+ * the first part decays like exp(-r^2 / sigma^2): its Galerkin entries,
+ * integrated exactly by the cell-pair rules (CellPairIntegrator, the
+ * second part as the smooth remainder), vanish beyond a cutoff of a few
+ * sigma and are stored sparse. The second part is smooth everywhere, also
+ * at r = 0: it is integrated by Gauss rules on the cells, whose point
+ * charges go through GridConvolution (B-spline gridding, FFT convolution,
+ * B-spline interpolation). No correction of the near field is needed, so
+ * the operator handles graded and Gmsh meshes alike; the grid is uniform
+ * over the plate and its mirror images.
+ *
+ * Products cost about n log n, memory grows like n. The accuracy follows
+ * Foundation operator/Tolerance through the cutoff (erfc), the spline
+ * order and sigma / h (split_kernel_settings()). The approximate inverse
+ * (the soil-inverse preconditioner) is the sparse Cholesky factor of the
+ * near field on the pattern of the mass matrix plus the far field's
+ * long-wave flexibility as a multiple of the mass matrix.
+ *
+ * Like the hierarchical storage: no element exclusion, no direct solver
+ * (no dense block), the homogeneous half-space only (a layered soil's
+ * remainder would join the far field once its grid resolves the top
+ * layer). On several processes every rank holds the whole operator.
+ */
+#ifndef plate_on_halfspace_halfspace_split_kernel_operator_h
+#define plate_on_halfspace_halfspace_split_kernel_operator_h
+
+#include <plate_on_halfspace/halfspace/interface.h>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  class CellPairIntegrator;
+  class GridConvolution;
+
+  /** How the kernel is split and gridded for a tolerance. */
+  struct SplitKernelSettings
+  {
+    unsigned int spline_order; ///< B-spline order of the gridding
+    double       sigma_over_h; ///< split length over grid spacing
+    double       cutoff;       ///< near field within cutoff * sigma
+    unsigned int gauss_points; ///< per direction, on a cell of size sigma
+  };
+
+  /** The settings for Foundation operator/Tolerance @p tolerance. */
+  SplitKernelSettings
+  split_kernel_settings(const double tolerance);
+
+  /** See the file documentation. */
+  class SplitKernelFftOperator : public FoundationOperator
+  {
+  public:
+    SplitKernelFftOperator(std::shared_ptr<const ElasticSoil> soil,
+                           const double                       tolerance);
+    ~SplitKernelFftOperator() override;
+
+    void
+    build(const FoundationSpace   &space,
+          const std::vector<bool> &cell_in_foundation) override;
+    void
+    apply(const Vector<double> &q, Vector<double> &s) const override;
+    /** Near field exactly, far field from its own 2 x 2 Gauss points. */
+    Vector<double>
+    flexibility_diagonal() const override;
+    std::unique_ptr<ApproximateInverse>
+    make_approximate_inverse() override;
+    bool
+    is_symmetric() const override
+    {
+      return true;
+    }
+    std::string
+    storage_name() const override
+    {
+      return "fft";
+    }
+    /** sigma, the cutoff, the near field's size and the grid. */
+    std::string
+    build_report() const override;
+    std::size_t
+    memory_consumption() const override;
+
+    /** A on nodal values (no pressure basis): for tests. */
+    void
+    apply_to_values(const Vector<double> &values,
+                    Vector<double>       &settlement) const;
+
+    /** What the build chose (the log and the benchmark print it). */
+    struct Layout
+    {
+      double       sigma = 0, spacing = 0, cutoff = 0;
+      unsigned int spline_order = 0;
+      std::size_t  grid_nodes = 0, near_entries = 0, near_pairs = 0;
+      std::size_t  quadrature_points = 0;
+    };
+    const Layout &
+    layout() const
+    {
+      return chosen;
+    }
+
+  private:
+    /** The far field's Gauss points of one computed cell. */
+    struct CellPoints;
+
+    void
+    apply_far_field(const Vector<double> &values,
+                    Vector<double>       &settlement) const;
+
+    const std::shared_ptr<const ElasticSoil> elastic;
+    const double                             tolerance;
+    double                                   alpha      = 0;
+    unsigned int                             n_computed = 0;
+    /** Per computed cell (the images' charges are the reflected grid's). */
+    std::vector<CellPoints> far_points;
+    /** The scene's reflections (MirrorSymmetry::reflections()). */
+    std::vector<std::array<double, 2>> reflections;
+    std::unique_ptr<GridConvolution>   grid;
+    SparsityPattern                    near_sparsity;
+    SparseMatrix<double>               near_field;
+    Layout                             chosen;
+  };
+} // namespace PlateOnHalfspace
+
+#endif

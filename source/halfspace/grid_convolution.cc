@@ -1,0 +1,261 @@
+#include <deal.II/base/exceptions.h>
+
+#include <plate_on_halfspace/halfspace/grid_convolution.h>
+
+#include <fftw3.h>
+
+#include <cmath>
+#include <mutex>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /**
+     * values[k] = M_n(u + k), k < n: the cardinal B-spline of order n
+     * (support [0, n]) at u + k, 0 <= u < 1, by the recursion
+     * M_j(x) = (x M_{j-1}(x) + (j - x) M_{j-1}(x - 1)) / (j - 1).
+     */
+    void
+    cardinal_bspline(const double u, const unsigned int n, double *values)
+    {
+      values[0] = u;
+      values[1] = 1. - u;
+      for (unsigned int j = 3; j <= n; ++j)
+        {
+          const double inverse = 1. / (j - 1);
+          values[j - 1]        = 0.;
+          for (unsigned int k = j - 1; k > 0; --k)
+            values[k] =
+              ((u + k) * values[k] + (j - u - k) * values[k - 1]) * inverse;
+          values[0] = u * values[0] * inverse;
+        }
+    }
+
+    /** The smallest m >= @p n with no prime factor above 7 (fast FFTs). */
+    unsigned int
+    fast_fft_size(const unsigned int n)
+    {
+      for (unsigned int m = n;; ++m)
+        {
+          unsigned int r = m;
+          for (const unsigned int f : {2u, 3u, 5u, 7u})
+            while (r % f == 0)
+              r /= f;
+          if (r == 1)
+            return m;
+        }
+    }
+  } // namespace
+
+  struct GridConvolution::Plans
+  {
+    double       *real     = nullptr;
+    fftw_complex *spectrum = nullptr;
+    fftw_plan     forward = nullptr, backward = nullptr;
+    std::size_t   n_real = 0, n_spectrum = 0;
+    std::mutex    mutex; ///< the buffers serve one convolution at a time
+
+    ~Plans()
+    {
+      if (forward)
+        fftw_destroy_plan(forward);
+      if (backward)
+        fftw_destroy_plan(backward);
+      fftw_free(real);
+      fftw_free(spectrum);
+    }
+  };
+
+  GridConvolution::GridConvolution(const Point<2>              &centre,
+                                   const double                 spacing,
+                                   const std::array<double, 2> &half_widths,
+                                   const unsigned int           order,
+                                   const std::function<double(double)> &kernel)
+    : spline_order(order)
+    , h(spacing)
+    , plans(std::make_unique<Plans>())
+  {
+    AssertThrow(order >= 4 && order <= max_order && order % 2 == 0,
+                ExcMessage("GridConvolution: the spline order must be even, "
+                           "from 4 to " +
+                           std::to_string(max_order) + "."));
+    AssertThrow(spacing > 0 && std::isfinite(spacing),
+                ExcMessage("GridConvolution: the spacing must be positive."));
+    // Nodes centre + (i - (n-1)/2) h, enough that every stencil of a point
+    // within the half widths lies on the grid.
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        const double cells = 2. * half_widths[d] / h + order + 2;
+        AssertThrow(cells < 1e8,
+                    ExcMessage("GridConvolution: the grid is too large."));
+        n[d]      = static_cast<unsigned int>(std::ceil(cells)) + 1;
+        origin[d] = centre[d] - 0.5 * (n[d] - 1) * h;
+        // Hockney: offsets up to n - 1 either way without wrapping, and a
+        // margin where the filter's tail wraps.
+        padded[d] = fast_fft_size(2 * n[d] + 4 * order + 16);
+      }
+
+    // FFTW's row-major 2D layout: y the slow index, x the fast one.
+    const unsigned int px = padded[0], py = padded[1], sx = px / 2 + 1;
+    plans->n_real     = std::size_t(px) * py;
+    plans->n_spectrum = std::size_t(sx) * py;
+    plans->real       = fftw_alloc_real(plans->n_real);
+    plans->spectrum   = fftw_alloc_complex(plans->n_spectrum);
+    AssertThrow(plans->real && plans->spectrum,
+                ExcMessage("GridConvolution: out of memory for the FFT."));
+    // FFTW_ESTIMATE: the same plan, so the same rounding, on every run.
+    plans->forward =
+      fftw_plan_dft_r2c_2d(py, px, plans->real, plans->spectrum, FFTW_ESTIMATE);
+    plans->backward =
+      fftw_plan_dft_c2r_2d(py, px, plans->spectrum, plans->real, FFTW_ESTIMATE);
+
+    // The kernel's samples at the circular offsets.
+    for (unsigned int j = 0; j < py; ++j)
+      for (unsigned int i = 0; i < px; ++i)
+        {
+          const double dx = (i <= px / 2) ? double(i) : double(i) - px;
+          const double dy = (j <= py / 2) ? double(j) : double(j) - py;
+          plans->real[std::size_t(j) * px + i] = kernel(h * std::hypot(dx, dy));
+        }
+    fftw_execute(plans->forward);
+
+    // The B-splines' symbol B(w) = sum_m M(m) e^{-i w m} (real, positive
+    // for an even order), from the samples at the integers.
+    std::array<double, max_order> samples;
+    cardinal_bspline(0., order, samples.data()); // M_n(k), k < n
+    const auto symbol = [&](const double w) {
+      // centred: offsets k - n/2
+      double sum = 0;
+      for (unsigned int k = 1; k < order; ++k)
+        sum += samples[k] * std::cos(w * (double(k) - 0.5 * order));
+      return sum;
+    };
+    std::vector<double> bx(sx), by(py);
+    for (unsigned int i = 0; i < sx; ++i)
+      bx[i] = symbol(2 * M_PI * i / px);
+    for (unsigned int j = 0; j < py; ++j)
+      by[j] = symbol(2 * M_PI * j / py);
+    kernel_transform.resize(plans->n_spectrum);
+    const double scale = 1. / (double(px) * py); // FFTW's unnormalised pair
+    for (unsigned int j = 0; j < py; ++j)
+      for (unsigned int i = 0; i < sx; ++i)
+        {
+          const std::size_t k = std::size_t(j) * sx + i;
+          const double      b = bx[i] * by[j];
+          kernel_transform[k] = scale * plans->spectrum[k][0] / (b * b);
+        }
+  }
+
+  GridConvolution::~GridConvolution() = default;
+
+  GridConvolution::Stencil
+  GridConvolution::stencil(const Point<2> &x) const
+  {
+    Stencil                       s;
+    std::array<double, max_order> w;
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        const double t = (x[d] - origin[d]) / h;
+        const double f = std::floor(t);
+        cardinal_bspline(t - f, spline_order, w.data());
+        // node f + n/2 - k has the weight M_n(u + k)
+        const int first = static_cast<int>(f) - int(spline_order / 2) + 1;
+        auto     &out   = d == 0 ? s.x : s.y;
+        for (unsigned int j = 0; j < spline_order; ++j)
+          out[j] = w[spline_order - 1 - j];
+        (d == 0 ? s.first_x : s.first_y) = first;
+      }
+    Assert(s.first_x >= 0 && s.first_y >= 0 &&
+             s.first_x + spline_order <= n[0] &&
+             s.first_y + spline_order <= n[1],
+           ExcInternalError());
+    return s;
+  }
+
+  void
+  GridConvolution::spread(const Stencil &s,
+                          const double   charge,
+                          double        *charges) const
+  {
+    for (unsigned int j = 0; j < spline_order; ++j)
+      {
+        double *row = charges + std::size_t(s.first_y + j) * n[0] + s.first_x;
+        const double c = charge * s.y[j];
+        for (unsigned int i = 0; i < spline_order; ++i)
+          row[i] += c * s.x[i];
+      }
+  }
+
+  double
+  GridConvolution::interpolate(const Stencil &s, const double *values) const
+  {
+    double sum = 0;
+    for (unsigned int j = 0; j < spline_order; ++j)
+      {
+        const double *row =
+          values + std::size_t(s.first_y + j) * n[0] + s.first_x;
+        double line = 0;
+        for (unsigned int i = 0; i < spline_order; ++i)
+          line += row[i] * s.x[i];
+        sum += s.y[j] * line;
+      }
+    return sum;
+  }
+
+  void
+  GridConvolution::add_reflections(
+    std::vector<double>                      &field,
+    const std::vector<std::array<double, 2>> &reflections) const
+  {
+    if (reflections.empty())
+      return;
+    const std::vector<double> original = field;
+    for (const auto &sign : reflections)
+      for (unsigned int j = 0; j < n[1]; ++j)
+        {
+          const unsigned int from_j = sign[1] < 0 ? n[1] - 1 - j : j;
+          for (unsigned int i = 0; i < n[0]; ++i)
+            {
+              const unsigned int from_i = sign[0] < 0 ? n[0] - 1 - i : i;
+              field[std::size_t(j) * n[0] + i] +=
+                original[std::size_t(from_j) * n[0] + from_i];
+            }
+        }
+  }
+
+  void
+  GridConvolution::convolve(const std::vector<double> &charges,
+                            std::vector<double>       &potentials) const
+  {
+    AssertDimension(charges.size(), n_grid_nodes());
+    const std::lock_guard<std::mutex> lock(plans->mutex);
+    const unsigned int                px = padded[0], sx = px / 2 + 1;
+    std::fill(plans->real, plans->real + plans->n_real, 0.);
+    for (unsigned int j = 0; j < n[1]; ++j)
+      std::copy(charges.begin() + std::size_t(j) * n[0],
+                charges.begin() + std::size_t(j + 1) * n[0],
+                plans->real + std::size_t(j) * px);
+    fftw_execute(plans->forward);
+    for (std::size_t k = 0; k < plans->n_spectrum; ++k)
+      {
+        plans->spectrum[k][0] *= kernel_transform[k];
+        plans->spectrum[k][1] *= kernel_transform[k];
+      }
+    (void)sx;
+    fftw_execute(plans->backward);
+    potentials.resize(n_grid_nodes());
+    for (unsigned int j = 0; j < n[1]; ++j)
+      std::copy(plans->real + std::size_t(j) * px,
+                plans->real + std::size_t(j) * px + n[0],
+                potentials.begin() + std::size_t(j) * n[0]);
+  }
+
+  std::size_t
+  GridConvolution::memory_consumption() const
+  {
+    return kernel_transform.size() * sizeof(double) +
+           plans->n_real * sizeof(double) +
+           plans->n_spectrum * sizeof(fftw_complex);
+  }
+} // namespace PlateOnHalfspace

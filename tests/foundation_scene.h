@@ -1,0 +1,78 @@
+// The foundation space of a shipped scene, built as the program builds it
+// (plate_on_halfspace_problem.cc): for tests of a foundation operator on
+// its own.
+#ifndef plate_on_halfspace_tests_foundation_scene_h
+#define plate_on_halfspace_tests_foundation_scene_h
+
+#include <deal.II/grid/tria.h>
+
+#include <plate_on_halfspace/plate/mindlin_plate.h>
+#include <plate_on_halfspace/plate/plate_mesh.h>
+#include <plate_on_halfspace/scene/mirror_symmetry.h>
+#include <plate_on_halfspace/soil/boussinesq_kernel.h>
+
+#include <algorithm>
+#include <string>
+
+namespace TestTools
+{
+  using namespace PlateOnHalfspace;
+
+  /** The foundation space of a scene, its alpha and quadrature order. */
+  struct FoundationScene
+  {
+    FoundationSpace space;
+    double          alpha;
+    unsigned int    singular_order;
+  };
+
+  /**
+   * parameters/@p file with @p extra appended, cut to its symmetric part
+   * as the program does; the cells within @p graded_radius of the mesh's
+   * lower left corner refined twice more (the second time within half the
+   * radius): a graded mesh with hanging nodes.
+   */
+  inline FoundationScene
+  make_foundation_scene(const std::string &file,
+                        const std::string &extra,
+                        const double       graded_radius = 0)
+  {
+    SceneParameters parameters;
+    parameters.read_from_string("include " SOURCE_DIR "/../../parameters/" +
+                                file + "\nset Output directory = results\n" +
+                                extra);
+    Triangulation<2> mesh;
+    make_coarse_plate_mesh(parameters.plate, parameters.discretization, mesh);
+    const MirrorSymmetry symmetry = choose_mirror_symmetry(
+      parameters, mesh, [&](const unsigned int axis, const double tolerance) {
+        return reason_loads_not_symmetric(make_loads(parameters.loads, 0.),
+                                          axis,
+                                          tolerance);
+      });
+    cut_to_computed_part(symmetry, mesh);
+    mesh.refine_global(parameters.discretization.initial_refinements);
+    if (graded_radius > 0)
+      for (unsigned int round = 0; round < 2; ++round)
+        {
+          Point<2> corner = mesh.begin_active()->vertex(0);
+          for (const auto &cell : mesh.active_cell_iterators())
+            for (const unsigned int v : cell->vertex_indices())
+              corner = Point<2>(std::min(corner[0], cell->vertex(v)[0]),
+                                std::min(corner[1], cell->vertex(v)[1]));
+          for (const auto &cell : mesh.active_cell_iterators())
+            if (cell->center().distance(corner) < graded_radius / (1 + round))
+              cell->set_refine_flag();
+          mesh.execute_coarsening_and_refinement();
+        }
+    MindlinPlate plate(parameters.plate, parameters.discretization);
+    plate.set_mirror_symmetry(symmetry);
+    plate.setup(mesh);
+    return {
+      plate.get_foundation_space(),
+      boussinesq_flexibility_constant(parameters.foundation.youngs_modulus,
+                                      parameters.foundation.poissons_ratio),
+      parameters.discretization.singular_quadrature_order};
+  }
+} // namespace TestTools
+
+#endif
