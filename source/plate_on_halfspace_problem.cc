@@ -667,9 +667,10 @@ namespace PlateOnHalfspace
     if (!kernel_report.empty() && kernel_report != last_kernel_report)
       log << kernel_report << std::endl;
     last_kernel_report = kernel_report;
-    // A smooth remainder is integrated with 3 + 3 H / l Gauss points per
-    // direction, at most 12 (cell_pair_quadrature.h): cells coarser than
-    // 3 l leave its error above the tabulation's.
+    // A smooth remainder's rules are sized for cells up to about 3 l wide:
+    // separated pairs take 3 or 5 Gauss points per direction, the
+    // settlement between nodes at most 12, touching pairs at most 96
+    // (cell_pair_quadrature.h, surface_settlement.h).
     if (const auto *elastic = dynamic_cast<const ElasticSoil *>(soil.get()))
       {
         const FoundationSpace &space = mindlin_plate->get_foundation_space();
@@ -685,8 +686,8 @@ namespace PlateOnHalfspace
             text << "Foundation/Layers: the plate's cells (up to " << largest
                  << ") are more than 3 times as wide as the top layer ("
                  << kernel.remainder->length_scale()
-                 << " thick); the layered kernel is integrated with at most "
-                    "12 Gauss points per direction over such cells and its "
+                 << " thick); the layered kernel's quadrature rules are sized "
+                    "for cells up to about 3 times its thickness, and its "
                     "error may exceed the stated tolerance. Refine the mesh "
                     "(Discretization/Initial refinements), or merge the top "
                     "layer into the one below.";

@@ -29,13 +29,14 @@ namespace TestTools
   /**
    * parameters/@p file with @p extra appended, cut to its symmetric part
    * as the program does; the cells within @p graded_radius of the mesh's
-   * lower left corner refined twice more (the second time within half the
-   * radius): a graded mesh with hanging nodes.
+   * lower left corner refined @p grading_rounds more times (round k within
+   * the radius over k + 1): a graded mesh with hanging nodes.
    */
   inline FoundationScene
   make_foundation_scene(const std::string &file,
                         const std::string &extra,
-                        const double       graded_radius = 0)
+                        const double       graded_radius  = 0,
+                        const unsigned int grading_rounds = 2)
   {
     SceneParameters parameters;
     parameters.read_from_string("include " SOURCE_DIR "/../../parameters/" +
@@ -52,7 +53,7 @@ namespace TestTools
     cut_to_computed_part(symmetry, mesh);
     mesh.refine_global(parameters.discretization.initial_refinements);
     if (graded_radius > 0)
-      for (unsigned int round = 0; round < 2; ++round)
+      for (unsigned int round = 0; round < grading_rounds; ++round)
         {
           Point<2> corner = mesh.begin_active()->vertex(0);
           for (const auto &cell : mesh.active_cell_iterators())

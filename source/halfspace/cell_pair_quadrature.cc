@@ -575,14 +575,24 @@ namespace PlateOnHalfspace
                                        const unsigned int          l,
                                        const SmoothRadialFunction &R) const
   {
-    const CellData    &dk = cell_data[k], &dl = cell_data[l];
-    const double       H          = std::max(dk.diameter, dl.diameter);
-    const double       separation = std::max(0.,
+    const CellData &dk = cell_data[k], &dl = cell_data[l];
+    const double    H          = std::max(dk.diameter, dl.diameter);
+    const double    separation = std::max(0.,
                                        dk.centre.distance(dl.centre) -
                                          0.5 * (dk.diameter + dl.diameter));
-    const unsigned int order      = static_cast<unsigned int>(
-      std::min(12., 3. + std::floor(3. * H / (R.length_scale() + separation))));
-    const QGauss<2> rule(order);
+    // 3 + 3 H / (l + d) Gauss points per direction; above 12, the cell is
+    // cut into copies that each need at most 12 (a composite rule): R
+    // varies on its length scale wherever the cells are, so the points
+    // must follow it across a cell many times wider. At most 8 copies
+    // (96 points, 10^8 kernel values a pair): beyond, the cells are more
+    // than about 30 l wide, which the layered soil warns about and the
+    // split-kernel storage's sigma avoids.
+    const double       waves  = 3. * H / (R.length_scale() + separation);
+    const unsigned int copies = std::min(
+      8u, waves <= 9. ? 1u : static_cast<unsigned int>(std::ceil(waves / 9.)));
+    const unsigned int order =
+      std::min(12u, 3u + static_cast<unsigned int>(std::floor(waves / copies)));
+    const QIterated<2> rule(QGauss<1>(order), copies);
     // Points relative to k's first vertex, so that congruent pairs see the
     // same distances up to rounding.
     const Point<2> origin = cells[k].geometry.get_vertices()[0];

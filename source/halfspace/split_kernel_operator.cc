@@ -7,6 +7,7 @@
 #include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
 #include <plate_on_halfspace/halfspace/grid_convolution.h>
+#include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/halfspace/split_kernel_operator.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 namespace PlateOnHalfspace
@@ -167,7 +169,9 @@ namespace PlateOnHalfspace
 
     // The split length: the median cell size, so that most cells meet
     // their near field within a few neighbours; the grid no finer than 64
-    // nodes per cell on average.
+    // nodes per cell on average; and no shorter than a 16th of the largest
+    // cell, whose touching pairs integrate erf(r / sigma) / r with
+    // (3 H / sigma)^2 points per cell (CellPairIntegrator::integrate_smooth).
     const SplitKernelSettings settings = split_kernel_settings(tolerance);
     std::vector<double>       sizes(n_computed);
     std::vector<Point<2>>     centres(n_cells);
@@ -191,10 +195,13 @@ namespace PlateOnHalfspace
     std::nth_element(sizes.begin(),
                      sizes.begin() + sizes.size() / 2,
                      sizes.end());
-    double       sigma   = sizes[sizes.size() / 2];
-    const double area    = (high[0] - low[0]) * (high[1] - low[1]);
-    sigma                = std::max(sigma,
-                     settings.sigma_over_h * std::sqrt(area / (64. * n_cells)));
+    double       sigma = sizes[sizes.size() / 2];
+    const double area  = (high[0] - low[0]) * (high[1] - low[1]);
+    const double largest =
+      *std::max_element(diameters.begin(), diameters.end());
+    sigma                = std::max({sigma,
+                                     settings.sigma_over_h * std::sqrt(area / (64. * n_cells)),
+                                     largest / 16.});
     const double spacing = sigma / settings.sigma_over_h;
     const double cutoff  = settings.cutoff * sigma;
 
@@ -234,8 +241,6 @@ namespace PlateOnHalfspace
 
     // The near field's terms, in CellPairSummation's canonical order
     // (first, other, image), from buckets as wide as the reach of a pair.
-    const double largest =
-      *std::max_element(diameters.begin(), diameters.end());
     const double width  = cutoff + largest;
     const auto   bucket = [&](const Point<2> &p) {
       return std::make_pair(static_cast<long long>(std::floor(p[0] / width)),
@@ -277,6 +282,42 @@ namespace PlateOnHalfspace
               singular.emplace_back(first, l);
           }
       }
+    // The near field's memory before it is integrated: a strongly graded
+    // mesh puts (cutoff / h)^2 cells into the reach of each cell of size h
+    // below sigma.
+    {
+      std::size_t entries = 0;
+      for (const Term &t : terms)
+        entries += (t.first == t.cell ? 1 : 2) *
+                   integrator.nodes(t.first).size() *
+                   integrator.nodes(t.cell).size();
+      // a value and a column index in the matrix, and the pattern's copy
+      const std::size_t needed    = entries * (sizeof(double) + 8);
+      const std::size_t available = available_memory_bytes();
+      double            finest    = std::numeric_limits<double>::max();
+      for (unsigned int c = 0; c < n_computed; ++c)
+        finest = std::min(finest, std::sqrt(cells[c].geometry.area()));
+      if (available > 0 && needed > available)
+        {
+          std::ostringstream text;
+          text << std::setprecision(3)
+               << "Foundation operator/Storage = fft: the near field needs "
+                  "about "
+               << needed / 1073741824. << " GiB (" << terms.size()
+               << " cell pairs within " << cutoff
+               << " of each other), but only " << available / 1073741824.
+               << " GiB are available. ";
+          if (finest < 0.25 * sigma)
+            text << "The kernel is split at sigma = " << sigma
+                 << ", the median cell size, and the cells down to " << finest
+                 << " wide each reach many others: the mesh is too strongly "
+                    "graded for one split length. ";
+          text << "Use Foundation operator/Storage = hierarchical, or reduce "
+                  "the node count (Discretization/Subdivisions x and y, "
+                  "Discretization/Initial refinements, Adaptivity/Max cells).";
+          AssertThrow(false, ExcMessage(text.str()));
+        }
+    }
     const auto near_remainder = std::make_shared<MinusFarField>(alpha, sigma);
     const SurfaceKernel near_kernel(alpha, near_remainder);
     integrator.integrate_singular_pairs(singular, near_remainder.get());
@@ -451,79 +492,157 @@ namespace PlateOnHalfspace
   Vector<double>
   SplitKernelFftOperator::flexibility_diagonal() const
   {
-    const unsigned int n = n_nodes();
-    // The far field's A_jj from about 4 of the Gauss points of each cell
-    // of node j (every copy), their weights rescaled to the cell's: the
-    // springs need the local flexibility to a factor of a few
-    // (contact/pressure_preconditioner.h), and all points would cost
-    // (16 points)^2 kernel values per pair of cells.
-    std::vector<std::vector<std::pair<unsigned int, unsigned int>>> cells_of(n);
+    const unsigned int n     = n_nodes();
+    const double       sigma = chosen.sigma;
+    // The far field's A_jj on lumped rules: each cell's m x m Gauss points
+    // merged into g x g groups (their weights summed, at their mean
+    // point), g from 2 on cells up to sigma wide to 8 on cells many sigma
+    // wide, where erf(r / sigma) / r varies across the cell. The springs
+    // need the local flexibility to a factor of a few
+    // (contact/pressure_preconditioner.h); all points would cost m^4
+    // kernel values per pair of cells.
+    struct Lumped
+    {
+      std::vector<Point<2>> points;
+      /** summed JxW psi_a of group g at [g * nodes + a] */
+      std::vector<double> weights;
+      Point<2>            centre;
+      double              radius = 0;
+    };
+    std::vector<Lumped> lumped(far_points.size());
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(far_points.size()),
+      [&](const unsigned int from, const unsigned int to) {
+        for (unsigned int c = from; c < to; ++c)
+          {
+            const CellPoints  &cp        = far_points[c];
+            const unsigned int n_nodes_c = cp.nodes.size();
+            // QGauss<2> is the tensor rule, x fastest (point i + m j)
+            const auto m = static_cast<unsigned int>(
+              std::lround(std::sqrt(double(cp.points.size()))));
+            double extent = 0;
+            for (const Point<2> &p : cp.points)
+              extent = std::max(extent, p.distance(cp.points[0]));
+            const unsigned int g =
+              std::min({m,
+                        8u,
+                        std::max(2u,
+                                 static_cast<unsigned int>(std::ceil(
+                                   2. * extent / (std::sqrt(2.) * sigma))))});
+            Lumped &l = lumped[c];
+            l.points.assign(g * g, Point<2>());
+            l.weights.assign(g * g * n_nodes_c, 0.);
+            std::vector<unsigned int> count(g * g, 0);
+            for (unsigned int j = 0; j < m; ++j)
+              for (unsigned int i = 0; i < m; ++i)
+                {
+                  const unsigned int q     = i + m * j,
+                                     group = i * g / m + g * (j * g / m);
+                  l.points[group] += cp.points[q];
+                  ++count[group];
+                  for (unsigned int a = 0; a < n_nodes_c; ++a)
+                    l.weights[group * n_nodes_c + a] +=
+                      cp.weighted_values[q * n_nodes_c + a];
+                }
+            for (unsigned int group = 0; group < g * g; ++group)
+              {
+                l.points[group] /= count[group];
+                l.centre += l.points[group] / (g * g);
+              }
+            for (const Point<2> &p : cp.points)
+              l.radius = std::max(l.radius, p.distance(l.centre));
+          }
+      },
+      256);
+    // Basis function i as node values: T's column i, or node i itself.
+    std::vector<std::vector<std::pair<unsigned int, double>>> columns(n);
+    if (positive_basis)
+      for (unsigned int j = 0; j < transform.m(); ++j)
+        for (auto t = transform.begin(j); t != transform.end(j); ++t)
+          columns[t->column()].emplace_back(j, t->value());
+    else
+      for (unsigned int i = 0; i < n; ++i)
+        columns[i] = {{i, 1.}};
+    std::vector<std::vector<unsigned int>> cells_of(n);
     for (unsigned int c = 0; c < far_points.size(); ++c)
-      for (unsigned int a = 0; a < far_points[c].nodes.size(); ++a)
-        cells_of[far_points[c].nodes[a]].emplace_back(c, a);
+      for (const unsigned int j : far_points[c].nodes)
+        cells_of[j].push_back(c);
     std::vector<std::array<double, 2>> signs = {{{1., 1.}}};
     signs.insert(signs.end(), reflections.begin(), reflections.end());
-    const double   sigma = chosen.sigma;
-    Vector<double> far_diagonal(n);
-    const auto     every = [](const CellPoints &cp) {
-      return std::max<std::size_t>(1, cp.points.size() / 4);
-    };
-    // sum over a cell's every step-th point of JxW psi_a, and the ratio
-    // that rescales it to the whole cell's
-    const auto scale = [&](const CellPoints &cp, const unsigned int a) {
-      double all = 0, some = 0;
-      for (unsigned int p = 0; p < cp.points.size(); ++p)
-        all += cp.weighted_values[p * cp.nodes.size() + a];
-      for (unsigned int p = 0; p < cp.points.size(); p += every(cp))
-        some += cp.weighted_values[p * cp.nodes.size() + a];
-      return some != 0. ? all / some : 0.;
-    };
-    for (unsigned int j = 0; j < n; ++j)
-      {
-        double sum = 0;
-        for (const auto &[k, a] : cells_of[j])
-          for (const auto &[l, b] : cells_of[j])
-            for (const auto &sign : signs)
-              {
-                const CellPoints &ck = far_points[k], &cl = far_points[l];
-                double            part = 0;
-                for (unsigned int p = 0; p < ck.points.size(); p += every(ck))
-                  for (unsigned int r = 0; r < cl.points.size(); r += every(cl))
-                    {
-                      const Point<2> y(sign[0] * cl.points[r][0],
-                                       sign[1] * cl.points[r][1]);
-                      part +=
-                        ck.weighted_values[p * ck.nodes.size() + a] *
-                        cl.weighted_values[r * cl.nodes.size() + b] *
-                        far_kernel(alpha, sigma, ck.points[p].distance(y));
-                    }
-                sum += part * scale(ck, a) * scale(cl, b);
-              }
-        far_diagonal[j] = sum;
-      }
     Vector<double> diagonal(n);
-    if (!positive_basis)
-      {
-        for (unsigned int i = 0; i < n; ++i)
-          diagonal[i] = near_field.diag_element(i) + far_diagonal[i];
-        return diagonal;
-      }
-    // (T^T N T)_ii exactly, the far part without the cross terms.
-    std::vector<std::vector<std::pair<unsigned int, double>>> columns(n);
-    for (unsigned int j = 0; j < transform.m(); ++j)
-      for (auto t = transform.begin(j); t != transform.end(j); ++t)
-        columns[t->column()].emplace_back(j, t->value());
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        double sum = 0;
-        for (const auto &[j, tj] : columns[i])
+    parallel::apply_to_subranges(
+      0u,
+      n,
+      [&](const unsigned int from, const unsigned int to) {
+        std::vector<unsigned int>        support;
+        std::vector<std::vector<double>> weights;
+        for (unsigned int i = from; i < to; ++i)
           {
-            sum += tj * tj * far_diagonal[j];
-            for (const auto &[k, tk] : columns[i])
-              sum += tj * tk * near_field.el(j, k);
+            // the near part exactly: (T^T N T)_ii
+            double sum = 0;
+            for (const auto &[j, tj] : columns[i])
+              for (const auto &[k, tk] : columns[i])
+                sum += tj * tk * near_field.el(j, k);
+            // the far part: basis function i's lumped weights per cell
+            support.clear();
+            for (const auto &column_entry : columns[i])
+              for (const unsigned int c : cells_of[column_entry.first])
+                support.push_back(c);
+            std::sort(support.begin(), support.end());
+            support.erase(std::unique(support.begin(), support.end()),
+                          support.end());
+            weights.assign(support.size(), {});
+            for (unsigned int s = 0; s < support.size(); ++s)
+              {
+                const CellPoints &cp = far_points[support[s]];
+                const Lumped     &l  = lumped[support[s]];
+                weights[s].assign(l.points.size(), 0.);
+                for (unsigned int a = 0; a < cp.nodes.size(); ++a)
+                  for (const auto &[j, tj] : columns[i])
+                    if (j == cp.nodes[a])
+                      for (unsigned int g = 0; g < l.points.size(); ++g)
+                        weights[s][g] +=
+                          tj * l.weights[g * cp.nodes.size() + a];
+              }
+            for (unsigned int s = 0; s < support.size(); ++s)
+              for (unsigned int t = 0; t < support.size(); ++t)
+                for (const auto &sign : signs)
+                  {
+                    const Lumped &lk = lumped[support[s]],
+                                 &ll = lumped[support[t]];
+                    // an image beyond the near field's reach as the
+                    // cells' total weights at their centres
+                    const Point<2> image(sign[0] * ll.centre[0],
+                                         sign[1] * ll.centre[1]);
+                    if (&sign != &signs[0] &&
+                        lk.centre.distance(image) - lk.radius - ll.radius >
+                          chosen.cutoff)
+                      {
+                        sum +=
+                          std::accumulate(weights[s].begin(),
+                                          weights[s].end(),
+                                          0.) *
+                          std::accumulate(weights[t].begin(),
+                                          weights[t].end(),
+                                          0.) *
+                          far_kernel(alpha, sigma, lk.centre.distance(image));
+                        continue;
+                      }
+                    for (unsigned int p = 0; p < lk.points.size(); ++p)
+                      for (unsigned int r = 0; r < ll.points.size(); ++r)
+                        {
+                          const Point<2> y(sign[0] * ll.points[r][0],
+                                           sign[1] * ll.points[r][1]);
+                          sum +=
+                            weights[s][p] * weights[t][r] *
+                            far_kernel(alpha, sigma, lk.points[p].distance(y));
+                        }
+                  }
+            diagonal[i] = sum;
           }
-        diagonal[i] = sum;
-      }
+      },
+      256);
     return diagonal;
   }
 
@@ -582,6 +701,8 @@ namespace PlateOnHalfspace
   std::string
   SplitKernelFftOperator::build_report() const
   {
+    if (!grid)
+      return "Foundation operator/Storage = fft: not built";
     std::ostringstream text;
     text << std::setprecision(3) << "Foundation operator/Storage = fft: "
          << "kernel split at sigma = " << chosen.sigma << ", near field of "

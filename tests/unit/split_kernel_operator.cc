@@ -5,18 +5,19 @@
 //  - the paper's 12 m x 8 m rectangle (24 x 16 cells, whole), the disk of
 //    rigid-disk.prm (3 refinements, general quadrilaterals), the flexible
 //    square as a quarter (mirror images in the kernel), the distorted
-//    Gmsh square (tests/data/distorted-square.msh) and a graded mesh
-//    (the rectangle refined twice towards a corner, hanging nodes, cells
-//    of three sizes): the product A x differs from dense by less than the
-//    tolerance (relative 2-norm) at 1e-4 and at the default 1e-6, for a
-//    smooth pressure and one with node-to-node parts;
+//    Gmsh square (tests/data/distorted-square.msh), a graded mesh (the
+//    rectangle refined twice towards a corner, hanging nodes, cells of
+//    three sizes) and a strongly graded one (seven times, cells of eight
+//    sizes, the largest 14 times the split length): the product A x differs
+//    from dense by less than the tolerance (relative 2-norm) at 1e-4 and at the
+//    default 1e-6, for a smooth pressure and one with node-to-node parts;
 //  - the product is symmetric: y^T A x = x^T A y to 1e-12;
 //  - a uniform pressure on the rectangle: the weak settlement within 1e-5
 //    of the closed-form integral of 1/|x - y| over the rectangle, and no
 //    further from it than dense's (both carry the singular pairs'
 //    quadrature error);
 //  - the diagonal of T^T A T for the plate-on-springs preconditioner lies
-//    within a factor 3 of the dense operator's;
+//    within 10 % of the dense operator's (measured: 2 %);
 //  - the approximate inverse (the soil-inverse preconditioner) lets CG
 //    recover a pressure from its settlement to 1e-6 within 200
 //    iterations.
@@ -152,8 +153,8 @@ namespace
           low  = std::min(low, ratio);
           high = std::max(high, ratio);
         }
-      require(name + ": diagonal within a factor 3 of dense's",
-              low > 1. / 3 && high < 3);
+      require(name + ": diagonal within 10 % of dense's",
+              low > 0.9 && high < 1.1);
 
       // The approximate inverse preconditions CG on F q = s (F = T^T A T).
       const auto inverse = fft.make_approximate_inverse();
@@ -179,7 +180,9 @@ namespace
       fft.apply(smooth_vector(scene.space), s);
       // no log: its iteration count and residuals depend on the BLAS
       // kernel's rounding
-      SolverControl            control(200, 1e-10 * s.l2_norm(), false, false);
+      // 1e-12: the strongly graded mesh's A is ill-conditioned enough that
+      // a residual of 1e-10 leaves q's error near 1e-5
+      SolverControl            control(200, 1e-12 * s.l2_norm(), false, false);
       SolverCG<Vector<double>> cg(control);
       cg.solve(flexibility, q, s, preconditioner);
       q -= smooth_vector(scene.space);
@@ -301,4 +304,13 @@ main()
             "subsection Discretization\n set Subdivisions x = 12\n"
             " set Subdivisions y = 8\n set Symmetry = none\nend\n",
             4.));
+  // Cells from 2 m down to 2 m / 128: the largest about 14 sigma wide, so
+  // their touching pairs need the composite rule of integrate_smooth().
+  compare("strongly graded rectangle",
+          TestTools::make_foundation_scene(
+            "example2-bonded.prm",
+            "subsection Discretization\n set Subdivisions x = 6\n"
+            " set Subdivisions y = 4\n set Symmetry = none\nend\n",
+            2.,
+            7));
 }

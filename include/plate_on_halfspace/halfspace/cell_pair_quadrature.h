@@ -248,11 +248,14 @@ namespace PlateOnHalfspace
     /**
      * ∫_{cell k} ∫_{cell l} phi_i(x) phi_j(y) R(|x - y|) dy dx in the Q2
      * basis (9 x 9) for a smooth @p R (a layered soil's remainder, soil/
-     * layered_soil.h): tensor Gauss rules of 3 + 3 H / (l + d) points per
-     * direction (at most 12), H the larger diameter, d the cells'
-     * separation and l R's length scale. A rule of that order resolves a
-     * function analytic in a strip of half-width l to about 1e-9 over a
-     * cell.
+     * layered_soil.h; the split-kernel storage's far field): tensor Gauss
+     * rules of 3 + 3 H / (l + d) points per direction, H the larger
+     * diameter, d the cells' separation and l R's length scale. A rule of
+     * that order resolves a function analytic in a strip of half-width l
+     * to about 1e-9 over a cell. Above 12 points the rule is composite:
+     * the cell cut into c x c copies of a rule of 3 + 3 H / (c (l + d))
+     * points, at most 12, so the cost grows like (H / l)^4; at most 8
+     * copies (96 points per direction, cells up to about 30 l wide).
      */
     FullMatrix<double>
     integrate_smooth(const unsigned int          k,
