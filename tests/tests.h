@@ -122,4 +122,16 @@ check_below(const std::string &name, const double computed, const double bound)
   AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
 }
 
+/**
+ * A condition on numbers that depend on rounding (pivots, round-off-sized
+ * errors): print "name: ok" or "name: FAILED" and fail the test unless
+ * @p condition holds. The numbers themselves are not printed.
+ */
+inline void
+require(const std::string &name, const bool condition)
+{
+  deallog << name << ": " << (condition ? "ok" : "FAILED") << std::endl;
+  AssertThrow(condition, ExcMessage("check '" + name + "' failed"));
+}
+
 #endif

@@ -88,6 +88,48 @@ namespace PlateOnHalfspace
     return cells;
   }
 
+  std::vector<std::pair<unsigned int, unsigned int>>
+  CellPairSummation::canonical_pairs_within(
+    const std::vector<Point<2>>                           &centres,
+    const unsigned int                                     n_computed,
+    const double                                           width,
+    const std::function<bool(unsigned int, unsigned int)> &keep)
+  {
+    const auto bucket = [&](const Point<2> &p) {
+      return std::make_pair(static_cast<long long>(std::floor(p[0] / width)),
+                            static_cast<long long>(std::floor(p[1] / width)));
+    };
+    std::map<std::pair<long long, long long>, std::vector<unsigned int>>
+      buckets;
+    for (unsigned int c = 0; c < centres.size(); ++c)
+      buckets[bucket(centres[c])].push_back(c);
+
+    std::vector<std::pair<unsigned int, unsigned int>> pairs, candidates;
+    for (unsigned int first = 0; first < n_computed; ++first)
+      {
+        candidates.clear();
+        const auto home = bucket(centres[first]);
+        for (long long dx = -1; dx <= 1; ++dx)
+          for (long long dy = -1; dy <= 1; ++dy)
+            {
+              const auto found =
+                buckets.find({home.first + dx, home.second + dy});
+              if (found == buckets.end())
+                continue;
+              for (const unsigned int l : found->second)
+                {
+                  const unsigned int other = l % n_computed, r = l / n_computed;
+                  if (other >= first && keep(first, l))
+                    candidates.emplace_back(other, r);
+                }
+            }
+        std::sort(candidates.begin(), candidates.end());
+        for (const auto &[other, r] : candidates)
+          pairs.emplace_back(first, r * n_computed + other);
+      }
+    return pairs;
+  }
+
   std::vector<CellPairSummation::Pair>
   CellPairSummation::pairs_touching(
     const std::vector<unsigned int> &row_nodes,
@@ -185,41 +227,15 @@ namespace PlateOnHalfspace
         centres[c] = cells[c].geometry.map(Point<2>(0.5, 0.5));
         largest    = std::max(largest, cells[c].geometry.diameter());
       }
-    const double width  = 2 * largest;
-    const auto   bucket = [&](const Point<2> &p) {
-      return std::make_pair(static_cast<long long>(std::floor(p[0] / width)),
-                            static_cast<long long>(std::floor(p[1] / width)));
-    };
-    std::map<std::pair<long long, long long>, std::vector<unsigned int>>
-      buckets;
-    for (unsigned int c = 0; c < n_cells; ++c)
-      buckets[bucket(centres[c])].push_back(c);
-
-    // Canonical order: first, then other, then the image r.
-    std::vector<std::pair<unsigned int, unsigned int>> pairs, candidates;
-    for (unsigned int first = 0; first < n_computed; ++first)
-      {
-        candidates.clear();
-        const auto home = bucket(centres[first]);
-        for (long long dx = -1; dx <= 1; ++dx)
-          for (long long dy = -1; dy <= 1; ++dy)
-            {
-              const auto found =
-                buckets.find({home.first + dx, home.second + dy});
-              if (found == buckets.end())
-                continue;
-              for (const unsigned int l : found->second)
-                {
-                  const unsigned int other = l % n_computed, r = l / n_computed;
-                  if (other >= first && contributes(first, other) &&
-                      integrator->singular_pair(first, l))
-                    candidates.emplace_back(other, r);
-                }
-            }
-        std::sort(candidates.begin(), candidates.end());
-        for (const auto &[other, r] : candidates)
-          pairs.emplace_back(first, r * n_computed + other);
-      }
+    const auto pairs =
+      canonical_pairs_within(centres,
+                             n_computed,
+                             2 * largest,
+                             [&](const unsigned int first,
+                                 const unsigned int l) {
+                               return contributes(first, l % n_computed) &&
+                                      integrator->singular_pair(first, l);
+                             });
     integrator->integrate_singular_pairs(pairs, kernel.remainder.get());
   }
 

@@ -241,46 +241,21 @@ namespace PlateOnHalfspace
 
     // The near field's terms, in CellPairSummation's canonical order
     // (first, other, image), from buckets as wide as the reach of a pair.
-    const double width  = cutoff + largest;
-    const auto   bucket = [&](const Point<2> &p) {
-      return std::make_pair(static_cast<long long>(std::floor(p[0] / width)),
-                            static_cast<long long>(std::floor(p[1] / width)));
-    };
-    std::map<std::pair<long long, long long>, std::vector<unsigned int>>
-      buckets;
-    for (unsigned int c = 0; c < n_cells; ++c)
-      buckets[bucket(centres[c])].push_back(c);
     std::vector<Term>                                  terms;
     std::vector<std::pair<unsigned int, unsigned int>> singular;
-    std::vector<std::pair<unsigned int, unsigned int>> candidates;
-    for (unsigned int first = 0; first < n_computed; ++first)
+    for (const auto &[first, l] : CellPairSummation::canonical_pairs_within(
+           centres,
+           n_computed,
+           cutoff + largest,
+           [&](const unsigned int first, const unsigned int l) {
+             return centres[first].distance(centres[l]) -
+                      0.5 * (diameters[first] + diameters[l]) <
+                    cutoff;
+           }))
       {
-        candidates.clear();
-        const auto home = bucket(centres[first]);
-        for (long long dx = -1; dx <= 1; ++dx)
-          for (long long dy = -1; dy <= 1; ++dy)
-            {
-              const auto found =
-                buckets.find({home.first + dx, home.second + dy});
-              if (found == buckets.end())
-                continue;
-              for (const unsigned int l : found->second)
-                {
-                  const unsigned int other = l % n_computed, r = l / n_computed;
-                  const double       gap = centres[first].distance(centres[l]) -
-                                     0.5 * (diameters[first] + diameters[l]);
-                  if (other >= first && gap < cutoff)
-                    candidates.emplace_back(other, r);
-                }
-            }
-        std::sort(candidates.begin(), candidates.end());
-        for (const auto &[other, r] : candidates)
-          {
-            const unsigned int l = r * n_computed + other;
-            terms.push_back({first, l});
-            if (integrator.singular_pair(first, l))
-              singular.emplace_back(first, l);
-          }
+        terms.push_back({first, l});
+        if (integrator.singular_pair(first, l))
+          singular.emplace_back(first, l);
       }
     // The near field's memory before it is integrated: a strongly graded
     // mesh puts (cutoff / h)^2 cells into the reach of each cell of size h

@@ -33,15 +33,6 @@ using namespace PlateOnHalfspace;
 
 namespace
 {
-  /** Print "name: ok" or fail the test. The numbers behind the condition
-   *  depend on rounding (ACA+ pivots), so they are not printed. */
-  void
-  require(const std::string &name, const bool condition)
-  {
-    deallog << name << ": " << (condition ? "ok" : "FAILED") << std::endl;
-    AssertThrow(condition, ExcMessage("check '" + name + "' failed"));
-  }
-
   using Scene = TestTools::FoundationScene;
 
   /** A vector with smooth and node-to-node parts (no special structure). */

@@ -32,13 +32,6 @@ using namespace PlateOnHalfspace;
 
 namespace
 {
-  void
-  require(const std::string &name, const bool condition)
-  {
-    deallog << name << ": " << (condition ? "ok" : "FAILED") << std::endl;
-    AssertThrow(condition, ExcMessage("check '" + name + "' failed"));
-  }
-
   /** The lines drawn into a stream (split at '\r'), with the elapsed time
    *  after "%  " replaced by T, and '\n' shown as "<newline>". */
   std::vector<std::string>

@@ -44,14 +44,6 @@ using namespace PlateOnHalfspace;
 
 namespace
 {
-  /** Print "name: ok" or fail. The errors behind it depend on rounding. */
-  void
-  require(const std::string &name, const bool condition)
-  {
-    deallog << name << ": " << (condition ? "ok" : "FAILED") << std::endl;
-    AssertThrow(condition, ExcMessage("check '" + name + "' failed"));
-  }
-
   using Scene = TestTools::FoundationScene;
 
   Vector<double>

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -107,6 +108,21 @@ namespace PlateOnHalfspace
     /** A space's cells followed by their mirror images (see above). */
     static std::vector<FoundationSpace::Cell>
     cells_with_images(const FoundationSpace &space);
+
+    /**
+     * The terms (first, l) in canonical order (first, then other, then the
+     * image r, l = r n_computed + other, other >= first) for which
+     * @p keep(first, l) holds, among the cells whose @p centres (of
+     * cells_with_images()) lie in neighbouring buckets of width
+     * @p width: @p keep must hold only for cells whose centres are less
+     * than @p width apart.
+     */
+    static std::vector<std::pair<unsigned int, unsigned int>>
+    canonical_pairs_within(
+      const std::vector<Point<2>>                           &centres,
+      const unsigned int                                     n_computed,
+      const double                                           width,
+      const std::function<bool(unsigned int, unsigned int)> &keep);
 
     unsigned int
     n_computed_cells() const
