@@ -507,7 +507,8 @@ namespace PlateOnHalfspace
                                        const SurfaceKernel     &kernel,
                                        FullMatrix<double>      &block,
                                        const std::vector<bool> &rows,
-                                       const std::vector<bool> &columns) const
+                                       const std::vector<bool> &columns,
+                                       const unsigned int finest_rule) const
   {
     const CellData &dk = cell_data[k], &dl = cell_data[l];
     block.reinit(dk.nodes.size(), dl.nodes.size());
@@ -545,7 +546,8 @@ namespace PlateOnHalfspace
     // on a threshold, and rounding must not send a pair and its mirror
     // image to different rules.
     const double       rounded = std::round(separation * 1e6) * 1e-6;
-    const unsigned int rule    = kernel.separated_rule(rounded);
+    const unsigned int rule =
+      std::max(kernel.separated_rule(rounded), finest_rule);
     if (rule < n_stored_rules)
       integrate_regular(
         dk.tables[rule], dl.tables[rule], block, rows, columns, kernel);

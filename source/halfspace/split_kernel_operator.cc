@@ -329,8 +329,24 @@ namespace PlateOnHalfspace
             for (std::size_t k = from; k < to; ++k)
               {
                 const Term &t = terms[k];
+                // The kernel's own 3-point rule from 2.5 diameters leaves
+                // entries of 1/r about 4e-5 wrong. erfc(r / sigma) / r is
+                // 1/r closer than sigma, where a graded mesh's fine cells
+                // meet: those pairs take 5 points nearer than 5
+                // diameters (doc/formulation.md, "Split-kernel FFT
+                // storage", Near field).
+                const double distance =
+                  centres[t.first].distance(centres[t.cell]);
+                const double wider =
+                  std::max(diameters[t.first], diameters[t.cell]);
                 integrator.integrate_kernel(
-                  t.first, t.cell, near_kernel, blocks[k - begin], all, all);
+                  t.first,
+                  t.cell,
+                  near_kernel,
+                  blocks[k - begin],
+                  all,
+                  all,
+                  distance < 5 * wider && distance < 2.5 * sigma ? 2 : 0);
                 if (t.first == t.cell % n_computed && t.cell >= n_computed)
                   symmetrise_self_image_block(integrator.nodes(t.first),
                                               integrator.nodes(t.cell),

@@ -129,7 +129,9 @@ namespace PlateOnHalfspace
      * separated pairs integrate the whole kernel on one Gauss rule
      * (SurfaceKernel::separated_rule(): at least 3 points per direction
      * with a remainder, which varies over the top layer's thickness at any
-     * distance; doc/soil-models.md, "How the storages use it").
+     * distance; doc/soil-models.md, "How the storages use it"), or the
+     * rule @p finest_rule (0, 1, 2: 2, 3, 5 points) if that is finer: a
+     * kernel that varies over a length shorter than the cells needs it.
      */
     void
     integrate_kernel(const unsigned int       k,
@@ -137,7 +139,8 @@ namespace PlateOnHalfspace
                      const SurfaceKernel     &kernel,
                      FullMatrix<double>      &block,
                      const std::vector<bool> &rows,
-                     const std::vector<bool> &columns) const;
+                     const std::vector<bool> &columns,
+                     const unsigned int       finest_rule = 0) const;
 
     /**
      * The node shape functions of cell @p c on @p rule (reference points):
