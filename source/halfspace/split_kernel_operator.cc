@@ -269,9 +269,7 @@ namespace PlateOnHalfspace
       // a value and a column index in the matrix, and the pattern's copy
       const std::size_t needed    = entries * (sizeof(double) + 8);
       const std::size_t available = available_memory_bytes();
-      double            finest    = std::numeric_limits<double>::max();
-      for (unsigned int c = 0; c < n_computed; ++c)
-        finest = std::min(finest, std::sqrt(cells[c].geometry.area()));
+      const double      finest = *std::min_element(sizes.begin(), sizes.end());
       if (available > 0 && needed > available)
         {
           std::ostringstream text;
@@ -568,6 +566,7 @@ namespace PlateOnHalfspace
       [&](const unsigned int from, const unsigned int to) {
         std::vector<unsigned int>        support;
         std::vector<std::vector<double>> weights;
+        std::vector<double>              totals;
         for (unsigned int i = from; i < to; ++i)
           {
             // the near part exactly: (T^T N T)_ii
@@ -584,6 +583,7 @@ namespace PlateOnHalfspace
             support.erase(std::unique(support.begin(), support.end()),
                           support.end());
             weights.assign(support.size(), {});
+            totals.assign(support.size(), 0.);
             for (unsigned int s = 0; s < support.size(); ++s)
               {
                 const CellPoints &cp = far_points[support[s]];
@@ -595,6 +595,8 @@ namespace PlateOnHalfspace
                       for (unsigned int g = 0; g < l.points.size(); ++g)
                         weights[s][g] +=
                           tj * l.weights[g * cp.nodes.size() + a];
+                totals[s] =
+                  std::accumulate(weights[s].begin(), weights[s].end(), 0.);
               }
             for (unsigned int s = 0; s < support.size(); ++s)
               for (unsigned int t = 0; t < support.size(); ++t)
@@ -611,12 +613,7 @@ namespace PlateOnHalfspace
                           chosen.cutoff)
                       {
                         sum +=
-                          std::accumulate(weights[s].begin(),
-                                          weights[s].end(),
-                                          0.) *
-                          std::accumulate(weights[t].begin(),
-                                          weights[t].end(),
-                                          0.) *
+                          totals[s] * totals[t] *
                           far_kernel(alpha, sigma, lk.centre.distance(image));
                         continue;
                       }
