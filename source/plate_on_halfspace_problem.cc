@@ -659,7 +659,33 @@ namespace PlateOnHalfspace
           create_foundation_operator(parameters, soil, storage);
         operator_storage = storage;
       }
-    foundation_operator->build(mindlin_plate->get_foundation_space(), {});
+    try
+      {
+        foundation_operator->build(mindlin_plate->get_foundation_space(), {});
+      }
+    catch (const StorageDoesNotFit &shortfall)
+      {
+        // Only auto's own choice is replaced; a requested fft says why it
+        // cannot run (doc/errors-and-limits.md, "Memory").
+        if (parameters.foundation_operator.storage !=
+              Parameters::FoundationOperator::Storage::automatic ||
+            storage != Parameters::FoundationOperator::Storage::fft)
+          throw;
+        warn("Foundation operator/Storage = auto: the split kernel (fft) "
+             "does not fit on " +
+             std::to_string(n) +
+             " foundation nodes, so this cycle and the later ones use the "
+             "hierarchical storage. " +
+             shortfall.what());
+        hierarchical_after_fft_did_not_fit = true;
+        foundation_operator                = create_foundation_operator(
+          parameters,
+          soil,
+          Parameters::FoundationOperator::Storage::hierarchical);
+        operator_storage =
+          Parameters::FoundationOperator::Storage::hierarchical;
+        foundation_operator->build(mindlin_plate->get_foundation_space(), {});
+      }
     if (parameters.output.verbosity > 0 &&
         !foundation_operator->build_report().empty())
       log << foundation_operator->build_report() << std::endl;
@@ -719,11 +745,12 @@ namespace PlateOnHalfspace
       }
     catch (const ConjugateGradientsFailed &failure)
       {
-        using Storage = Parameters::FoundationOperator::Storage;
-        const bool own =
+        using Storage         = Parameters::FoundationOperator::Storage;
+        const Storage storage = cycle_storage(n);
+        const bool    own =
           parameters.contact.solver == Parameters::Contact::Solver::automatic &&
           parameters.foundation_operator.storage == Storage::automatic &&
-          cycle_storage(n) == Storage::hierarchical;
+          (storage == Storage::hierarchical || storage == Storage::fft);
         if (!own)
           throw;
         // The dense block's memory, checked here so that a failure says
@@ -775,9 +802,14 @@ namespace PlateOnHalfspace
   PlateOnHalfspaceProblem::cycle_storage(
     const unsigned int n_foundation_nodes) const
   {
-    return direct_after_failed_iterations || direct_for_flexible_plate_cycle ?
-             Parameters::FoundationOperator::Storage::dense :
-             parameters.foundation_storage(n_foundation_nodes);
+    using Storage = Parameters::FoundationOperator::Storage;
+    if (direct_after_failed_iterations || direct_for_flexible_plate_cycle)
+      return Storage::dense;
+    const Storage storage =
+      parameters.foundation_storage(n_foundation_nodes, n_ranks(communicator));
+    return storage == Storage::fft && hierarchical_after_fft_did_not_fit ?
+             Storage::hierarchical :
+             storage;
   }
 
   void
@@ -806,9 +838,11 @@ namespace PlateOnHalfspace
   {
     using Storage = Parameters::FoundationOperator::Storage;
     if (parameters.contact.solver != Parameters::Contact::Solver::automatic ||
-        parameters.foundation_operator.storage != Storage::automatic ||
-        parameters.foundation_storage(n_foundation_nodes) !=
-          Storage::hierarchical)
+        parameters.foundation_operator.storage != Storage::automatic)
+      return false;
+    const Storage storage =
+      parameters.foundation_storage(n_foundation_nodes, n_ranks(communicator));
+    if (storage != Storage::hierarchical && storage != Storage::fft)
       return false;
     // a tenth of the accepted floor: the estimate is good to a factor ten
     const PreconditionerEstimate estimate =

@@ -145,7 +145,9 @@ namespace PlateOnHalfspace
 
     /** The cycle's storage and contact solver: the scene's choice for
      *  @p n_foundation_nodes, or dense and direct after a failure of the
-     *  conjugate gradients (solve_contact()). */
+     *  conjugate gradients (solve_contact()), or hierarchical where auto
+     *  chose fft and its near field did not fit the memory
+     *  (build_foundation_operator()). */
     Parameters::FoundationOperator::Storage
     cycle_storage(const unsigned int n_foundation_nodes) const;
 
@@ -154,11 +156,11 @@ namespace PlateOnHalfspace
 
     /**
      * Whether Storage and Solver = auto take dense and direct for
-     * @p n_foundation_nodes although the scene's choice is hierarchical
-     * and iterative: where the plate is so much more flexible than the
-     * soil that rounding would stop the iterative solver's pressures near
-     * or above accepted_rounding_floor (contact/pressure_preconditioner.h),
-     * and the dense block fits the memory.
+     * @p n_foundation_nodes although the scene's choice is a compressed
+     * storage (hierarchical or fft) and iterative: where the plate is so much
+     * more flexible than the soil that rounding would stop the iterative
+     * solver's pressures near or above accepted_rounding_floor
+     * (contact/pressure_preconditioner.h), and the dense block fits the memory.
      */
     bool
     direct_for_flexible_plate(const unsigned int n_foundation_nodes) const;
@@ -279,6 +281,9 @@ namespace PlateOnHalfspace
      *  that and every later cycle use dense storage and the direct
      *  solver. */
     bool direct_after_failed_iterations = false;
+    /** Storage = auto chose fft and its near field did not fit the
+     *  memory: that and every later cycle use the hierarchical storage. */
+    bool hierarchical_after_fft_did_not_fit = false;
     /** direct_for_flexible_plate() of this cycle, decided once by all
      *  ranks together in build_foundation_operator(). */
     bool direct_for_flexible_plate_cycle = false;

@@ -77,7 +77,9 @@ namespace PlateOnHalfspace
     , singular_order(singular_order)
     , rules{{QGauss<2>(2),
              QGauss<2>(3),
+             QGauss<2>(4),
              QGauss<2>(5),
+             QGauss<2>(6),
              graded_rule(singular_order)}}
     , cell_data(cells.size())
     , duffy(singular_order, 1.0)
@@ -102,10 +104,11 @@ namespace PlateOnHalfspace
         data.centre   = cell.geometry.map(Point<2>(0.5, 0.5));
         data.diameter = cell.geometry.diameter();
 
-        // The rules of most pairs are kept; the 5-point rule (pairs within
-        // 2.5 diameters) and the graded one (singular pairs, integrated
-        // once per configuration) are tabulated when needed: together
-        // they held 8 in 9 of the points, 0.9 GB at 77441 nodes.
+        // The rules of most pairs are kept; the 5- and 6-point rules
+        // (pairs within 2.6 diameters) and the graded one (singular pairs,
+        // integrated once per configuration) are tabulated when needed:
+        // the graded one alone held 8 in 9 of the points, 0.9 GB at 77441
+        // nodes.
         for (unsigned int r = 0; r < n_stored_rules; ++r)
           data.tables.push_back(make_table(c, rules[r]));
       }
@@ -189,16 +192,17 @@ namespace PlateOnHalfspace
   {
     const unsigned int n_p = outer.x.size(), n_q = inner.x.size();
     const unsigned int na = outer.n_functions, nb = inner.n_functions;
-    // G(p, q) = alpha / |x_p - y_q| (at most 25 x 25 points); plain loops
+    // G(p, q) = alpha / |x_p - y_q| (at most 36 x 36 points, the 6-point
+    // rule's); plain loops
     // over flat arrays, which the compiler vectorises; the remainder adds
     // R at the same distances. Without a remainder the distances are not
     // stored: one loop for both cost the half-space 5 % of its integration.
-    std::array<double, 625> G;
-    Assert(n_p * n_q <= G.size(), ExcInternalError());
+    std::array<double, 36 * 36> G;
+    AssertThrow(n_p * n_q <= G.size(), ExcInternalError());
     const double alpha = kernel.alpha;
     if (kernel.remainder)
       {
-        std::array<double, 625> distance;
+        std::array<double, 36 * 36> distance;
         for (unsigned int p = 0; p < n_p; ++p)
           {
             const double  xp = outer.x[p], yp = outer.y[p];
@@ -237,7 +241,7 @@ namespace PlateOnHalfspace
     // wanted functions first.
     const double          *U = outer.weighted_values.data();
     const double          *V = inner.weighted_values.data();
-    std::array<double, 25> s;
+    std::array<double, 36> s;
     if (n_a <= n_b)
       for (unsigned int i = 0; i < n_a; ++i)
         {
@@ -508,7 +512,7 @@ namespace PlateOnHalfspace
                                        FullMatrix<double>      &block,
                                        const std::vector<bool> &rows,
                                        const std::vector<bool> &columns,
-                                       const unsigned int finest_rule) const
+                                       const double             accuracy) const
   {
     const CellData &dk = cell_data[k], &dl = cell_data[l];
     block.reinit(dk.nodes.size(), dl.nodes.size());
@@ -546,8 +550,7 @@ namespace PlateOnHalfspace
     // on a threshold, and rounding must not send a pair and its mirror
     // image to different rules.
     const double       rounded = std::round(separation * 1e6) * 1e-6;
-    const unsigned int rule =
-      std::max(kernel.separated_rule(rounded), finest_rule);
+    const unsigned int rule    = kernel.separated_points(rounded, accuracy) - 2;
     if (rule < n_stored_rules)
       integrate_regular(
         dk.tables[rule], dl.tables[rule], block, rows, columns, kernel);

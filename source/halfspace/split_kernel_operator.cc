@@ -288,7 +288,7 @@ namespace PlateOnHalfspace
           text << "Use Foundation operator/Storage = hierarchical, or reduce "
                   "the node count (Discretization/Subdivisions x and y, "
                   "Discretization/Initial refinements, Adaptivity/Max cells).";
-          AssertThrow(false, ExcMessage(text.str()));
+          throw StorageDoesNotFit(text.str());
         }
     }
     const auto near_remainder = std::make_shared<MinusFarField>(alpha, sigma);
@@ -327,24 +327,29 @@ namespace PlateOnHalfspace
             for (std::size_t k = from; k < to; ++k)
               {
                 const Term &t = terms[k];
-                // The kernel's own 3-point rule from 2.5 diameters leaves
-                // entries of 1/r about 4e-5 wrong. erfc(r / sigma) / r is
-                // 1/r closer than sigma, where a graded mesh's fine cells
-                // meet: those pairs take 5 points nearer than 5
-                // diameters (doc/formulation.md, "Split-kernel FFT
-                // storage", Near field).
-                const double distance =
-                  centres[t.first].distance(centres[t.cell]);
+                // erfc(r / sigma) / r is 1/r closer than sigma, where a
+                // graded mesh's fine cells meet, and erfc(gap / sigma) of
+                // it beyond: the rule needs that much less accuracy
+                // relative to the near kernel, on cells narrower than
+                // about 2 sigma, which it varies over smoothly
+                // (doc/formulation.md, "Split-kernel FFT storage", Near
+                // field).
                 const double wider =
                   std::max(diameters[t.first], diameters[t.cell]);
-                integrator.integrate_kernel(
-                  t.first,
-                  t.cell,
-                  near_kernel,
-                  blocks[k - begin],
-                  all,
-                  all,
-                  distance < 5 * wider && distance < 2.5 * sigma ? 2 : 0);
+                const double gap =
+                  std::max(0.,
+                           centres[t.first].distance(centres[t.cell]) -
+                             0.5 * (diameters[t.first] + diameters[t.cell]));
+                const double share =
+                  wider < 2 * sigma ? std::erfc(gap / sigma) : 1.;
+                integrator.integrate_kernel(t.first,
+                                            t.cell,
+                                            near_kernel,
+                                            blocks[k - begin],
+                                            all,
+                                            all,
+                                            SurfaceKernel::separated_accuracy /
+                                              std::max(share, 1e-300));
                 if (t.first == t.cell % n_computed && t.cell >= n_computed)
                   symmetrise_self_image_block(integrator.nodes(t.first),
                                               integrator.nodes(t.cell),

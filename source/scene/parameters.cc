@@ -559,10 +559,13 @@ namespace PlateOnHalfspace
                         "Contact/Solver = iterative or "
                         "auto, Flexibility = galerkin and, on a tensionless "
                         "foundation, Contact/Method = active set; or auto: "
-                        "hierarchical in the cycles with at least "
-                        "Hierarchical from foundation nodes where the scene "
-                        "allows it (the conditions above, Contact/Solver not "
-                        "direct), dense otherwise.");
+                        "in the cycles with at least Hierarchical from "
+                        "foundation nodes where the scene allows it (the "
+                        "conditions above, Contact/Solver not direct) fft "
+                        "for the homogeneous half-space on one process, "
+                        "hierarchical for a layered soil, on several "
+                        "processes or where fft does not fit the memory; "
+                        "dense otherwise.");
       prm.declare_entry(
         "Tolerance",
         "1e-6",
@@ -578,9 +581,10 @@ namespace PlateOnHalfspace
                         "3000",
                         Patterns::Integer(0),
                         "Storage = auto: the number of foundation nodes from "
-                        "which a cycle uses the hierarchical operator (below "
-                        "it the dense one, exact and fast enough; "
-                        "doc/performance.md has the measurements).");
+                        "which a cycle uses a compressed operator, fft or "
+                        "hierarchical (below it the dense one, exact and "
+                        "fast enough; doc/performance.md has the "
+                        "measurements).");
       prm.leave_subsection();
     }
 

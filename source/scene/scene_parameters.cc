@@ -265,8 +265,8 @@ namespace PlateOnHalfspace
   }
 
   Parameters::FoundationOperator::Storage
-  SceneParameters::foundation_storage(
-    const unsigned int n_foundation_nodes) const
+  SceneParameters::foundation_storage(const unsigned int n_foundation_nodes,
+                                      const unsigned int n_processes) const
   {
     using Storage = Parameters::FoundationOperator::Storage;
     if (foundation.model == Parameters::Foundation::Model::dense_liquid)
@@ -274,10 +274,16 @@ namespace PlateOnHalfspace
     if (foundation_operator.storage != Storage::automatic)
       return foundation_operator.storage;
     const bool allowed = hierarchical_storage_obstacle(*this).empty();
-    return (allowed &&
-            n_foundation_nodes >= foundation_operator.hierarchical_from) ?
-             Storage::hierarchical :
-             Storage::dense;
+    if (!allowed || n_foundation_nodes < foundation_operator.hierarchical_from)
+      return Storage::dense;
+    // doc/performance.md, "Which storage auto picks": the split kernel is
+    // the faster compressed operator on one process; it holds the
+    // homogeneous half-space only, and every process would hold and apply
+    // all of it, where the hierarchical rows are split between them.
+    return foundation.model == Parameters::Foundation::Model::half_space &&
+               n_processes == 1 ?
+             Storage::fft :
+             Storage::hierarchical;
   }
 
   Parameters::Contact::Solver
@@ -286,7 +292,7 @@ namespace PlateOnHalfspace
     using Solver = Parameters::Contact::Solver;
     if (contact.solver != Solver::automatic)
       return contact.solver;
-    return foundation_storage(n_foundation_nodes) ==
+    return foundation_storage(n_foundation_nodes, 1) ==
                Parameters::FoundationOperator::Storage::dense ?
              Solver::direct :
              Solver::iterative;

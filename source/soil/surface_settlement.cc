@@ -36,7 +36,7 @@ namespace PlateOnHalfspace
       std::array<double, 9>        q2_values{}; ///< q_h at the Q2 nodes (N = 1)
       Point<2>                     centre;
       double                       diameter = 0;
-      std::array<GaussTable<N>, 3> gauss; ///< 2, 3 and 5 points per direction
+      std::array<GaussTable<N>, 5> gauss; ///< 2 ... 6 points per direction
       /** For a smooth remainder: 3, 5 and near_order points per direction. */
       std::array<GaussTable<N>, 3> smooth;
       unsigned int                 near_order = 0;
@@ -92,9 +92,8 @@ namespace PlateOnHalfspace
       cell.centre     = cell.geometry.map(Point<2>(0.5, 0.5));
       for (const Point<2> &p : v)
         cell.diameter = std::max(cell.diameter, 2. * p.distance(cell.centre));
-      const std::array<unsigned int, 3> orders = {{2, 3, 5}};
-      for (unsigned int r = 0; r < 3; ++r)
-        cell.gauss[r] = make_table(cell, orders[r]);
+      for (unsigned int r = 0; r < cell.gauss.size(); ++r)
+        cell.gauss[r] = make_table(cell, r + 2);
       if (kernel.remainder)
         {
           // the rules of a smooth remainder of length scale l
@@ -102,7 +101,7 @@ namespace PlateOnHalfspace
           cell.near_order = static_cast<unsigned int>(
             std::min(12., 3. + std::floor(3. * cell.diameter / l)));
           cell.smooth[0] = cell.gauss[1];
-          cell.smooth[1] = cell.gauss[2];
+          cell.smooth[1] = cell.gauss[3];
           if (cell.near_order > 5)
             cell.smooth[2] = make_table(cell, cell.near_order);
         }
@@ -178,7 +177,7 @@ namespace PlateOnHalfspace
     /**
      * ∫_cell density(y) K(|x - y|) dy for the kernel K(r) = alpha / r +
      * R(r): from 1.5 cell diameters on, the whole kernel on the cell-pair
-     * rule of that distance (SurfaceKernel::separated_rule()); nearer, the
+     * rule of that distance (SurfaceKernel::separated_points()); nearer, the
      * singular 1/r rule and R's own rule.
      */
     template <int N>
@@ -193,7 +192,7 @@ namespace PlateOnHalfspace
       if (distance >= 1.5)
         {
           const GaussTable<N> &table =
-            cell.gauss[kernel.separated_rule(distance)];
+            cell.gauss[kernel.separated_points(distance) - 2];
           std::array<double, N> smooth{};
           for (unsigned int q = 0; q < table.points.size(); ++q)
             {
@@ -274,7 +273,7 @@ namespace PlateOnHalfspace
   namespace
   {
     /** The distance in cell diameters below which settlement_at_points()
-     *  leaves the 3-point rule (SurfaceKernel::separated_rule()). */
+     *  leaves the 3-point rule. */
     constexpr double near_distance = 2.5;
 
     /** The index of the 3 x 3 rule in KernelCell::gauss. */

@@ -11,8 +11,11 @@
 // - a tolerance sweep on example 2: the difference from dense falls with
 //   the tolerance;
 // - Storage = auto (with Contact/Solver = auto) picks dense below
-//   Foundation operator/Hierarchical from and hierarchical from it on,
-//   cycle by cycle, and stays dense for the paper's collocation operator;
+//   Foundation operator/Hierarchical from and, from it on, cycle by cycle,
+//   fft for the homogeneous half-space on one process, hierarchical for a
+//   layered soil, on several processes, and where fft's near field does
+//   not fit the memory (with a warning); it stays dense for the paper's
+//   collocation operator;
 // - an absurd tolerance (1) and the direct solver are refused with clear
 //   messages;
 // - the diagonal of the flexibility (for the plate-on-springs
@@ -154,22 +157,21 @@ main()
   AssertThrow(falls == 4, ExcMessage("tolerance sweep"));
 
   // Storage = auto, Contact/Solver = auto: dense (and the direct solver)
-  // below Hierarchical from, hierarchical (and iterative) from it on, cycle
-  // by cycle; dense wherever the scene does not allow the hierarchical
-  // operator (the paper's collocation with element exclusion).
+  // below Hierarchical from, a compressed storage (and iterative) from it
+  // on, cycle by cycle; dense wherever the scene does not allow a
+  // compressed operator (the paper's collocation with element exclusion).
   {
-    const auto automatic =
-      solve_scene("example2.prm",
-                  example2 +
-                    "subsection Discretization\n set Symmetry = xy\n"
-                    " set Flexibility = galerkin\nend\n"
-                    "subsection Foundation operator\n set Storage = auto\n"
-                    " set Hierarchical from = 200\nend\n");
-    const auto &cycles = automatic->summaries();
-    const bool  picks  = cycles[0].count("n_foundation_dofs") < 200 &&
+    const std::string automatic_from_200 =
+      example2 + "subsection Discretization\n set Symmetry = xy\n"
+                 " set Flexibility = galerkin\nend\n"
+                 "subsection Foundation operator\n set Storage = auto\n"
+                 " set Hierarchical from = 200\nend\n";
+    const auto  automatic = solve_scene("example2.prm", automatic_from_200);
+    const auto &cycles    = automatic->summaries();
+    const bool  picks     = cycles[0].count("n_foundation_dofs") < 200 &&
                        cycles[0].text("foundation_storage") == "dense" &&
                        cycles[1].count("n_foundation_dofs") >= 200 &&
-                       cycles[1].text("foundation_storage") == "hierarchical";
+                       cycles[1].text("foundation_storage") == "fft";
     const double difference =
       probe_difference(dense->summaries().back(), cycles.back());
     deallog << "Storage = auto, Hierarchical from = 200: cycle 0 ("
@@ -181,6 +183,61 @@ main()
             << "dense: " << (picks && difference <= 1e-5 ? "ok" : "FAILED")
             << std::endl;
     AssertThrow(picks && difference <= 1e-5, ExcMessage("Storage = auto"));
+
+    // The near field of fft does not fit: the hierarchical storage, said
+    // once, with the same answer.
+    setenv("PLATE_ON_HALFSPACE_MEMORY_LIMIT", "1M", 1);
+    const auto limited = solve_scene("example2.prm", automatic_from_200);
+    unsetenv("PLATE_ON_HALFSPACE_MEMORY_LIMIT");
+    const auto &limited_cycles = limited->summaries();
+    const bool  fell_back =
+      limited_cycles[1].text("foundation_storage") == "hierarchical" &&
+      limited->warnings().size() == 1 &&
+      limited->warnings()[0].find(
+        "Foundation operator/Storage = auto: the split kernel (fft) does "
+        "not fit") == 0;
+    const double limited_difference =
+      probe_difference(dense->summaries().back(), limited_cycles.back());
+    deallog << "Storage = auto, fft's near field above the memory limit: "
+            << limited_cycles[1].text("foundation_storage")
+            << ", one warning, probes within 1e-5 of dense: "
+            << (fell_back && limited_difference <= 1e-5 ? "ok" : "FAILED")
+            << std::endl;
+    AssertThrow(fell_back && limited_difference <= 1e-5,
+                ExcMessage("Storage = auto under a memory limit"));
+
+    // The rule itself, without running: the layered soil and several
+    // processes take the hierarchical rows.
+    using Storage           = Parameters::FoundationOperator::Storage;
+    const auto storage_name = [](const Storage s) {
+      return s == Storage::dense        ? "dense" :
+             s == Storage::hierarchical ? "hierarchical" :
+             s == Storage::fft          ? "fft" :
+                                          "other";
+    };
+    SceneParameters half_space, layered;
+    half_space.read_from_string(
+      "subsection Discretization\n set Flexibility = galerkin\nend\n"
+      "subsection Contact\n set Method = active set\nend\n");
+    layered.read_from_string(
+      "subsection Discretization\n set Flexibility = galerkin\nend\n"
+      "subsection Contact\n set Method = active set\nend\n"
+      "subsection Foundation\n set Model = layered\n"
+      " set Layers = 0.3, 4e5, 0.3\nend\n");
+    deallog << "Storage = auto at 2999 / 3000 nodes: half-space "
+            << storage_name(half_space.foundation_storage(2999, 1)) << " / "
+            << storage_name(half_space.foundation_storage(3000, 1))
+            << ", on 2 processes "
+            << storage_name(half_space.foundation_storage(3000, 2))
+            << "; layered " << storage_name(layered.foundation_storage(3000, 1))
+            << std::endl;
+    AssertThrow(half_space.foundation_storage(2999, 1) == Storage::dense &&
+                  half_space.foundation_storage(3000, 1) == Storage::fft &&
+                  half_space.foundation_storage(3000, 2) ==
+                    Storage::hierarchical &&
+                  layered.foundation_storage(3000, 1) == Storage::hierarchical,
+                ExcMessage("Storage = auto's rule"));
+
     const auto paper = solve_scene(
       "example2.prm",
       "subsection Foundation operator\n set Hierarchical from = 0\nend\n");

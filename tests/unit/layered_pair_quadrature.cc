@@ -1,5 +1,5 @@
 // The quadrature of a layered soil's kernel alpha1/r + R(r) over separated
-// cells (SurfaceKernel::separated_rule(); doc/soil-models.md, "How the
+// cells (SurfaceKernel::separated_points(); doc/soil-models.md, "How the
 // storages use it"), against an independent 14-point Gauss rule per
 // direction of the same kernel:
 //  - CellPairIntegrator::integrate_kernel()'s 9 x 9 block of the quadratic
@@ -15,8 +15,8 @@
 // over h1 at any distance: the 2-point rule that suffices for 1/r beyond
 // 20 diameters leaves it about 1e-4 wrong there; the 3-point rule leaves
 // at most 2e-6 on cells up to 0.7 h1 wide and 1.6e-5 on cells 2 h1 wide
-// (at 3 diameters), below the error of 1/r's own rules per entry (about
-// 4e-5 at 2.5 and at 20 diameters).
+// (at 3 diameters; from 2.6 to 11.2 diameters 1/r's own accuracy asks 4
+// points, which the pair takes).
 
 #include <deal.II/base/quadrature_lib.h>
 

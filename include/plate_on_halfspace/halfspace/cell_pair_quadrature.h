@@ -126,21 +126,22 @@ namespace PlateOnHalfspace
      * for the kernel K(r) = alpha / r + R(r) of a soil (SurfaceKernel),
      * only the entries of @p rows and @p columns (empty: all). Singular
      * pairs take alpha times their 1/r rules and R by integrate_smooth();
-     * separated pairs integrate the whole kernel on one Gauss rule
-     * (SurfaceKernel::separated_rule(): at least 3 points per direction
-     * with a remainder, which varies over the top layer's thickness at any
-     * distance; doc/soil-models.md, "How the storages use it"), or the
-     * rule @p finest_rule (0, 1, 2: 2, 3, 5 points) if that is finer: a
-     * kernel that varies over a length shorter than the cells needs it.
+     * separated pairs integrate the whole kernel on one Gauss rule, of
+     * SurfaceKernel::separated_points() at @p accuracy relative to the
+     * entry (at least 3 points per direction with a remainder, which
+     * varies over the top layer's thickness at any distance;
+     * doc/soil-models.md, "How the storages use it"). A kernel much
+     * smaller than alpha / r at the pair's distance may ask less.
      */
     void
-    integrate_kernel(const unsigned int       k,
-                     const unsigned int       l,
-                     const SurfaceKernel     &kernel,
-                     FullMatrix<double>      &block,
-                     const std::vector<bool> &rows,
-                     const std::vector<bool> &columns,
-                     const unsigned int       finest_rule = 0) const;
+    integrate_kernel(
+      const unsigned int       k,
+      const unsigned int       l,
+      const SurfaceKernel     &kernel,
+      FullMatrix<double>      &block,
+      const std::vector<bool> &rows,
+      const std::vector<bool> &columns,
+      const double accuracy = SurfaceKernel::separated_accuracy) const;
 
     /**
      * The node shape functions of cell @p c on @p rule (reference points):
@@ -273,11 +274,11 @@ namespace PlateOnHalfspace
 
     const std::vector<FoundationSpace::Cell> &cells;
     const unsigned int                        singular_order;
-    /** Gauss rules of 2, 3 and 5 points per direction, then the graded
+    /** Gauss rules of 2 ... 6 points per direction, then the graded
      *  outer rule of the singular pairs. */
-    const std::array<Quadrature<2>, 4> rules;
-    /** How many of the rules each cell keeps tabulated. */
-    static constexpr unsigned int n_stored_rules = 2;
+    const std::array<Quadrature<2>, 6> rules;
+    /** How many of the rules each cell keeps tabulated (2 ... 4 points). */
+    static constexpr unsigned int n_stored_rules = 3;
     std::vector<CellData>         cell_data;
     /** The Duffy rule on the reference triangle, singular at vertex 0. */
     const QDuffy duffy;

@@ -10,10 +10,22 @@
 #define plate_on_halfspace_halfspace_memory_guard_h
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 
 namespace PlateOnHalfspace
 {
+  /**
+   * A storage's build found that it would need more memory than
+   * available_memory_bytes(), before allocating it; what() names the bytes
+   * and what helps. Storage = auto takes another storage on it.
+   */
+  class StorageDoesNotFit : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
   /**
    * Peak bytes of the dense matrices for @p n_foundation_nodes nodes: the
    * half-space flexibility F, the factor of its contact block, the

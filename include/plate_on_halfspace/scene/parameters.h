@@ -104,13 +104,13 @@ namespace PlateOnHalfspace
       {
         dense,        ///< every entry (LAPACK)
         hierarchical, ///< an H-matrix (hmat-oss)
-        automatic,    ///< hierarchical from Hierarchical from nodes
+        automatic,    ///< compressed from Hierarchical from nodes
         sparse,       ///< the dense liquid's mass matrix (never an entry)
         fft           ///< split kernel: sparse near field, FFT far field
       };
       Storage storage;
       double  tolerance;
-      /** Storage = auto: hierarchical from this many foundation nodes. */
+      /** Storage = auto: compressed from this many foundation nodes. */
       unsigned int hierarchical_from;
 
       static void
@@ -441,12 +441,15 @@ namespace PlateOnHalfspace
 
     /**
      * The storage of the foundation operator in a cycle with
-     * @p n_foundation_nodes nodes: dense or hierarchical for the half-space
-     * (Foundation operator/Storage, with auto resolved), sparse for the
-     * dense liquid.
+     * @p n_foundation_nodes nodes on @p n_processes MPI processes: dense,
+     * hierarchical or fft for an elastic soil (Foundation operator/Storage,
+     * with auto resolved: dense below Hierarchical from, above it fft for
+     * the homogeneous half-space on one process, hierarchical otherwise),
+     * sparse for the dense liquid.
      */
     Parameters::FoundationOperator::Storage
-    foundation_storage(const unsigned int n_foundation_nodes) const;
+    foundation_storage(const unsigned int n_foundation_nodes,
+                       const unsigned int n_processes) const;
 
     /** The contact solver of such a cycle: direct or iterative
      *  (Contact/Solver, with auto resolved; iterative unless the

@@ -35,7 +35,7 @@ namespace PlateOnHalfspace
    * diameters) are integrated with the singularity subtracted at x's
    * reference point, the remainder by a Duffy rule of @p singular_order
    * (as the Galerkin operator's singular pairs); farther cells by the Gauss
-   * rule of a separated cell pair (SurfaceKernel::separated_rule()). Near
+   * rule of a separated cell pair (SurfaceKernel::separated_points()). Near
    * x, a smooth remainder is integrated by Gauss rules of 3, 5
    * or 3 + 3 H / l points per direction (CellPairIntegrator::
    * integrate_smooth()'s choice). The points are split over the threads.
