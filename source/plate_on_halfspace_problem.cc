@@ -9,6 +9,7 @@
 #include <plate_on_halfspace/contact/iterative_solver.h>
 #include <plate_on_halfspace/contact/pressure_preconditioner.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
+#include <plate_on_halfspace/halfspace/split_kernel_operator.h>
 #include <plate_on_halfspace/plate/field_extrema.h>
 #include <plate_on_halfspace/plate/load_checks.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
@@ -126,8 +127,9 @@ namespace PlateOnHalfspace
       60,
       {{{"foundation_storage"},
         "–",
-        "`dense` or `hierarchical` for the half-space (with `Storage = "
-        "auto`, decided per cycle), `sparse` for the dense liquid",
+        "`dense`, `hierarchical` or `fft` for the half-space (with "
+        "`Storage = auto`, decided per cycle), `sparse` for the dense "
+        "liquid",
         ResultKind::text},
        {{"foundation_memory_bytes"},
         "bytes",
@@ -637,6 +639,18 @@ namespace PlateOnHalfspace
       !direct_after_failed_iterations &&
       Utilities::MPI::min(direct_for_flexible_plate(n) ? 1u : 0u,
                           communicator) == 1u;
+    using Storage      = Parameters::FoundationOperator::Storage;
+    fft_unsuited_cycle = false;
+    if (parameters.foundation_operator.storage == Storage::automatic &&
+        parameters.foundation_storage(n, n_ranks(communicator)) == Storage::fft)
+      {
+        const std::string obstacle =
+          split_kernel_mesh_obstacle(mindlin_plate->get_foundation_space());
+        fft_unsuited_cycle = !obstacle.empty();
+        if (fft_unsuited_cycle && parameters.output.verbosity > 0)
+          log << "Foundation operator/Storage = auto: hierarchical, not fft: "
+              << obstacle << std::endl;
+      }
     const auto storage = cycle_storage(n);
     if (parameters.output.verbosity > 0 && direct_for_flexible_plate_cycle)
       log << "Contact/Solver = auto: direct with dense storage, the plate is "
@@ -676,7 +690,7 @@ namespace PlateOnHalfspace
              std::to_string(n) +
              " foundation nodes, so this cycle and the later ones use the "
              "hierarchical storage. " +
-             shortfall.what());
+             shortfall.shortfall);
         hierarchical_after_fft_did_not_fit = true;
         foundation_operator                = create_foundation_operator(
           parameters,
@@ -807,7 +821,8 @@ namespace PlateOnHalfspace
       return Storage::dense;
     const Storage storage =
       parameters.foundation_storage(n_foundation_nodes, n_ranks(communicator));
-    return storage == Storage::fft && hierarchical_after_fft_did_not_fit ?
+    return storage == Storage::fft &&
+               (hierarchical_after_fft_did_not_fit || fft_unsuited_cycle) ?
              Storage::hierarchical :
              storage;
   }

@@ -146,8 +146,8 @@ namespace PlateOnHalfspace
     /** The cycle's storage and contact solver: the scene's choice for
      *  @p n_foundation_nodes, or dense and direct after a failure of the
      *  conjugate gradients (solve_contact()), or hierarchical where auto
-     *  chose fft and its near field did not fit the memory
-     *  (build_foundation_operator()). */
+     *  chose fft and the mesh does not suit it or its near field did not
+     *  fit the memory (build_foundation_operator()). */
     Parameters::FoundationOperator::Storage
     cycle_storage(const unsigned int n_foundation_nodes) const;
 
@@ -284,6 +284,10 @@ namespace PlateOnHalfspace
     /** Storage = auto chose fft and its near field did not fit the
      *  memory: that and every later cycle use the hierarchical storage. */
     bool hierarchical_after_fft_did_not_fit = false;
+    /** Storage = auto would choose fft, but this cycle's mesh is too
+     *  graded or elongated for it to pay (split_kernel_mesh_obstacle()):
+     *  the hierarchical storage. */
+    bool fft_unsuited_cycle = false;
     /** direct_for_flexible_plate() of this cycle, decided once by all
      *  ranks together in build_foundation_operator(). */
     bool direct_for_flexible_plate_cycle = false;

@@ -139,6 +139,43 @@ namespace PlateOnHalfspace
     soil_model = elastic;
   }
 
+  std::string
+  split_kernel_mesh_obstacle(const FoundationSpace &space)
+  {
+    // Measured bounds (doc/performance.md, "Which storage auto picks"):
+    // the largest cell at most 4 times the median size, no cell longer
+    // than about 6 times its width (diameter over square root of area).
+    constexpr double largest_over_median = 4, elongation = 2.5;
+    if (space.cells.empty())
+      return "";
+    std::vector<double> sizes;
+    double              largest = 0, most_elongated = 0;
+    for (const auto &cell : space.cells)
+      {
+        const double size = std::sqrt(cell.geometry.area());
+        sizes.push_back(size);
+        largest = std::max(largest, size);
+        most_elongated =
+          std::max(most_elongated, cell.geometry.diameter() / size);
+      }
+    std::nth_element(sizes.begin(),
+                     sizes.begin() + sizes.size() / 2,
+                     sizes.end());
+    const double       median = sizes[sizes.size() / 2];
+    std::ostringstream text;
+    text << std::setprecision(3);
+    if (largest > largest_over_median * median)
+      text << "the largest cell is " << largest / median
+           << " times the median size (graded mesh; fft pays up to "
+           << largest_over_median << ")";
+    else if (most_elongated > elongation)
+      text << "a cell's diameter is " << most_elongated
+           << " times the square root of its area (elongated cells; fft "
+              "pays up to "
+           << elongation << ")";
+    return text.str();
+  }
+
   SplitKernelFftOperator::~SplitKernelFftOperator() = default;
 
   void
@@ -285,10 +322,11 @@ namespace PlateOnHalfspace
                  << ", the median cell size, and the cells down to " << finest
                  << " wide each reach many others: the mesh is too strongly "
                     "graded for one split length. ";
-          text << "Use Foundation operator/Storage = hierarchical, or reduce "
-                  "the node count (Discretization/Subdivisions x and y, "
-                  "Discretization/Initial refinements, Adaptivity/Max cells).";
-          throw StorageDoesNotFit(text.str());
+          throw StorageDoesNotFit(
+            text.str(),
+            "Use Foundation operator/Storage = hierarchical, or reduce the "
+            "node count (Discretization/Subdivisions x and y, "
+            "Discretization/Initial refinements, Adaptivity/Max cells).");
         }
     }
     const auto near_remainder = std::make_shared<MinusFarField>(alpha, sigma);

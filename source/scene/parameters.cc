@@ -562,10 +562,11 @@ namespace PlateOnHalfspace
                         "in the cycles with at least Hierarchical from "
                         "foundation nodes where the scene allows it (the "
                         "conditions above, Contact/Solver not direct) fft "
-                        "for the homogeneous half-space on one process, "
+                        "for the homogeneous half-space on one process on "
+                        "a mesh of cells of similar size and shape, "
                         "hierarchical for a layered soil, on several "
-                        "processes or where fft does not fit the memory; "
-                        "dense otherwise.");
+                        "processes, on graded or elongated meshes or where "
+                        "fft does not fit the memory; dense otherwise.");
       prm.declare_entry(
         "Tolerance",
         "1e-6",
@@ -918,8 +919,8 @@ namespace PlateOnHalfspace
         "Solver",
         "auto",
         Patterns::Selection("auto|direct|iterative"),
-        "How each contact set is solved: auto (iterative with the "
-        "hierarchical half-space operator, direct with a dense one; with "
+        "How each contact set is solved: auto (iterative with a "
+        "compressed half-space operator, hierarchical or fft, direct with a dense one; with "
         "Foundation operator/Storage = auto also direct with a dense one "
         "for a plate so much more flexible than the soil that rounding "
         "would leave the iterated pressures less accurate than 1e-6, and "

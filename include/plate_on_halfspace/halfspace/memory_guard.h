@@ -23,7 +23,13 @@ namespace PlateOnHalfspace
   class StorageDoesNotFit : public std::runtime_error
   {
   public:
-    using std::runtime_error::runtime_error;
+    StorageDoesNotFit(const std::string &shortfall, const std::string &advice)
+      : std::runtime_error(shortfall + advice)
+      , shortfall(shortfall)
+    {}
+
+    /** The bytes needed and available, without the advice. */
+    const std::string shortfall;
   };
 
   /**

@@ -35,6 +35,7 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -54,6 +55,17 @@ namespace PlateOnHalfspace
   /** The settings for Foundation operator/Tolerance @p tolerance. */
   SplitKernelSettings
   split_kernel_settings(const double tolerance);
+
+  /**
+   * Why the split kernel would be slower than the hierarchical storage on
+   * @p space, or "" where it is the faster: its split length is the median
+   * cell size, so cells much larger than that (a strongly graded mesh)
+   * multiply its Gauss points and near pairs, and cells much longer than
+   * wide its near pairs (doc/performance.md, "Which storage auto picks").
+   * Storage = auto takes the hierarchical storage where this is not empty.
+   */
+  std::string
+  split_kernel_mesh_obstacle(const FoundationSpace &space);
 
   /** See the file documentation. */
   class SplitKernelFftOperator : public FoundationOperator

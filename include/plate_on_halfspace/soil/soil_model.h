@@ -85,9 +85,12 @@ namespace PlateOnHalfspace
      * @p separation of its diameters from another cell's centre, or from a
      * point, to @p accuracy of the entry (doc/formulation.md,
      * "Cell-pair quadrature"): the n-point rule's error for 1/r is about
-     * c_n separation^-(2n - 2); at the default @p accuracy 6 points
-     * nearer than 0.95 diameters, 5 nearer than 2.6, 4 nearer than 11.2,
-     * 3 nearer than 412, 2 beyond.
+     * c_n separation^-(2n - 2); at the default @p accuracy 6 points (the
+     * most) nearer than 1.45 diameters, 5 nearer than 2.6, 4 nearer than
+     * 11.2, 3 nearer than 412, 2 beyond. The separation is measured in
+     * the larger cell's diameters, so the model holds for cells of
+     * similar size and shape; graded or elongated neighbours nearer than
+     * about one diameter are integrated less accurately.
      * With a remainder at least 3, since it varies over its length scale
      * at any distance (doc/soil-models.md, "How the storages use it").
      */
@@ -95,9 +98,9 @@ namespace PlateOnHalfspace
     separated_points(const double separation,
                      const double accuracy = separated_accuracy) const
     {
-      // c_n of the rules of 2 ... 6 points, measured on pairs of squares
+      // c_n of the rules of 2 ... 5 points, measured on pairs of squares
       // side by side and diagonal, the larger of the two
-      constexpr double c[5]   = {1.7e-2, 1.6e-3, 3e-5, 2e-6, 6e-8};
+      constexpr double c[4]   = {1.7e-2, 1.6e-3, 3e-5, 2e-6};
       unsigned int     points = 6;
       for (unsigned int n = 2; n < 6; ++n)
         if (c[n - 2] <= accuracy * std::pow(separation, 2. * n - 2.))
