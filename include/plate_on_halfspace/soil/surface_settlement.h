@@ -57,12 +57,14 @@ namespace PlateOnHalfspace
    *    cell, which ACA compresses well;
    *  - near_corrections(): what settlement_at_points() integrates minus
    *    that, on the cells within 2.5 of their diameters of x (the singular
-   *    rule and the 5-point rule there; near_cells() finds them), zero
-   *    elsewhere.
+   *    rule and the 5- and 6-point rules there; near_cells() finds them),
+   *    zero elsewhere.
    * Their sum is settlement_at_points() where it uses the 3-point rule
-   * (from 2.5 to 20 diameters, and beyond for a kernel with a remainder);
-   * beyond 20 diameters a pure alpha / r keeps the 3-point rule where
-   * settlement_at_points() takes 2 points (the better of the two).
+   * (from 11.2 to 412 diameters, and beyond for a kernel with a
+   * remainder); from 2.5 to 11.2 diameters, where settlement_at_points()
+   * takes 4 points, the sum keeps 3 (about 2e-5 of a cell's integral at
+   * 2.5 diameters, 1e-6 at 5: doc/formulation.md, "Goal-oriented
+   * refinement"); beyond 412 it keeps 3 where the direct sum takes 2.
    * A node's influence is the sum over its cells of these times its weights
    * in the cells' expansions (FoundationSpace::Cell).
    */
