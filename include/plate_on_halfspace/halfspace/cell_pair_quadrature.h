@@ -48,13 +48,14 @@ namespace PlateOnHalfspace
    *    These are integrated in the Q2 basis once per configuration up to
    *    translation and scale (configuration()), so a mesh of congruent
    *    cells integrates a handful of them;
-   *  - separated pairs: tensor Gauss rules, 5, 3 or 2 points per direction
-   *    for centre distances below 2.5, below 20 and from 20 cell diameters
-   *    on. The thresholds scale with the cells, so the relative quadrature
-   *    error of a pair does not fall with refinement: with 2 points from 5
-   *    diameters on, the flexible square's centre settlement stalled at a
-   *    relative error of 4e-4; from 20 on it converges (8e-6 at 833
-   *    foundation nodes, tests/unit/refinement_convergence).
+   *  - separated pairs: tensor Gauss rules of 2 to 6 points per direction,
+   *    the fewest that SurfaceKernel::separated_points() allows at the
+   *    pair's separation in cell diameters. Where a cell is wider than the
+   *    gap between the two (graded or elongated neighbours), each cell is
+   *    cut into pieces no wider than the gap and each pair of pieces takes
+   *    the rule of its own separation (integrate_composite()). The rules
+   *    scale with the cells, so a pair's relative error does not grow with
+   *    refinement (doc/formulation.md, "Cell-pair quadrature").
    */
   class CellPairIntegrator
   {
@@ -126,10 +127,11 @@ namespace PlateOnHalfspace
      * for the kernel K(r) = alpha / r + R(r) of a soil (SurfaceKernel),
      * only the entries of @p rows and @p columns (empty: all). Singular
      * pairs take alpha times their 1/r rules and R by integrate_smooth();
-     * separated pairs integrate the whole kernel on one Gauss rule, of
+     * separated pairs integrate the whole kernel on Gauss rules of
      * SurfaceKernel::separated_points() at @p accuracy relative to the
-     * entry (at least 3 points per direction with a remainder, which
-     * varies over the top layer's thickness at any distance;
+     * entry, composite where a cell is wider than the gap between the two
+     * (integrate_composite()) (at least 3 points per direction with a
+     * remainder, which varies over the top layer's thickness at any distance;
      * doc/soil-models.md, "How the storages use it"). A kernel much
      * smaller than alpha / r at the pair's distance may ask less.
      */
@@ -202,6 +204,26 @@ namespace PlateOnHalfspace
 
     bool
     touching(const unsigned int k, const unsigned int l) const;
+
+    /**
+     * The separated pair (k, l) where a cell is wider than the gap between
+     * the two: each cell cut into at most max_pieces pieces (sub-rectangles
+     * of its reference square) no wider than the gap, and every pair of
+     * pieces on the Gauss rule of its own separation, added to @p block.
+     * Returns false, @p block untouched, where both cells are no wider than
+     * the gap: there the pair's own rule holds.
+     */
+    bool
+    integrate_composite(const unsigned int       k,
+                        const unsigned int       l,
+                        const SurfaceKernel     &kernel,
+                        FullMatrix<double>      &block,
+                        const std::vector<bool> &rows,
+                        const std::vector<bool> &columns,
+                        const double             accuracy) const;
+
+    /** The most pieces integrate_composite() cuts one cell into. */
+    static constexpr unsigned int max_pieces = 64;
 
     /** The separated pair's block of @p kernel on the tables' rule. */
     void

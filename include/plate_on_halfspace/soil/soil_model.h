@@ -89,8 +89,8 @@ namespace PlateOnHalfspace
      * most) nearer than 1.45 diameters, 5 nearer than 2.6, 4 nearer than
      * 11.2, 3 nearer than 412, 2 beyond. The separation is measured in
      * the larger cell's diameters, so the model holds for cells of
-     * similar size and shape; graded or elongated neighbours nearer than
-     * about one diameter are integrated less accurately.
+     * similar size and shape; CellPairIntegrator cuts graded or elongated
+     * cells into such pieces first.
      * With a remainder at least 3, since it varies over its length scale
      * at any distance (doc/soil-models.md, "How the storages use it").
      */
