@@ -662,7 +662,7 @@ namespace PlateOnHalfspace
           << " of the settlement (doc/errors-and-limits.md, \"Stiffness "
              "ratio\")"
           << std::endl;
-    if (storage == Parameters::FoundationOperator::Storage::dense)
+    if (storage == Storage::dense)
       check_dense_foundation_memory(n,
                                     cycle_solver(n) ==
                                       Parameters::Contact::Solver::iterative,
@@ -680,10 +680,9 @@ namespace PlateOnHalfspace
     catch (const StorageDoesNotFit &shortfall)
       {
         // Only auto's own choice is replaced; a requested fft says why it
-        // cannot run (doc/errors-and-limits.md, "Memory").
-        if (parameters.foundation_operator.storage !=
-              Parameters::FoundationOperator::Storage::automatic ||
-            storage != Parameters::FoundationOperator::Storage::fft)
+        // cannot run (doc/errors-and-limits.md, "Memory guard").
+        if (parameters.foundation_operator.storage != Storage::automatic ||
+            storage != Storage::fft)
           throw;
         warn("Foundation operator/Storage = auto: the split kernel (fft) "
              "does not fit on " +
@@ -692,12 +691,9 @@ namespace PlateOnHalfspace
              "hierarchical storage. " +
              shortfall.shortfall);
         hierarchical_after_fft_did_not_fit = true;
-        foundation_operator                = create_foundation_operator(
-          parameters,
-          soil,
-          Parameters::FoundationOperator::Storage::hierarchical);
-        operator_storage =
-          Parameters::FoundationOperator::Storage::hierarchical;
+        foundation_operator =
+          create_foundation_operator(parameters, soil, Storage::hierarchical);
+        operator_storage = Storage::hierarchical;
         foundation_operator->build(mindlin_plate->get_foundation_space(), {});
       }
     if (parameters.output.verbosity > 0 &&
@@ -764,7 +760,7 @@ namespace PlateOnHalfspace
         const bool    own =
           parameters.contact.solver == Parameters::Contact::Solver::automatic &&
           parameters.foundation_operator.storage == Storage::automatic &&
-          (storage == Storage::hierarchical || storage == Storage::fft);
+          Parameters::FoundationOperator::compressed(storage);
         if (!own)
           throw;
         // The dense block's memory, checked here so that a failure says
@@ -857,7 +853,7 @@ namespace PlateOnHalfspace
       return false;
     const Storage storage =
       parameters.foundation_storage(n_foundation_nodes, n_ranks(communicator));
-    if (storage != Storage::hierarchical && storage != Storage::fft)
+    if (!Parameters::FoundationOperator::compressed(storage))
       return false;
     // a tenth of the accepted floor: the estimate is good to a factor ten
     const PreconditionerEstimate estimate =

@@ -285,7 +285,7 @@ namespace PlateOnHalfspace
      *  memory: that and every later cycle use the hierarchical storage. */
     bool hierarchical_after_fft_did_not_fit = false;
     /** Storage = auto would choose fft, but this cycle's mesh is too
-     *  graded or elongated for it to pay (split_kernel_mesh_obstacle()):
+     *  graded for it to pay (split_kernel_mesh_obstacle()):
      *  the hierarchical storage. */
     bool fft_unsuited_cycle = false;
     /** direct_for_flexible_plate() of this cycle, decided once by all

@@ -227,10 +227,10 @@ namespace PlateOnHalfspace
     const unsigned int n_p = outer.x.size(), n_q = inner.x.size();
     const unsigned int na = outer.n_functions, nb = inner.n_functions;
     // G(p, q) = alpha / |x_p - y_q| (at most 36 x 36 points, the 6-point
-    // rule's); plain loops
-    // over flat arrays, which the compiler vectorises; the remainder adds
-    // R at the same distances. Without a remainder the distances are not
-    // stored: one loop for both cost the half-space 5 % of its integration.
+    // rule's) by plain loops over flat arrays, which the compiler
+    // vectorises; the remainder adds R at the same distances. Without a
+    // remainder the distances are not stored: one loop for both cost the
+    // half-space 5 % of its integration.
     std::array<double, 36 * 36> G;
     AssertThrow(n_p * n_q <= G.size(), ExcInternalError());
     const double alpha = kernel.alpha;
@@ -608,77 +608,111 @@ namespace PlateOnHalfspace
                                           const std::vector<bool> &columns,
                                           const double accuracy) const
   {
-    // Every point of a convex cell lies within its diameter of its centre:
-    // pairs further apart than this cannot hold a cell wider than the gap.
-    const CellData &dk = cell_data[k], &dl = cell_data[l];
-    if (dk.centre.distance(dl.centre) - dk.diameter - dl.diameter >=
-        std::max(dk.diameter, dl.diameter))
-      return false;
-    const double gap = cell_gap(cells[k].geometry, cells[l].geometry);
-
-    // Pieces per reference direction with edges at most 1.5 times the gap:
-    // the plain 6-point rule integrates such pairs to about 2e-8 of the
-    // largest entry, and pairs with edges of twice the gap to 1e-7 … 2e-7
-    // (doc/formulation.md, "Graded and elongated pairs"). The factor below
-    // 1 keeps a pair at exactly 1.5, and its mirror image, whole despite
-    // rounding.
+    // A convex quadrilateral's edges, and its points' distances from its
+    // centre, are at most twice its diameter (the longer diagonal): pairs
+    // further apart than this hold no edge longer than widest_over_gap
+    // times their gap.
     constexpr double widest_over_gap = 1.5;
-    const auto       pieces = [gap](const BilinearQuadrilateral &cell) {
-      std::array<unsigned int, 2> m;
-      for (unsigned int d = 0; d < 2; ++d)
-        {
-          const auto sides   = edges(cell);
-          double     longest = 0;
-          for (const unsigned int e : {d == 0 ? 0u : 3u, d == 0 ? 2u : 1u})
-            longest =
-              std::max(longest, sides[e].first.distance(sides[e].second));
-          m[d] = static_cast<unsigned int>(std::max(
-            1., std::ceil(longest / (widest_over_gap * gap) * (1. - 1e-6))));
-        }
-      if (m[0] * m[1] > max_pieces)
-        {
-          const double shrink = std::sqrt(double(max_pieces) / (m[0] * m[1]));
-          for (unsigned int &md : m)
-            md = std::max(1u, static_cast<unsigned int>(md * shrink));
-        }
-      return m;
-    };
-    const std::array<std::array<unsigned int, 2>, 2> cuts = {
-      {pieces(cells[k].geometry), pieces(cells[l].geometry)}};
-    if (cuts[0][0] * cuts[0][1] == 1 && cuts[1][0] * cuts[1][1] == 1)
+    const CellData  &dk = cell_data[k], &dl = cell_data[l];
+    const double     wider = std::max(dk.diameter, dl.diameter);
+    if (dk.centre.distance(dl.centre) - 2. * (dk.diameter + dl.diameter) >=
+        2. * wider / widest_over_gap)
       return false;
+    {
+      const double gap     = cell_gap(cells[k].geometry, cells[l].geometry);
+      double       longest = 0;
+      for (const unsigned int c : {k, l})
+        for (const auto &[from, to] : edges(cells[c].geometry))
+          longest = std::max(longest, from.distance(to));
+      if (longest <= (1. + 1e-6) * widest_over_gap * gap)
+        return false;
+    }
 
+    // A piece: a sub-rectangle of the cell's reference square, mapped.
     struct Piece
     {
-      Point<2> lower;  ///< reference corner
-      Point<2> centre; ///< physical
+      Point<2> lower, size; ///< reference corner and widths
+      Point<2> centre;      ///< physical
       double   diameter;
+      double   along_x, along_y; ///< its longest edge in each direction
+      double   overreach; ///< longest edge over widest_over_gap x the gap
       /** The piece's table of the n-point rule at [n - 2], made when a
        *  pair asks for it (n_functions 0 until then). */
       std::array<Table, 5> tables;
     };
-    std::array<std::vector<Piece>, 2> cut_cells;
-    for (unsigned int side = 0; side < 2; ++side)
-      {
-        const BilinearQuadrilateral &geometry =
-          cells[side == 0 ? k : l].geometry;
-        const auto &m = cuts[side];
-        for (unsigned int j = 0; j < m[1]; ++j)
-          for (unsigned int i = 0; i < m[0]; ++i)
-            {
-              Piece piece;
-              piece.lower = Point<2>(double(i) / m[0], double(j) / m[1]);
-              const Point<2> size(1. / m[0], 1. / m[1]);
-              const auto     corner = [&](const double x, const double y) {
-                return geometry.map(Point<2>(piece.lower[0] + x * size[0],
-                                             piece.lower[1] + y * size[1]));
-              };
-              piece.centre   = corner(0.5, 0.5);
-              piece.diameter = std::max(corner(0, 0).distance(corner(1, 1)),
-                                        corner(1, 0).distance(corner(0, 1)));
-              cut_cells[side].push_back(std::move(piece));
-            }
-      }
+    const auto make_piece = [&](const BilinearQuadrilateral &cell,
+                                const BilinearQuadrilateral &other,
+                                const Point<2>              &lower,
+                                const Point<2>              &size) {
+      const auto corner = [&](const double x, const double y) {
+        return cell.map(
+          Point<2>(lower[0] + x * size[0], lower[1] + y * size[1]));
+      };
+      const BilinearQuadrilateral geometry(std::array<Point<2>, 4>{
+        {corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1)}});
+      const auto                  sides  = edges(geometry);
+      const auto                  length = [&](const unsigned int e) {
+        return sides[e].first.distance(sides[e].second);
+      };
+      Piece piece;
+      piece.lower     = lower;
+      piece.size      = size;
+      piece.centre    = corner(0.5, 0.5);
+      piece.diameter  = geometry.diameter();
+      piece.along_x   = std::max(length(0), length(2));
+      piece.along_y   = std::max(length(1), length(3));
+      piece.overreach = std::max(piece.along_x, piece.along_y) /
+                        (widest_over_gap * cell_gap(geometry, other));
+      return piece;
+    };
+    // Each cell cut towards the other: the piece reaching furthest beyond
+    // widest_over_gap times its own gap to the other cell is halved across
+    // its long edges (or quartered), until none reaches beyond it or the
+    // cell has max_pieces pieces. Every pair of pieces then has edges of at
+    // most widest_over_gap times its gap, where the plain rule holds about
+    // 2e-8 (doc/formulation.md, "Graded and elongated pairs"), and the
+    // pieces are graded towards the gap instead of uniform. The margin of
+    // 1e-6 keeps a pair at exactly widest_over_gap, and its mirror image,
+    // whole despite rounding.
+    const auto cut = [&](const unsigned int c, const unsigned int other) {
+      const BilinearQuadrilateral &cell   = cells[c].geometry;
+      const BilinearQuadrilateral &facing = cells[other].geometry;
+      std::vector<Piece>           pieces = {
+                  make_piece(cell, facing, Point<2>(0, 0), Point<2>(1, 1))};
+      while (true)
+        {
+          const auto worst =
+            std::max_element(pieces.begin(),
+                             pieces.end(),
+                             [](const Piece &a, const Piece &b) {
+                               return a.overreach < b.overreach;
+                             });
+          if (worst->overreach <= 1. + 1e-6)
+            break;
+          // halved along the reference directions that are too long
+          const bool split_x       = worst->along_x >= 0.5 * worst->along_y,
+                     split_y       = worst->along_y >= 0.5 * worst->along_x;
+          const unsigned int added = (split_x && split_y) ? 3 : 1;
+          if (pieces.size() + added > max_pieces)
+            break;
+          const Point<2> lower = worst->lower, size = worst->size;
+          const Point<2> half(split_x ? 0.5 * size[0] : size[0],
+                              split_y ? 0.5 * size[1] : size[1]);
+          pieces.erase(worst);
+          for (unsigned int j = 0; j < (split_y ? 2u : 1u); ++j)
+            for (unsigned int i = 0; i < (split_x ? 2u : 1u); ++i)
+              pieces.push_back(make_piece(cell,
+                                          facing,
+                                          Point<2>(lower[0] + i * half[0],
+                                                   lower[1] + j * half[1]),
+                                          half));
+        }
+      return pieces;
+    };
+    std::array<std::vector<Piece>, 2> cut_cells = {{cut(k, l), cut(l, k)}};
+    if (cut_cells[0].size() == 1 && cut_cells[1].size() == 1)
+      return false;
+
     const auto table = [&](const unsigned int side,
                            Piece             &piece,
                            const unsigned int n) -> const Table & {
@@ -686,15 +720,15 @@ namespace PlateOnHalfspace
       if (t.n_functions == 0)
         {
           const Quadrature<2>  &gauss = rules[n - 2];
-          const auto           &m     = cuts[side];
           std::vector<Point<2>> points;
           std::vector<double>   weights;
           for (unsigned int q = 0; q < gauss.size(); ++q)
             {
               const Point<2> &p = gauss.point(q);
-              points.emplace_back(piece.lower[0] + p[0] / m[0],
-                                  piece.lower[1] + p[1] / m[1]);
-              weights.push_back(gauss.weight(q) / (m[0] * m[1]));
+              points.emplace_back(piece.lower[0] + p[0] * piece.size[0],
+                                  piece.lower[1] + p[1] * piece.size[1]);
+              weights.push_back(gauss.weight(q) * piece.size[0] *
+                                piece.size[1]);
             }
           t = make_table(side == 0 ? k : l, Quadrature<2>(points, weights));
         }

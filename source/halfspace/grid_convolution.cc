@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/multithread_info.h>
 
 #include <plate_on_halfspace/halfspace/grid_convolution.h>
 
@@ -32,6 +33,27 @@ namespace PlateOnHalfspace
         }
     }
 
+    /**
+     * FFTW's planner is not thread-safe, and its threads are set up once
+     * per process: plans are made and destroyed under this lock, each for
+     * deal.II's thread count (MultithreadInfo::n_threads()).
+     */
+    std::mutex &
+    planner_mutex()
+    {
+      static std::mutex mutex;
+      return mutex;
+    }
+
+    void
+    plan_with_deal_ii_threads()
+    {
+      static const bool initialised = fftw_init_threads() != 0;
+      AssertThrow(initialised,
+                  ExcMessage("GridConvolution: FFTW's threads did not start."));
+      fftw_plan_with_nthreads(static_cast<int>(MultithreadInfo::n_threads()));
+    }
+
     /** The smallest m >= @p n with no prime factor above 7 (fast FFTs). */
     unsigned int
     fast_fft_size(const unsigned int n)
@@ -48,20 +70,28 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
+  /**
+   * The transforms of convolve(), pruned to the rows that hold data: the
+   * rows' real transforms over the grid's n[1] rows only (the padding
+   * rows are zero going in and not wanted coming out), the columns'
+   * complex ones over all padded rows.
+   */
   struct GridConvolution::Plans
   {
-    double       *real     = nullptr;
-    fftw_complex *spectrum = nullptr;
-    fftw_plan     forward = nullptr, backward = nullptr;
-    std::size_t   n_real = 0, n_spectrum = 0;
-    std::mutex    mutex; ///< the buffers serve one convolution at a time
+    double       *real         = nullptr;
+    fftw_complex *spectrum     = nullptr;
+    fftw_plan     rows_forward = nullptr, columns_forward = nullptr,
+              columns_backward = nullptr, rows_backward = nullptr;
+    std::size_t n_real = 0, n_spectrum = 0;
+    std::mutex  mutex; ///< the buffers serve one convolution at a time
 
     ~Plans()
     {
-      if (forward)
-        fftw_destroy_plan(forward);
-      if (backward)
-        fftw_destroy_plan(backward);
+      const std::lock_guard<std::mutex> lock(planner_mutex());
+      for (fftw_plan plan :
+           {rows_forward, columns_forward, columns_backward, rows_backward})
+        if (plan)
+          fftw_destroy_plan(plan);
       fftw_free(real);
       fftw_free(spectrum);
     }
@@ -104,13 +134,61 @@ namespace PlateOnHalfspace
     plans->spectrum   = fftw_alloc_complex(plans->n_spectrum);
     AssertThrow(plans->real && plans->spectrum,
                 ExcMessage("GridConvolution: out of memory for the FFT."));
-    // FFTW_ESTIMATE: the same plan, so the same rounding, on every run.
-    plans->forward =
-      fftw_plan_dft_r2c_2d(py, px, plans->real, plans->spectrum, FFTW_ESTIMATE);
-    plans->backward =
-      fftw_plan_dft_c2r_2d(py, px, plans->spectrum, plans->real, FFTW_ESTIMATE);
+    // FFTW_ESTIMATE: the same plans, so the same rounding, on every run
+    // with the same number of threads.
+    {
+      const std::lock_guard<std::mutex> lock(planner_mutex());
+      plan_with_deal_ii_threads();
+      int       length_x = px, length_y = py;
+      const int rows = n[1], columns = sx;
+      plans->rows_forward     = fftw_plan_many_dft_r2c(1,
+                                                   &length_x,
+                                                   rows,
+                                                   plans->real,
+                                                   nullptr,
+                                                   1,
+                                                   px,
+                                                   plans->spectrum,
+                                                   nullptr,
+                                                   1,
+                                                   sx,
+                                                   FFTW_ESTIMATE);
+      const auto columns_plan = [&](const int direction) {
+        return fftw_plan_many_dft(1,
+                                  &length_y,
+                                  columns,
+                                  plans->spectrum,
+                                  nullptr,
+                                  sx,
+                                  1,
+                                  plans->spectrum,
+                                  nullptr,
+                                  sx,
+                                  1,
+                                  direction,
+                                  FFTW_ESTIMATE);
+      };
+      plans->columns_forward  = columns_plan(FFTW_FORWARD);
+      plans->columns_backward = columns_plan(FFTW_BACKWARD);
+      plans->rows_backward    = fftw_plan_many_dft_c2r(1,
+                                                    &length_x,
+                                                    rows,
+                                                    plans->spectrum,
+                                                    nullptr,
+                                                    1,
+                                                    sx,
+                                                    plans->real,
+                                                    nullptr,
+                                                    1,
+                                                    px,
+                                                    FFTW_ESTIMATE);
+      AssertThrow(plans->rows_forward && plans->columns_forward &&
+                    plans->columns_backward && plans->rows_backward,
+                  ExcMessage("GridConvolution: FFTW made no plan."));
+    }
 
-    // The kernel's samples at the circular offsets.
+    // The kernel's samples at the circular offsets, transformed once over
+    // all rows (the samples fill them).
     for (unsigned int j = 0; j < py; ++j)
       for (unsigned int i = 0; i < px; ++i)
         {
@@ -118,7 +196,19 @@ namespace PlateOnHalfspace
           const double dy = (j <= py / 2) ? double(j) : double(j) - py;
           plans->real[std::size_t(j) * px + i] = kernel(h * std::hypot(dx, dy));
         }
-    fftw_execute(plans->forward);
+    {
+      fftw_plan whole;
+      {
+        const std::lock_guard<std::mutex> lock(planner_mutex());
+        plan_with_deal_ii_threads();
+        whole = fftw_plan_dft_r2c_2d(
+          py, px, plans->real, plans->spectrum, FFTW_ESTIMATE);
+      }
+      AssertThrow(whole, ExcMessage("GridConvolution: FFTW made no plan."));
+      fftw_execute(whole);
+      const std::lock_guard<std::mutex> lock(planner_mutex());
+      fftw_destroy_plan(whole);
+    }
 
     // The B-splines' symbol B(w) = sum_m M(m) e^{-i w m} (real, positive
     // for an even order), from the samples at the integers.
@@ -231,19 +321,28 @@ namespace PlateOnHalfspace
     AssertDimension(charges.size(), n_grid_nodes());
     const std::lock_guard<std::mutex> lock(plans->mutex);
     const unsigned int                px = padded[0], sx = px / 2 + 1;
-    std::fill(plans->real, plans->real + plans->n_real, 0.);
+    // The grid's rows, zero-padded in x; the padding rows are not read.
     for (unsigned int j = 0; j < n[1]; ++j)
-      std::copy(charges.begin() + std::size_t(j) * n[0],
-                charges.begin() + std::size_t(j + 1) * n[0],
-                plans->real + std::size_t(j) * px);
-    fftw_execute(plans->forward);
+      {
+        double *row = plans->real + std::size_t(j) * px;
+        std::copy(charges.begin() + std::size_t(j) * n[0],
+                  charges.begin() + std::size_t(j + 1) * n[0],
+                  row);
+        std::fill(row + n[0], row + px, 0.);
+      }
+    fftw_execute(plans->rows_forward);
+    // The padding rows' spectra are those of zero rows.
+    std::fill(plans->spectrum[std::size_t(n[1]) * sx],
+              plans->spectrum[0] + 2 * plans->n_spectrum,
+              0.);
+    fftw_execute(plans->columns_forward);
     for (std::size_t k = 0; k < plans->n_spectrum; ++k)
       {
         plans->spectrum[k][0] *= kernel_transform[k];
         plans->spectrum[k][1] *= kernel_transform[k];
       }
-    (void)sx;
-    fftw_execute(plans->backward);
+    fftw_execute(plans->columns_backward);
+    fftw_execute(plans->rows_backward);
     potentials.resize(n_grid_nodes());
     for (unsigned int j = 0; j < n[1]; ++j)
       std::copy(plans->real + std::size_t(j) * px,

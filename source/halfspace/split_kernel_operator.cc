@@ -22,6 +22,21 @@ namespace PlateOnHalfspace
 {
   namespace
   {
+    /** The median of the cells' sizes, the square roots of their areas:
+     *  the split length sigma and the mesh obstacle's reference size. */
+    double
+    median_cell_size(const std::vector<FoundationSpace::Cell> &cells)
+    {
+      std::vector<double> sizes;
+      sizes.reserve(cells.size());
+      for (const auto &cell : cells)
+        sizes.push_back(std::sqrt(cell.geometry.area()));
+      std::nth_element(sizes.begin(),
+                       sizes.begin() + sizes.size() / 2,
+                       sizes.end());
+      return sizes[sizes.size() / 2];
+    }
+
     /** alpha erf(r / sigma) / r, the smooth far field (value at 0 too). */
     double
     far_kernel(const double alpha, const double sigma, const double r)
@@ -142,37 +157,21 @@ namespace PlateOnHalfspace
   std::string
   split_kernel_mesh_obstacle(const FoundationSpace &space)
   {
-    // Measured bounds (doc/performance.md, "Which storage auto picks"):
-    // the largest cell at most 4 times the median size, no cell longer
-    // than about 6 times its width (diameter over square root of area).
-    constexpr double largest_over_median = 4, elongation = 2.5;
+    // The measured bound (doc/performance.md, "Which storage auto picks"):
+    // the largest cell at most 4 times the median size.
+    constexpr double largest_over_median = 4;
     if (space.cells.empty())
       return "";
-    std::vector<double> sizes;
-    double              largest = 0, most_elongated = 0;
+    double largest = 0;
     for (const auto &cell : space.cells)
-      {
-        const double size = std::sqrt(cell.geometry.area());
-        sizes.push_back(size);
-        largest = std::max(largest, size);
-        most_elongated =
-          std::max(most_elongated, cell.geometry.diameter() / size);
-      }
-    std::nth_element(sizes.begin(),
-                     sizes.begin() + sizes.size() / 2,
-                     sizes.end());
-    const double       median = sizes[sizes.size() / 2];
+      largest = std::max(largest, std::sqrt(cell.geometry.area()));
+    const double       median = median_cell_size(space.cells);
     std::ostringstream text;
     text << std::setprecision(3);
     if (largest > largest_over_median * median)
       text << "the largest cell is " << largest / median
            << " times the median size (graded mesh; fft pays up to "
            << largest_over_median << ")";
-    else if (most_elongated > elongation)
-      text << "a cell's diameter is " << most_elongated
-           << " times the square root of its area (elongated cells; fft "
-              "pays up to "
-           << elongation << ")";
     return text.str();
   }
 
@@ -210,7 +209,6 @@ namespace PlateOnHalfspace
     // cell, whose touching pairs integrate erf(r / sigma) / r with
     // (3 H / sigma)^2 points per cell (CellPairIntegrator::integrate_smooth).
     const SplitKernelSettings settings = split_kernel_settings(tolerance);
-    std::vector<double>       sizes(n_computed);
     std::vector<Point<2>>     centres(n_cells);
     std::vector<double>       diameters(n_cells);
     Point<2>                  low(std::numeric_limits<double>::max(),
@@ -220,8 +218,6 @@ namespace PlateOnHalfspace
       {
         centres[c]   = cells[c].geometry.map(Point<2>(0.5, 0.5));
         diameters[c] = cells[c].geometry.diameter();
-        if (c < n_computed)
-          sizes[c] = std::sqrt(cells[c].geometry.area());
         for (const Point<2> &v : cells[c].geometry.get_vertices())
           for (unsigned int d = 0; d < 2; ++d)
             {
@@ -229,10 +225,7 @@ namespace PlateOnHalfspace
               high[d] = std::max(high[d], v[d]);
             }
       }
-    std::nth_element(sizes.begin(),
-                     sizes.begin() + sizes.size() / 2,
-                     sizes.end());
-    double       sigma = sizes[sizes.size() / 2];
+    double       sigma = median_cell_size(space.cells);
     const double area  = (high[0] - low[0]) * (high[1] - low[1]);
     const double largest =
       *std::max_element(diameters.begin(), diameters.end());
@@ -306,7 +299,9 @@ namespace PlateOnHalfspace
       // a value and a column index in the matrix, and the pattern's copy
       const std::size_t needed    = entries * (sizeof(double) + 8);
       const std::size_t available = available_memory_bytes();
-      const double      finest = *std::min_element(sizes.begin(), sizes.end());
+      double            finest    = std::numeric_limits<double>::max();
+      for (const auto &cell : space.cells)
+        finest = std::min(finest, std::sqrt(cell.geometry.area()));
       if (available > 0 && needed > available)
         {
           std::ostringstream text;

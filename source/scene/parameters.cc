@@ -563,10 +563,10 @@ namespace PlateOnHalfspace
                         "foundation nodes where the scene allows it (the "
                         "conditions above, Contact/Solver not direct) fft "
                         "for the homogeneous half-space on one process on "
-                        "a mesh of cells of similar size and shape, "
-                        "hierarchical for a layered soil, on several "
-                        "processes, on graded or elongated meshes or where "
-                        "fft does not fit the memory; dense otherwise.");
+                        "a mesh of cells of similar size, hierarchical "
+                        "for a layered soil, on several processes, on "
+                        "graded meshes or where fft does not fit the "
+                        "memory; dense otherwise.");
       prm.declare_entry(
         "Tolerance",
         "1e-6",

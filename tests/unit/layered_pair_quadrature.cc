@@ -31,20 +31,11 @@
 
 #include "../tests.h"
 
+#include "../foundation_cells.h"
+
 namespace
 {
   using namespace PlateOnHalfspace;
-
-  /** A cell whose 9 local functions are the nodes first, first + 1, ... */
-  FoundationSpace::Cell
-  cell_with_own_nodes(const std::array<Point<2>, 4> &vertices,
-                      const unsigned int             first)
-  {
-    FoundationSpace::Cell cell{BilinearQuadrilateral(vertices), {}};
-    for (unsigned int i = 0; i < 9; ++i)
-      cell.expansion[i] = {{first + i, 1.}};
-    return cell;
-  }
 
   /** The vertices of a cell of width @p a at @p origin, in deal.II's order;
    *  distorted: a trapezoid with a sheared top. */

@@ -50,10 +50,11 @@ namespace PlateOnHalfspace
    *    cells integrates a handful of them;
    *  - separated pairs: tensor Gauss rules of 2 to 6 points per direction,
    *    the fewest that SurfaceKernel::separated_points() allows at the
-   *    pair's separation in cell diameters. Where a cell is wider than the
-   *    gap between the two (graded or elongated neighbours), each cell is
-   *    cut into pieces no wider than the gap and each pair of pieces takes
-   *    the rule of its own separation (integrate_composite()). The rules
+   *    pair's separation in cell diameters. Where a cell's edge exceeds
+   *    1.5 times the gap between the two (graded or elongated
+   *    neighbours), each cell is cut into pieces graded towards the other
+   *    and each pair of pieces takes the rule of its own separation
+   *    (integrate_composite()). The rules
    *    scale with the cells, so a pair's relative error does not grow with
    *    refinement (doc/formulation.md, "Cell-pair quadrature").
    */
@@ -206,12 +207,14 @@ namespace PlateOnHalfspace
     touching(const unsigned int k, const unsigned int l) const;
 
     /**
-     * The separated pair (k, l) where a cell is wider than the gap between
-     * the two: each cell cut into at most max_pieces pieces (sub-rectangles
-     * of its reference square) no wider than the gap, and every pair of
-     * pieces on the Gauss rule of its own separation, added to @p block.
-     * Returns false, @p block untouched, where both cells are no wider than
-     * the gap: there the pair's own rule holds.
+     * The separated pair (k, l) where a cell's edge exceeds 1.5 times the
+     * gap between the two: each cell cut into pieces (sub-rectangles of its
+     * reference square) graded towards the other cell, until no piece's
+     * edge exceeds 1.5 times its own gap to it or the cell has max_pieces
+     * pieces, and every pair of pieces on the Gauss rule of its own
+     * separation, added to @p block. Returns false, @p block untouched,
+     * where no edge exceeds 1.5 times the gap: there the pair's own rule
+     * holds (doc/formulation.md, "Graded and elongated pairs").
      */
     bool
     integrate_composite(const unsigned int       k,

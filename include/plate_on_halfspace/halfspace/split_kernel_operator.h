@@ -60,8 +60,8 @@ namespace PlateOnHalfspace
    * Why the split kernel would be slower than the hierarchical storage on
    * @p space, or "" where it is the faster: its split length is the median
    * cell size, so cells much larger than that (a strongly graded mesh)
-   * multiply its Gauss points and near pairs, and cells much longer than
-   * wide its near pairs (doc/performance.md, "Which storage auto picks").
+   * multiply its Gauss points and near pairs (doc/performance.md, "Which
+   * storage auto picks").
    * Storage = auto takes the hierarchical storage where this is not empty.
    */
   std::string

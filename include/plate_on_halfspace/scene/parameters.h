@@ -108,6 +108,15 @@ namespace PlateOnHalfspace
         sparse,       ///< the dense liquid's mass matrix (never an entry)
         fft           ///< split kernel: sparse near field, FFT far field
       };
+      /** Whether @p s compresses the flexibility (hierarchical, fft): no
+       *  direct solver, and Contact/Solver = auto's flexible-plate
+       *  fallbacks apply (doc/parameters.md). */
+      static bool
+      compressed(const Storage s)
+      {
+        return s == Storage::hierarchical || s == Storage::fft;
+      }
+
       Storage storage;
       double  tolerance;
       /** Storage = auto: compressed from this many foundation nodes. */
