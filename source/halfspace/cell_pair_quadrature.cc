@@ -65,10 +65,12 @@ namespace PlateOnHalfspace
     double
     cell_gap(const BilinearQuadrilateral &a, const BilinearQuadrilateral &b)
     {
-      double smallest = std::numeric_limits<double>::max();
-      for (const auto &[p, q] : {std::pair(&a, &b), std::pair(&b, &a)})
+      double     smallest = std::numeric_limits<double>::max();
+      const auto edges_a = edges(a), edges_b = edges(b);
+      for (const auto &[p, q] :
+           {std::pair(&a, &edges_b), std::pair(&b, &edges_a)})
         for (const Point<2> &vertex : p->get_vertices())
-          for (const auto &[s0, s1] : edges(*q))
+          for (const auto &[s0, s1] : *q)
             smallest = std::min(smallest, segment_distance(vertex, s0, s1));
       return smallest;
     }
