@@ -104,8 +104,9 @@ namespace PlateOnHalfspace
         "s",
         "the contact solver's factorisation of the flexibility: the "
         "iterative solver's preconditioner (`Contact/Preconditioner`: the "
-        "H-Cholesky or dense Cholesky factor of the soil inverse, or every "
-        "factorisation of the plate on springs), or the direct solver's "
+        "H-Cholesky or dense Cholesky factor of the soil inverse or the "
+        "fractional soil inverse's sparse factors, or every factorisation "
+        "of the plate on springs), or the direct solver's "
         "first contact block F_CC"},
        {{"solve_time_s"},
         "s",

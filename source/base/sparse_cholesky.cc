@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 
 namespace PlateOnHalfspace
 {
@@ -103,10 +104,22 @@ namespace PlateOnHalfspace
       }
 
     data->factor = cholmod_analyze(a, &data->common);
-    cholmod_factorize(a, data->factor, &data->common);
-    const bool positive_definite =
-      data->common.status == CHOLMOD_OK && data->factor->minor == n;
+    if (data->factor != nullptr)
+      cholmod_factorize(a, data->factor, &data->common);
+    const bool out_of_memory = data->factor == nullptr ||
+                               data->common.status == CHOLMOD_OUT_OF_MEMORY ||
+                               data->common.status == CHOLMOD_TOO_LARGE;
+    const bool positive_definite = !out_of_memory &&
+                                   data->common.status == CHOLMOD_OK &&
+                                   data->factor->minor == n;
     cholmod_free_sparse(&a, &data->common);
+    AssertThrow(!out_of_memory,
+                ExcMessage("A sparse Cholesky factorisation of " +
+                           std::to_string(n) +
+                           " unknowns needs more memory than this machine "
+                           "has: reduce the node count (Discretization/"
+                           "Subdivisions x and y, Discretization/Initial "
+                           "refinements, Adaptivity/Max cells)."));
     AssertThrow(positive_definite,
                 ExcMessage("The plate's rotation block is not positive "
                            "definite (a mechanism inside the plate)."));

@@ -3,9 +3,9 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
-#include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
+#include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
 #include <plate_on_halfspace/halfspace/grid_convolution.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/halfspace/split_kernel_operator.h>
@@ -71,34 +71,6 @@ namespace PlateOnHalfspace
 
     private:
       const double alpha, sigma;
-    };
-
-    /** The near field's Cholesky factor as F̃^{-1} (see the class doc). */
-    class NearFieldInverse : public ApproximateInverse
-    {
-    public:
-      NearFieldInverse(
-        std::function<void(Vector<double> &, const Vector<double> &)> solve,
-        const std::size_t                                             bytes)
-        : solve(std::move(solve))
-        , bytes(bytes)
-      {}
-
-      void
-      vmult(Vector<double> &q, const Vector<double> &s) const override
-      {
-        solve(q, s);
-      }
-
-      std::size_t
-      memory_consumption() const override
-      {
-        return bytes;
-      }
-
-    private:
-      const std::function<void(Vector<double> &, const Vector<double> &)> solve;
-      const std::size_t                                                   bytes;
     };
 
     /** A term of the near field: computed cell first, cell l (an image). */
@@ -189,6 +161,8 @@ namespace PlateOnHalfspace
                            "(use active set)."));
     build_mass_matrix(space, cell_in_foundation);
     set_pressure_basis(space, true);
+    space.assemble_laplace_matrix(mass_sparsity, laplace);
+    plate_area                 = space.area() * space.symmetry.n_copies();
     const SurfaceKernel kernel = elastic->kernel(maximal_distance(space));
     AssertThrow(!kernel.remainder,
                 ExcMessage("Foundation operator/Storage = fft holds the "
@@ -672,56 +646,67 @@ namespace PlateOnHalfspace
     return diagonal;
   }
 
+  namespace
+  {
+    /** An inverse on nodal values in the positive pressure basis:
+     *  q = T^{-1} F̃^{-1} T^{-T} s (FoundationOperator::set_pressure_basis()).
+     */
+    class InverseInPressureBasis : public ApproximateInverse
+    {
+    public:
+      using Map = std::function<void(const Vector<double> &, Vector<double> &)>;
+
+      InverseInPressureBasis(std::unique_ptr<ApproximateInverse> on_values,
+                             Map inverse_transpose_transform,
+                             Map coefficients_from_values)
+        : on_values(std::move(on_values))
+        , to_values_test(std::move(inverse_transpose_transform))
+        , to_coefficients(std::move(coefficients_from_values))
+      {}
+
+      void
+      vmult(Vector<double> &q, const Vector<double> &s) const override
+      {
+        Vector<double> tested(s.size()), values;
+        to_values_test(s, tested);
+        on_values->vmult(values, tested);
+        q.reinit(s.size());
+        to_coefficients(values, q);
+      }
+
+      std::size_t
+      memory_consumption() const override
+      {
+        return on_values->memory_consumption();
+      }
+
+    private:
+      const std::unique_ptr<ApproximateInverse> on_values;
+      const Map                                 to_values_test, to_coefficients;
+    };
+  } // namespace
+
   std::unique_ptr<ApproximateInverse>
   SplitKernelFftOperator::make_approximate_inverse()
   {
-    // The near field on the mass matrix's pattern plus the far field's
-    // long waves as pi alpha sigma M (doc/formulation.md, "Split-kernel FFT
-    // storage"); a larger shift where that is not positive definite.
-    auto factor = std::make_shared<SparseCholesky>();
-    std::vector<types::global_dof_index> rows(n_nodes());
-    for (unsigned int i = 0; i < rows.size(); ++i)
-      rows[i] = i;
-    double shift = M_PI * alpha * chosen.sigma;
-    for (unsigned int attempt = 0;; ++attempt)
-      {
-        SparseMatrix<double> local(mass_sparsity);
-        for (unsigned int i = 0; i < local.m(); ++i)
-          for (auto e = local.begin(i); e != local.end(i); ++e)
-            e->value() =
-              near_field.el(i, e->column()) + shift * mass.el(i, e->column());
-        try
-          {
-            factor->factorize(local, rows);
-            break;
-          }
-        catch (const ExcMessage &)
-          {
-            AssertThrow(attempt < 6,
-                        ExcMessage("Foundation operator/Storage = fft: the "
-                                   "near field is not positive definite."));
-            shift *= 4;
-          }
-      }
-    const bool basis = positive_basis;
-    auto       solve = [this, factor, basis](Vector<double>       &q,
-                                       const Vector<double> &s) {
-      Vector<double> tested(s.size());
-      if (basis)
-        apply_inverse_transpose_transform(s, tested);
-      else
-        tested = s;
-      std::vector<double> block(tested.begin(), tested.end());
-      factor->solve(block, 1);
-      Vector<double> values(block.begin(), block.end());
-      q.reinit(s.size());
-      if (basis)
-        coefficients_from_values(values, q);
-      else
-        q = values;
-    };
-    return std::make_unique<NearFieldInverse>(solve,
-                                              factor->memory_consumption());
+    // The fractional Laplacian (halfspace/fractional_laplace_inverse.h):
+    // the near field alone misses the far field's long waves, which cost
+    // four to six times the CG iterations (doc/performance.md, "With the
+    // fractional soil inverse").
+    auto on_values = std::make_unique<FractionalLaplaceInverse>(mass,
+                                                                laplace,
+                                                                alpha,
+                                                                plate_area);
+    if (!positive_basis)
+      return on_values;
+    return std::make_unique<InverseInPressureBasis>(
+      std::move(on_values),
+      [this](const Vector<double> &x, Vector<double> &y) {
+        apply_inverse_transpose_transform(x, y);
+      },
+      [this](const Vector<double> &x, Vector<double> &y) {
+        coefficients_from_values(x, y);
+      });
   }
 
   std::string

@@ -30,6 +30,58 @@ namespace PlateOnHalfspace
              lx[1] * ly[1]}};
   }
 
+  std::array<Tensor<1, 2>, 9>
+  q2_shape_gradients(const Point<2> &p)
+  {
+    const auto lagrange = [](const double s) {
+      return std::array<double, 3>{
+        {(1. - s) * (1. - 2. * s), 4. * s * (1. - s), s * (2. * s - 1.)}};
+    };
+    const auto derivative = [](const double s) {
+      return std::array<double, 3>{{4. * s - 3., 4. - 8. * s, 4. * s - 1.}};
+    };
+    const std::array<double, 3> lx = lagrange(p[0]), ly = lagrange(p[1]),
+                                dx = derivative(p[0]), dy = derivative(p[1]);
+    // the (x, y) factors of each function, in q2_shape_values' order
+    constexpr std::array<std::array<unsigned int, 2>, 9> factors = {{{{0, 0}},
+                                                                     {{2, 0}},
+                                                                     {{0, 2}},
+                                                                     {{2, 2}},
+                                                                     {{0, 1}},
+                                                                     {{2, 1}},
+                                                                     {{1, 0}},
+                                                                     {{1, 2}},
+                                                                     {{1, 1}}}};
+    std::array<Tensor<1, 2>, 9>                          gradients;
+    for (unsigned int i = 0; i < 9; ++i)
+      {
+        gradients[i][0] = dx[factors[i][0]] * ly[factors[i][1]];
+        gradients[i][1] = lx[factors[i][0]] * dy[factors[i][1]];
+      }
+    return gradients;
+  }
+
+  namespace
+  {
+    using LocalMatrix = std::array<std::array<double, 9>, 9>;
+
+    /** Add a cell's matrix on its nine Q2 functions through their
+     *  expansion into foundation nodes. */
+    void
+    add_local_matrix(const FoundationSpace::Cell &cell,
+                     const LocalMatrix           &local,
+                     SparseMatrix<double>        &matrix)
+    {
+      for (unsigned int i = 0; i < 9; ++i)
+        for (const auto &ti : cell.expansion[i])
+          for (unsigned int j = 0; j < 9; ++j)
+            for (const auto &tj : cell.expansion[j])
+              matrix.add(ti.first,
+                         tj.first,
+                         ti.second * tj.second * local[i][j]);
+    }
+  } // namespace
+
   std::vector<FoundationSpace::Cell>
   FoundationSpace::mirror_image_cells() const
   {
@@ -99,8 +151,8 @@ namespace PlateOnHalfspace
     for (unsigned int c = 0; c < cells.size(); ++c)
       if (included(c))
         {
-          const Cell &cell        = cells[c];
-          double      local[9][9] = {};
+          const Cell &cell = cells[c];
+          LocalMatrix local{};
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const Point<2> &p   = quadrature.point(q);
@@ -111,14 +163,35 @@ namespace PlateOnHalfspace
                 for (unsigned int j = 0; j < 9; ++j)
                   local[i][j] += phi[i] * phi[j] * JxW;
             }
-          for (unsigned int i = 0; i < 9; ++i)
-            for (const auto &ti : cell.expansion[i])
-              for (unsigned int j = 0; j < 9; ++j)
-                for (const auto &tj : cell.expansion[j])
-                  matrix.add(ti.first,
-                             tj.first,
-                             ti.second * tj.second * local[i][j]);
+          add_local_matrix(cell, local, matrix);
         }
+  }
+
+  void
+  FoundationSpace::assemble_laplace_matrix(const SparsityPattern &sparsity,
+                                           SparseMatrix<double>  &matrix) const
+  {
+    matrix.reinit(sparsity);
+    const QGauss<2> quadrature(3);
+    for (const Cell &cell : cells)
+      {
+        LocalMatrix local{};
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            const Point<2>    &p       = quadrature.point(q);
+            const Tensor<2, 2> J       = cell.geometry.jacobian(p);
+            const Tensor<2, 2> to_real = transpose(invert(J));
+            const double       JxW     = quadrature.weight(q) * determinant(J);
+            const auto         reference = q2_shape_gradients(p);
+            std::array<Tensor<1, 2>, 9> gradients;
+            for (unsigned int i = 0; i < 9; ++i)
+              gradients[i] = to_real * reference[i];
+            for (unsigned int i = 0; i < 9; ++i)
+              for (unsigned int j = 0; j < 9; ++j)
+                local[i][j] += gradients[i] * gradients[j] * JxW;
+          }
+        add_local_matrix(cell, local, matrix);
+      }
   }
 
   bool

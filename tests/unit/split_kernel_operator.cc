@@ -18,9 +18,9 @@
 //    quadrature error);
 //  - the diagonal of T^T A T for the plate-on-springs preconditioner lies
 //    within 10 % of the dense operator's (measured: 2 %);
-//  - the approximate inverse (the soil-inverse preconditioner) lets CG
-//    recover a pressure from its settlement to 1e-6 within 200
-//    iterations.
+//  - the approximate inverse (the soil-inverse preconditioner, the
+//    fractional Laplacian) lets CG recover a pressure from its settlement
+//    to 1e-6 within 40 iterations (measured 14 to 23 on the six meshes).
 
 
 #include <deal.II/lac/precondition.h>
@@ -174,11 +174,18 @@ namespace
       // kernel's rounding
       // 1e-12: the strongly graded mesh's A is ill-conditioned enough that
       // a residual of 1e-10 leaves q's error near 1e-5
-      SolverControl            control(200, 1e-12 * s.l2_norm(), false, false);
+      SolverControl            control(40, 1e-12 * s.l2_norm(), false, false);
       SolverCG<Vector<double>> cg(control);
-      cg.solve(flexibility, q, s, preconditioner);
+      try
+        {
+          cg.solve(flexibility, q, s, preconditioner);
+        }
+      catch (const SolverControl::NoConvergence &)
+        {
+          // q as far as it got: the check below fails
+        }
       q -= smooth_vector(scene.space);
-      require(name + ": preconditioned CG recovers q to 1e-6 within 200 "
+      require(name + ": preconditioned CG recovers q to 1e-6 within 40 "
                      "iterations",
               q.l2_norm() < 1e-6 * smooth_vector(scene.space).l2_norm());
     }

@@ -19,9 +19,9 @@
  * Products cost about n log n, memory grows like n. The accuracy follows
  * Foundation operator/Tolerance through the cutoff (erfc), the spline
  * order and sigma / h (split_kernel_settings()). The approximate inverse
- * (the soil-inverse preconditioner) is the sparse Cholesky factor of the
- * near field on the pattern of the mass matrix plus the far field's
- * long-wave flexibility as a multiple of the mass matrix.
+ * (the soil-inverse preconditioner) is the fractional Laplacian of
+ * fractional_laplace_inverse.h on the pressure nodes: the near field
+ * alone would miss the far field's long waves.
  *
  * Like the hierarchical storage: no element exclusion, no direct solver
  * (no dense block), the homogeneous half-space only (a layered soil's
@@ -139,7 +139,11 @@ namespace PlateOnHalfspace
     std::unique_ptr<GridConvolution>   grid;
     SparsityPattern                    near_sparsity;
     SparseMatrix<double>               near_field;
-    Layout                             chosen;
+    /** The Laplacian on the mass matrix's pattern, and the plate's area
+     *  with its mirror images: the approximate inverse's. */
+    SparseMatrix<double> laplace;
+    double               plate_area = 0;
+    Layout               chosen;
   };
 } // namespace PlateOnHalfspace
 

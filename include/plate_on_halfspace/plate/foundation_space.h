@@ -38,6 +38,10 @@ namespace PlateOnHalfspace
   std::array<double, 9>
   q2_shape_values(const Point<2> &p);
 
+  /** Their gradients on the reference square, in the same numbering. */
+  std::array<Tensor<1, 2>, 9>
+  q2_shape_gradients(const Point<2> &p);
+
   /** The foundation nodes and the cell-to-node expansion (see file doc). */
   struct FoundationSpace
   {
@@ -121,6 +125,16 @@ namespace PlateOnHalfspace
     assemble_mass_matrix(const std::vector<bool> &cell_in_foundation,
                          SparsityPattern         &sparsity,
                          SparseMatrix<double>    &matrix) const;
+
+    /**
+     * Assemble L_ij = ∫ ∇φ_i · ∇φ_j over all cells (natural boundary
+     * conditions) into @p matrix on @p sparsity, the pattern of
+     * assemble_mass_matrix() with every cell: the fractional preconditioner
+     * of halfspace/fractional_laplace_inverse.h.
+     */
+    void
+    assemble_laplace_matrix(const SparsityPattern &sparsity,
+                            SparseMatrix<double>  &matrix) const;
 
     /**
      * The pressure basis of the contact conditions (doc/formulation.md,

@@ -1,0 +1,87 @@
+/**
+ * The inverse of the homogeneous half-space's flexibility as a fractional
+ * power of the pressure space's Laplacian (doc/formulation.md,
+ * "Preconditioning the contact pressures", "Fractional soil inverse"):
+ *
+ *   F^{-1} ≈ (1 / (2 pi alpha)) (M^{-1} A)^{1/2} M^{-1},  A = L + c M,
+ *
+ * with M the mass matrix, L the Laplacian with natural boundary conditions
+ * on the same nodes and c = (4 / sqrt(pi area))^2, the rigid disk of the
+ * plate's area. On the plane the kernel alpha / r has the symbol
+ * 2 pi alpha / k and L that of k^2, so the two agree at every wave number;
+ * on the plate, ⟨F^{-1} s, s⟩ and ⟨(M^{-1}A)^{1/2} M^{-1} s, s⟩ are both
+ * equivalent to the H^{1/2} norm of the settlement, so the preconditioned
+ * iterations do not grow with the mesh.
+ *
+ * (M^{-1} A)^{1/2} = (M^{-1} A) (M^{-1} A)^{-1/2}, and x^{-1/2} =
+ * (2 / pi) ∫ dt / (t^2 + x) by the trapezoidal rule in log t over the
+ * spectrum of M^{-1} A (from c to a power iteration's bound), each node a
+ * sparse Cholesky factor of A + t^2 M, the two tails in closed form. The
+ * rule's step keeps the approximation within about 8 % of the power at
+ * every eigenvalue (fractional_laplace_inverse.cc).
+ */
+#ifndef plate_on_halfspace_halfspace_fractional_laplace_inverse_h
+#define plate_on_halfspace_halfspace_fractional_laplace_inverse_h
+
+#include <deal.II/lac/sparse_matrix.h>
+
+#include <plate_on_halfspace/halfspace/interface.h>
+
+#include <memory>
+#include <vector>
+
+namespace PlateOnHalfspace
+{
+  class SparseCholesky;
+
+  /** See the file documentation; acts on nodal values (no pressure basis). */
+  class FractionalLaplaceInverse : public ApproximateInverse
+  {
+  public:
+    /**
+     * @p mass and @p laplace on the same pattern (FoundationSpace::
+     * assemble_mass_matrix() with every cell, assemble_laplace_matrix()),
+     * @p alpha the kernel's alpha / r, @p area the plate's area with its
+     * mirror images.
+     */
+    FractionalLaplaceInverse(const SparseMatrix<double> &mass,
+                             const SparseMatrix<double> &laplace,
+                             const double                alpha,
+                             const double                area);
+    ~FractionalLaplaceInverse() override;
+
+    void
+    vmult(Vector<double> &q, const Vector<double> &s) const override;
+
+    std::size_t
+    memory_consumption() const override;
+
+    /** The nodes t_j of the rule (one factorisation each). */
+    unsigned int
+    n_poles() const
+    {
+      return poles.size();
+    }
+
+  private:
+    struct Pole
+    {
+      double                          t, weight;
+      std::unique_ptr<SparseCholesky> factor;
+    };
+
+    /** x = M^{-1} b. */
+    void
+    solve_mass(const Vector<double> &b, Vector<double> &x) const;
+
+    const SparseMatrix<double>     &mass;
+    SparseMatrix<double>            shifted; ///< A = L + c M
+    std::unique_ptr<SparseCholesky> mass_factor;
+    std::vector<Pole>               poles;
+    /** The weights of M^{-1} s and of M^{-1} A M^{-1} s (the tails). */
+    double identity_weight = 0, top_weight = 0;
+    double scale = 0; ///< 2 / pi / (2 pi alpha)
+  };
+} // namespace PlateOnHalfspace
+
+#endif

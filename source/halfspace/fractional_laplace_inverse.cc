@@ -1,0 +1,153 @@
+#include <plate_on_halfspace/base/sparse_cholesky.h>
+#include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
+
+#include <cmath>
+
+namespace PlateOnHalfspace
+{
+  namespace
+  {
+    /**
+     * The rule's step in log t and the margins beyond the spectrum: within
+     * 0.94 ... 1.02 of x^{1/2} over eigenvalues 1 ... 7.5e6 times the
+     * lowest (a 10^5-node plate), a ratio of 1.08 between the extremes; the
+     * CG iterations did not change between steps 1.5 and 2.5
+     * (doc/performance.md, "With the fractional soil inverse").
+     */
+    constexpr double log_step = 2.;
+    constexpr double margin   = 2.;
+
+    std::vector<types::global_dof_index>
+    all_rows(const unsigned int n)
+    {
+      std::vector<types::global_dof_index> rows(n);
+      for (unsigned int i = 0; i < n; ++i)
+        rows[i] = i;
+      return rows;
+    }
+
+    void
+    solve_with(const SparseCholesky &factor,
+               const Vector<double> &b,
+               Vector<double>       &x)
+    {
+      std::vector<double> block(b.begin(), b.end());
+      factor.solve(block, 1);
+      x.reinit(b.size(), true);
+      std::copy(block.begin(), block.end(), x.begin());
+    }
+  } // namespace
+
+  FractionalLaplaceInverse::FractionalLaplaceInverse(
+    const SparseMatrix<double> &mass,
+    const SparseMatrix<double> &laplace,
+    const double                alpha,
+    const double                area)
+    : mass(mass)
+    , shifted(mass.get_sparsity_pattern())
+    , mass_factor(std::make_unique<SparseCholesky>())
+    , scale(1. / (M_PI * M_PI * alpha))
+  {
+    const unsigned int n = mass.m();
+    AssertThrow(n > 0 && area > 0 && alpha > 0,
+                ExcMessage("FractionalLaplaceInverse: empty foundation."));
+    // c: the constant pressure of the rigid disk of the plate's area,
+    // 4 / (pi r) per unit settlement over 2 pi alpha.
+    const double c = 16. / (M_PI * area);
+    shifted.copy_from(laplace);
+    shifted.add(c, mass);
+    const auto rows = all_rows(n);
+    mass_factor->factorize(mass, rows);
+
+    // The largest eigenvalue of M^{-1} A: a Rayleigh quotient after a few
+    // power steps from a rough vector, an estimate from below that the
+    // margin covers.
+    double largest = c;
+    {
+      Vector<double> v(n), av(n), next;
+      for (unsigned int i = 0; i < n; ++i)
+        v[i] = std::cos(0.37 * i) + 0.3 * std::sin(2.1 * double(i) * i);
+      for (unsigned int step = 0; step < 20; ++step)
+        {
+          shifted.vmult(av, v);
+          solve_with(*mass_factor, av, next);
+          const double norm = next.l2_norm();
+          if (!(norm > 0))
+            break;
+          v = next;
+          v /= norm;
+          shifted.vmult(av, v);
+          largest = std::max(largest, (v * av) / mass.matrix_norm_square(v));
+        }
+    }
+
+    const double t_low      = std::sqrt(c) / margin,
+                 t_high     = margin * std::sqrt(largest);
+    const double       from = std::log(t_low), to = std::log(t_high);
+    const unsigned int intervals =
+      std::max(1u,
+               static_cast<unsigned int>(std::ceil((to - from) / log_step)));
+    const double h  = (to - from) / intervals;
+    identity_weight = t_low;
+    top_weight      = 1. / t_high;
+    poles.resize(intervals + 1);
+    for (unsigned int j = 0; j <= intervals; ++j)
+      {
+        poles[j].t = std::exp(from + j * h);
+        poles[j].weight =
+          (j == 0 || j == intervals ? 0.5 : 1.) * h * poles[j].t;
+        identity_weight += poles[j].weight;
+      }
+    SparseMatrix<double> matrix(shifted.get_sparsity_pattern());
+    for (Pole &pole : poles)
+      {
+        matrix.copy_from(shifted);
+        matrix.add(pole.t * pole.t, mass);
+        pole.factor = std::make_unique<SparseCholesky>();
+        pole.factor->factorize(matrix, rows);
+      }
+  }
+
+  FractionalLaplaceInverse::~FractionalLaplaceInverse() = default;
+
+  void
+  FractionalLaplaceInverse::solve_mass(const Vector<double> &b,
+                                       Vector<double>       &x) const
+  {
+    solve_with(*mass_factor, b, x);
+  }
+
+  void
+  FractionalLaplaceInverse::vmult(Vector<double>       &q,
+                                  const Vector<double> &s) const
+  {
+    // (M^{-1}A)^{1/2} M^{-1} s = (2/pi) [ (t_low + sum w_j) M^{-1} s
+    //   - sum w_j t_j^2 (A + t_j^2 M)^{-1} s + M^{-1} A M^{-1} s / t_high ]
+    // One solve after the other: CHOLMOD's triangular solves call BLAS,
+    // whose own threads made concurrent solves 2.6 times slower than these
+    // (doc/performance.md, "With the fractional soil inverse").
+    Vector<double> inverse_mass, top, solution;
+    solve_mass(s, inverse_mass);
+    Vector<double> a_times(s.size());
+    shifted.vmult(a_times, inverse_mass);
+    solve_mass(a_times, top);
+    q.reinit(s.size());
+    q.add(identity_weight, inverse_mass, top_weight, top);
+    for (const Pole &pole : poles)
+      {
+        solve_with(*pole.factor, s, solution);
+        q.add(-pole.weight * pole.t * pole.t, solution);
+      }
+    q *= scale;
+  }
+
+  std::size_t
+  FractionalLaplaceInverse::memory_consumption() const
+  {
+    std::size_t bytes =
+      shifted.memory_consumption() + mass_factor->memory_consumption();
+    for (const Pole &pole : poles)
+      bytes += pole.factor->memory_consumption();
+    return bytes;
+  }
+} // namespace PlateOnHalfspace
