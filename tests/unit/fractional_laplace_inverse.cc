@@ -33,24 +33,29 @@ namespace
 {
   using Scene = TestTools::FoundationScene;
 
-  struct Matrices
-  {
-    SparsityPattern      sparsity;
-    SparseMatrix<double> mass, laplace;
-  };
-
-  void
-  assemble(const Scene &scene, Matrices &m)
-  {
-    scene.space.assemble_mass_matrix({}, m.sparsity, m.mass);
-    scene.space.assemble_laplace_matrix(m.sparsity, m.laplace);
-  }
-
   double
   plate_area(const Scene &scene)
   {
     return scene.space.area() * scene.space.symmetry.n_copies();
   }
+
+  /** M and L on the scene's nodes, and B from them. */
+  struct Setup
+  {
+    explicit Setup(const Scene &scene)
+    {
+      scene.space.assemble_mass_matrix({}, sparsity, mass);
+      scene.space.assemble_laplace_matrix(sparsity, laplace);
+      inverse = std::make_unique<FractionalLaplaceInverse>(mass,
+                                                           laplace,
+                                                           scene.alpha,
+                                                           plate_area(scene));
+    }
+
+    SparsityPattern                           sparsity;
+    SparseMatrix<double>                      mass, laplace;
+    std::unique_ptr<FractionalLaplaceInverse> inverse;
+  };
 
   LAPACKFullMatrix<double>
   dense(const SparseMatrix<double> &matrix)
@@ -82,13 +87,9 @@ namespace
   void
   check_rule(const std::string &name, const Scene &scene)
   {
-    Matrices m;
-    assemble(scene, m);
-    const unsigned int             n = m.mass.m();
-    const FractionalLaplaceInverse inverse(m.mass,
-                                           m.laplace,
-                                           scene.alpha,
-                                           plate_area(scene));
+    const Setup                     m(scene);
+    const unsigned int              n       = m.mass.m();
+    const FractionalLaplaceInverse &inverse = *m.inverse;
     // A = L + c M with the class's c: the shift only moves the spectrum.
     const double             c = 16. / (M_PI * plate_area(scene));
     LAPACKFullMatrix<double> a = dense(m.laplace), mass = dense(m.mass);
@@ -127,14 +128,10 @@ namespace
   double
   condition_number(const Scene &scene)
   {
-    Matrices m;
-    assemble(scene, m);
-    const unsigned int             n = m.mass.m();
-    const FractionalLaplaceInverse inverse(m.mass,
-                                           m.laplace,
-                                           scene.alpha,
-                                           plate_area(scene));
-    BoussinesqGalerkinOperator     flexibility(scene.alpha,
+    const Setup                     m(scene);
+    const unsigned int              n       = m.mass.m();
+    const FractionalLaplaceInverse &inverse = *m.inverse;
+    BoussinesqGalerkinOperator      flexibility(scene.alpha,
                                            scene.singular_order,
                                            false); // the plain A
     flexibility.build(scene.space, {});
