@@ -531,12 +531,15 @@ namespace PlateOnHalfspace
   bool
   PlateOnHalfspaceProblem::refine_mesh()
   {
-    // the active set (not the wider set where q > 0) seeds the next cycle
+    // the active set (not the wider set where q > 0) seeds the next cycle,
+    // and the nodal pressure starts the next constrained start
+    // (IterativeContactSolver::predict_contact_set())
     Vector<double> indicator(contact.active_set.size());
     for (unsigned int i = 0; i < indicator.size(); ++i)
       indicator[i] = contact.active_set[i] ? 1. : 0.;
-    const Vector<double> old_field =
-      mindlin_plate->foundation_field_to_solution(indicator);
+    const std::vector<Vector<double>> old_fields = {
+      mindlin_plate->foundation_field_to_solution(indicator),
+      mindlin_plate->foundation_field_to_solution(contact.q)};
 
     if (!create_refinement_strategy(parameters)
            ->mark(*mindlin_plate, contact, goal_estimate, triangulation))
@@ -548,17 +551,19 @@ namespace PlateOnHalfspace
     slab_grid->match_refinement(triangulation);
     SolutionTransfer<2> transfer(mindlin_plate->get_dof_handler());
     triangulation.prepare_coarsening_and_refinement();
-    transfer.prepare_for_coarsening_and_refinement(old_field);
+    transfer.prepare_for_coarsening_and_refinement(old_fields);
     triangulation.execute_coarsening_and_refinement();
     setup_plate();
 
-    Vector<double> new_field(mindlin_plate->get_dof_handler().n_dofs());
-    transfer.interpolate(old_field, new_field);
+    std::vector<Vector<double>> new_fields(
+      2, Vector<double>(mindlin_plate->get_dof_handler().n_dofs()));
+    transfer.interpolate(old_fields, new_fields);
     const Vector<double> nodal =
-      mindlin_plate->restrict_to_foundation(new_field);
-    seed.resize(nodal.size());
+      mindlin_plate->restrict_to_foundation(new_fields[0]);
+    seed.contact_set.resize(nodal.size());
     for (unsigned int i = 0; i < nodal.size(); ++i)
-      seed[i] = nodal[i] > 0.5;
+      seed.contact_set[i] = nodal[i] > 0.5;
+    seed.pressure = mindlin_plate->restrict_to_foundation(new_fields[1]);
     return true;
   }
 

@@ -115,7 +115,8 @@ namespace PlateOnHalfspace
 
     /**
      * Refine for the next cycle, set up the plate anew and transfer the
-     * active set as the next seed. Returns false if Adaptivity/Max cells
+     * active set and the pressure as the next seed. Returns false if
+     * Adaptivity/Max cells
      * stops the refinement.
      */
     bool
@@ -291,9 +292,10 @@ namespace PlateOnHalfspace
     /** direct_for_flexible_plate() of this cycle, decided once by all
      *  ranks together in build_foundation_operator(). */
     bool direct_for_flexible_plate_cycle = false;
-    /** The active set of the previous cycle on the current mesh. */
-    std::vector<bool> seed;
-    ContactState      contact;
+    /** The active set and the pressure of the previous cycle on the
+     *  current mesh. */
+    ContactSeed  seed;
+    ContactState contact;
     /** q as a field on the plate's w-space (for point values). */
     Vector<double> pressure_field;
     /** The plate under its standing loads alone (solve_standing_loads()),

@@ -54,10 +54,10 @@ namespace PlateOnHalfspace
   {}
 
   ContactState
-  ContactIteration::solve(MindlinPlate            &plate,
-                          FoundationOperator      &foundation,
-                          const Vector<double>    &load,
-                          const std::vector<bool> &seed)
+  ContactIteration::solve(MindlinPlate         &plate,
+                          FoundationOperator   &foundation,
+                          const Vector<double> &load,
+                          const ContactSeed    &seed)
   {
     this->plate      = &plate;
     this->foundation = &foundation;
@@ -200,8 +200,8 @@ namespace PlateOnHalfspace
   }
 
   void
-  ContactIteration::solve_by_active_set(const std::vector<bool> &seed,
-                                        ContactState            &state)
+  ContactIteration::solve_by_active_set(const ContactSeed &seed,
+                                        ContactState      &state)
   {
     // Inexact solves while the set changes (as inexact Newton methods do):
     // a set that is about to change needs only the signs of q and of the

@@ -525,17 +525,18 @@ namespace PlateOnHalfspace
   }
 
   std::vector<bool>
-  IterativeContactSolver::predict_contact_set(const std::vector<bool> &seed,
-                                              ContactState            &state)
+  IterativeContactSolver::predict_contact_set(const ContactSeed &seed,
+                                              ContactState      &state)
   {
     if (!control.constrained_start)
-      return seed;
+      return seed.contact_set;
     const FoundationSpace   &space     = plate->get_foundation_space();
     const std::vector<bool> &supported = foundation->supported_nodes();
     const unsigned int       n         = supported.size();
-    std::vector<bool> contact_set = initial_contact_set(space, supported, seed);
+    std::vector<bool>        contact_set =
+      initial_contact_set(space, supported, seed.contact_set);
     if (!contact_set_supports_plate(space, contact_set))
-      return seed;
+      return seed.contact_set;
     const double tolerance    = changing_set_tolerance();
     const auto   make_problem = [&](const std::vector<bool> &set) {
       return std::make_unique<ContactSetProblem>(set,
@@ -557,6 +558,16 @@ namespace PlateOnHalfspace
     state.factor_memory_bytes  = preconditioner->memory_consumption();
     std::unique_ptr<ContactSetProblem> problem = make_problem(contact_set);
     Vector<double>                     q(problem->size()), y_all, soil_all;
+    if (seed.pressure.size() == n)
+      {
+        // the seed's pressure (a coarser cycle's, interpolated) without its
+        // tension: most of the pressure field is already there
+        Vector<double> coefficients;
+        foundation->pressure_coefficients(seed.pressure, coefficients);
+        for (double &c : coefficients)
+          c = std::max(c, 0.);
+        q = problem->restrict_to_contact_set(coefficients);
+      }
     problem->make_equilibrated(q);
     problem->vmult_on_all_nodes(y_all, q, soil_all);
 

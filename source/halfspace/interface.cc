@@ -139,6 +139,17 @@ namespace PlateOnHalfspace
   }
 
   void
+  FoundationOperator::pressure_coefficients(const Vector<double> &values,
+                                            Vector<double>       &q) const
+  {
+    q.reinit(values.size());
+    if (positive_basis)
+      coefficients_from_values(values, q);
+    else
+      q = values;
+  }
+
+  void
   FoundationOperator::gap(const Vector<double> &w,
                           const Vector<double> &q,
                           Vector<double>       &g) const

@@ -30,10 +30,10 @@ namespace PlateOnHalfspace
                      std::ostream              &log);
 
     ContactState
-    solve(MindlinPlate            &plate,
-          FoundationOperator      &foundation,
-          const Vector<double>    &load,
-          const std::vector<bool> &seed) final;
+    solve(MindlinPlate         &plate,
+          FoundationOperator   &foundation,
+          const Vector<double> &load,
+          const ContactSeed    &seed) final;
 
     ContactState
     solve_linearised(const Vector<double> &load) final;
@@ -72,17 +72,18 @@ namespace PlateOnHalfspace
 
     /**
      * A first contact set for the active set, from @p seed (the previous
-     * cycle's set, or empty): a solver that can move the contact boundary
-     * more cheaply than a solve per set returns its estimate, and may leave
-     * its pressures in state.q as the warm start. The active set then
-     * checks and corrects it, so the estimate decides only how many steps
-     * follow, never the answer. By default the seed itself.
+     * cycle's set and pressure, or empty): a solver that can move the
+     * contact boundary more cheaply than a solve per set returns its
+     * estimate, and may leave its pressures in state.q as the warm start.
+     * The active set then checks and corrects it, so the estimate decides
+     * only how many steps follow, never the answer. By default the seed's
+     * set itself.
      */
     virtual std::vector<bool>
-    predict_contact_set(const std::vector<bool> &seed, ContactState &state)
+    predict_contact_set(const ContactSeed &seed, ContactState &state)
     {
       (void)state;
-      return seed;
+      return seed.contact_set;
     }
 
     /** Relative accuracy of the solves while the active set changes. */
@@ -124,7 +125,7 @@ namespace PlateOnHalfspace
 
     /** The primal-dual active set from @p seed (ActiveSetUpdate). */
     void
-    solve_by_active_set(const std::vector<bool> &seed, ContactState &state);
+    solve_by_active_set(const ContactSeed &seed, ContactState &state);
   };
 } // namespace PlateOnHalfspace
 

@@ -115,6 +115,24 @@ namespace PlateOnHalfspace
   double
   contact_area(const ContactState &state);
 
+  /**
+   * Where a contact solve starts: a contact set and a pressure, e.g. the
+   * previous cycle's transferred to the present mesh. Either may be empty.
+   */
+  struct ContactSeed
+  {
+    ContactSeed() = default;
+
+    /** A seed of the contact set alone. */
+    ContactSeed(std::vector<bool> contact_set)
+      : contact_set(std::move(contact_set))
+    {}
+
+    std::vector<bool> contact_set;
+    /** Nodal values on the foundation nodes (not coefficients). */
+    Vector<double> pressure;
+  };
+
   /** A contact solver (see the file documentation). */
   class ContactSolver
   {
@@ -125,16 +143,18 @@ namespace PlateOnHalfspace
      * Solve @p plate (set up) under the load vector @p load
      * (MindlinPlate::load_vector()) on @p foundation (built on the plate's
      * foundation space with every cell in the foundation). @p seed (may be
-     * empty) seeds the contact set, e.g. transferred from the previous
-     * cycle. Throws ExcMessage naming the reason if the load is zero, lifts
+     * empty) seeds the contact set and, for a solver that can use it, the
+     * pressure, e.g. transferred from the previous cycle; it decides how
+     * many steps the solve takes, never the answer. Throws ExcMessage
+     * naming the reason if the load is zero, lifts
      * the plate off as a whole, leaves it a mechanism or cannot be solved
      * to the solver's tolerance.
      */
     virtual ContactState
-    solve(MindlinPlate            &plate,
-          FoundationOperator      &foundation,
-          const Vector<double>    &load,
-          const std::vector<bool> &seed) = 0;
+    solve(MindlinPlate         &plate,
+          FoundationOperator   &foundation,
+          const Vector<double> &load,
+          const ContactSeed    &seed) = 0;
 
     /**
      * After solve(): the coupled problem linearised on the last solve()'s

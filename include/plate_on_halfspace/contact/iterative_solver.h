@@ -161,11 +161,12 @@ namespace PlateOnHalfspace
      * a node off the set whose gap closes joins it, and either restarts
      * the directions. Ends when a set is solved to the changing-set
      * tolerance and nothing more changes; leaves its pressures in
-     * state.q.
+     * state.q. Starts from the seed's pressure where it has one (its
+     * tension dropped, then equilibrated), else from the equilibrated
+     * zero pressure.
      */
     std::vector<bool>
-    predict_contact_set(const std::vector<bool> &seed,
-                        ContactState            &state) override;
+    predict_contact_set(const ContactSeed &seed, ContactState &state) override;
 
     double
     changing_set_tolerance() const override;

@@ -200,6 +200,12 @@ namespace PlateOnHalfspace
     void
     nodal_pressure(const Vector<double> &q, Vector<double> &values) const;
 
+    /** The coefficients @p q of the pressure with the nodal values
+     *  @p values: the inverse of nodal_pressure(). */
+    void
+    pressure_coefficients(const Vector<double> &values,
+                          Vector<double>       &q) const;
+
     /** Gap g = F q - B w (>= 0 where the plate is above the soil). */
     void
     gap(const Vector<double> &w,
