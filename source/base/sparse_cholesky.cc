@@ -87,10 +87,16 @@ namespace PlateOnHalfspace
                                                 /*stype*/ 1,
                                                 CHOLMOD_REAL,
                                                 &data->common);
-    int            *p = static_cast<int *>(a->p);
-    int            *r = static_cast<int *>(a->i);
-    double         *x = static_cast<double *>(a->x);
-    p[0]              = 0;
+    AssertThrow(a != nullptr,
+                ExcMessage("A sparse matrix of " + std::to_string(n) +
+                           " unknowns needs more memory than this machine "
+                           "has: reduce the node count (Discretization/"
+                           "Subdivisions x and y, Discretization/Initial "
+                           "refinements, Adaptivity/Max cells)."));
+    int    *p = static_cast<int *>(a->p);
+    int    *r = static_cast<int *>(a->i);
+    double *x = static_cast<double *>(a->x);
+    p[0]      = 0;
     for (unsigned int j = 0; j < n; ++j)
       {
         int k = p[j];

@@ -51,6 +51,10 @@ namespace PlateOnHalfspace
     const unsigned int n = mass.m();
     AssertThrow(n > 0 && area > 0 && alpha > 0,
                 ExcMessage("FractionalLaplaceInverse: empty foundation."));
+    // A + t^2 M are summed entry by entry on one pattern
+    AssertThrow(&laplace.get_sparsity_pattern() == &mass.get_sparsity_pattern(),
+                ExcMessage("FractionalLaplaceInverse: L and M must share "
+                           "the mass matrix's pattern."));
     // c: the constant pressure of the rigid disk of the plate's area,
     // 4 / (pi r) per unit settlement over 2 pi alpha.
     const double c = 16. / (M_PI * area);

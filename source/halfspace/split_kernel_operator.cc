@@ -729,10 +729,10 @@ namespace PlateOnHalfspace
   std::size_t
   SplitKernelFftOperator::memory_consumption() const
   {
-    std::size_t bytes = coupling_memory_consumption() +
-                        near_field.memory_consumption() +
-                        near_sparsity.memory_consumption() +
-                        (grid ? grid->memory_consumption() : 0);
+    std::size_t bytes =
+      coupling_memory_consumption() + near_field.memory_consumption() +
+      near_sparsity.memory_consumption() + laplace.memory_consumption() +
+      (grid ? grid->memory_consumption() : 0);
     for (const CellPoints &cp : far_points)
       bytes += cp.nodes.size() * sizeof(unsigned int) +
                cp.points.size() *

@@ -10,8 +10,9 @@
  * plate's area. On the plane the kernel alpha / r has the symbol
  * 2 pi alpha / k and L that of k^2, so the two agree at every wave number;
  * on the plate, ⟨F^{-1} s, s⟩ and ⟨(M^{-1}A)^{1/2} M^{-1} s, s⟩ are both
- * equivalent to the H^{1/2} norm of the settlement, so the preconditioned
- * iterations do not grow with the mesh.
+ * equivalent to the H^{1/2} norm of the settlement, so on shape-regular,
+ * quasi-uniform meshes the preconditioned iterations do not grow with
+ * the mesh (elongated cells and strong grading raise them: see the doc).
  *
  * (M^{-1} A)^{1/2} = (M^{-1} A) (M^{-1} A)^{-1/2}, and x^{-1/2} =
  * (2 / pi) ∫ dt / (t^2 + x) by the trapezoidal rule in log t over the
