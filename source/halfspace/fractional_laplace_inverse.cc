@@ -43,8 +43,7 @@ namespace PlateOnHalfspace
     const SparseMatrix<double> &laplace,
     const double                alpha,
     const double                area)
-    : mass(mass)
-    , shifted(mass.get_sparsity_pattern())
+    : shifted(mass.get_sparsity_pattern())
     , mass_factor(std::make_unique<SparseCholesky>())
     , scale(1. / (M_PI * M_PI * alpha))
   {
@@ -71,9 +70,10 @@ namespace PlateOnHalfspace
       Vector<double> v(n), av(n), next;
       for (unsigned int i = 0; i < n; ++i)
         v[i] = std::cos(0.37 * i) + 0.3 * std::sin(2.1 * double(i) * i);
+      shifted.vmult(av, v);
       for (unsigned int step = 0; step < 20; ++step)
         {
-          shifted.vmult(av, v);
+          // av = A v from the last step's quotient
           solve_with(*mass_factor, av, next);
           const double norm = next.l2_norm();
           if (!(norm > 0))
@@ -115,13 +115,6 @@ namespace PlateOnHalfspace
   FractionalLaplaceInverse::~FractionalLaplaceInverse() = default;
 
   void
-  FractionalLaplaceInverse::solve_mass(const Vector<double> &b,
-                                       Vector<double>       &x) const
-  {
-    solve_with(*mass_factor, b, x);
-  }
-
-  void
   FractionalLaplaceInverse::vmult(Vector<double>       &q,
                                   const Vector<double> &s) const
   {
@@ -131,10 +124,10 @@ namespace PlateOnHalfspace
     // whose own threads made concurrent solves 2.6 times slower than these
     // (doc/performance.md, "With the fractional soil inverse").
     Vector<double> inverse_mass, top, solution;
-    solve_mass(s, inverse_mass);
+    solve_with(*mass_factor, s, inverse_mass);
     Vector<double> a_times(s.size());
     shifted.vmult(a_times, inverse_mass);
-    solve_mass(a_times, top);
+    solve_with(*mass_factor, a_times, top);
     q.reinit(s.size());
     q.add(identity_weight, inverse_mass, top_weight, top);
     for (const Pole &pole : poles)

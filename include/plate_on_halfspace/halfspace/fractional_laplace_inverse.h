@@ -71,11 +71,6 @@ namespace PlateOnHalfspace
       std::unique_ptr<SparseCholesky> factor;
     };
 
-    /** x = M^{-1} b. */
-    void
-    solve_mass(const Vector<double> &b, Vector<double> &x) const;
-
-    const SparseMatrix<double>     &mass;
     SparseMatrix<double>            shifted; ///< A = L + c M
     std::unique_ptr<SparseCholesky> mass_factor;
     std::vector<Pole>               poles;
