@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <numeric>
 #include <string>
 
 namespace PlateOnHalfspace
@@ -15,10 +16,97 @@ namespace PlateOnHalfspace
     cholmod_common  common;
     cholmod_factor *factor = nullptr;
     unsigned int    n      = 0;
+
+    void
+    free_factor()
+    {
+      if (factor != nullptr)
+        cholmod_free_factor(&factor, &common);
+    }
   };
 
-  SparseCholesky::SparseCholesky()
+  namespace
+  {
+    std::string
+    does_not_fit(const std::string &what, const unsigned int n)
+    {
+      return "The sparse Cholesky factor of " + what + " (" +
+             std::to_string(n) +
+             " unknowns) needs more memory than this machine has: reduce "
+             "the node count (Discretization/Subdivisions x and y, "
+             "Discretization/Initial refinements, Adaptivity/Max cells).";
+    }
+
+    /**
+     * The upper triangle of A(rows, rows) in CHOLMOD's compressed columns
+     * (A symmetric: row i of A is column i); with @p keep_zeros every
+     * stored entry, so that matrices on one pattern share one analysis.
+     */
+    cholmod_sparse *
+    upper_triangle(const SparseMatrix<double>                 &matrix,
+                   const std::vector<types::global_dof_index> &rows,
+                   const bool                                  keep_zeros,
+                   cholmod_common                             &common)
+    {
+      const unsigned int n = rows.size();
+      std::vector<int>   position(matrix.m(), -1);
+      for (unsigned int i = 0; i < n; ++i)
+        position[rows[i]] = i;
+      std::vector<std::vector<std::pair<int, double>>> columns(n);
+      std::size_t                                      nnz = 0;
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          for (auto entry = matrix.begin(rows[j]); entry != matrix.end(rows[j]);
+               ++entry)
+            {
+              const int i = position[entry->column()];
+              if (i >= 0 && i <= static_cast<int>(j) &&
+                  (keep_zeros || entry->value() != 0.))
+                columns[j].emplace_back(i, entry->value());
+            }
+          std::sort(columns[j].begin(), columns[j].end());
+          nnz += columns[j].size();
+        }
+      cholmod_sparse *a = cholmod_allocate_sparse(n,
+                                                  n,
+                                                  nnz,
+                                                  /*sorted*/ 1,
+                                                  /*packed*/ 1,
+                                                  /*stype*/ 1,
+                                                  CHOLMOD_REAL,
+                                                  &common);
+      if (a == nullptr)
+        return nullptr;
+      int    *p = static_cast<int *>(a->p);
+      int    *r = static_cast<int *>(a->i);
+      double *x = static_cast<double *>(a->x);
+      p[0]      = 0;
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          int k = p[j];
+          for (const auto &e : columns[j])
+            {
+              r[k] = e.first;
+              x[k] = e.second;
+              ++k;
+            }
+          p[j + 1] = k;
+        }
+      return a;
+    }
+
+    std::vector<types::global_dof_index>
+    all_rows(const unsigned int n)
+    {
+      std::vector<types::global_dof_index> rows(n);
+      std::iota(rows.begin(), rows.end(), types::global_dof_index(0));
+      return rows;
+    }
+  } // namespace
+
+  SparseCholesky::SparseCholesky(const std::string &what)
     : data(std::make_unique<Data>())
+    , what(what)
   {
     cholmod_start(&data->common);
     data->common.supernodal = CHOLMOD_SUPERNODAL;
@@ -26,8 +114,7 @@ namespace PlateOnHalfspace
 
   SparseCholesky::~SparseCholesky()
   {
-    if (data->factor != nullptr)
-      cholmod_free_factor(&data->factor, &data->common);
+    data->free_factor();
     cholmod_finish(&data->common);
   }
 
@@ -43,73 +130,85 @@ namespace PlateOnHalfspace
     const cholmod_factor *f = data->factor;
     if (f == nullptr)
       return 0;
-    // supernodal: xsize values and ssize row indices; simplicial: nzmax
-    return f->is_super ? f->xsize * sizeof(double) + f->ssize * sizeof(int) :
-                         f->nzmax * (sizeof(double) + sizeof(int));
+    if (f->xtype == CHOLMOD_PATTERN)
+      return f->is_super ? f->ssize * sizeof(int) : 0;
+    return factor_bytes();
+  }
+
+  std::size_t
+  SparseCholesky::factor_bytes() const
+  {
+    const cholmod_factor *f = data->factor;
+    if (f == nullptr)
+      return 0;
+    // supernodal: xsize values and ssize row indices (both set by the
+    // analysis); simplicial: nzmax, or the analysis's count lnz
+    if (f->is_super)
+      return f->xsize * sizeof(double) + f->ssize * sizeof(int);
+    const double entries =
+      f->xtype == CHOLMOD_PATTERN ? data->common.lnz : double(f->nzmax);
+    return static_cast<std::size_t>(entries) * (sizeof(double) + sizeof(int));
+  }
+
+  void
+  SparseCholesky::factorize(const SparseMatrix<double> &matrix)
+  {
+    factorize(matrix, all_rows(matrix.m()));
   }
 
   void
   SparseCholesky::factorize(const SparseMatrix<double>                 &matrix,
                             const std::vector<types::global_dof_index> &rows)
   {
-    if (data->factor != nullptr)
-      cholmod_free_factor(&data->factor, &data->common);
+    data->free_factor();
     const unsigned int n = rows.size();
     data->n              = n;
     if (n == 0)
       return;
-
-    std::vector<int> position(matrix.m(), -1);
-    for (unsigned int i = 0; i < n; ++i)
-      position[rows[i]] = i;
-
-    // Upper triangle of A(rows, rows) in compressed columns (A symmetric:
-    // row i of A is column i).
-    std::vector<std::vector<std::pair<int, double>>> columns(n);
-    std::size_t                                      nnz = 0;
-    for (unsigned int j = 0; j < n; ++j)
-      {
-        for (auto entry = matrix.begin(rows[j]); entry != matrix.end(rows[j]);
-             ++entry)
-          {
-            const int i = position[entry->column()];
-            if (i >= 0 && i <= static_cast<int>(j) && entry->value() != 0.)
-              columns[j].emplace_back(i, entry->value());
-          }
-        std::sort(columns[j].begin(), columns[j].end());
-        nnz += columns[j].size();
-      }
-    cholmod_sparse *a = cholmod_allocate_sparse(n,
-                                                n,
-                                                nnz,
-                                                /*sorted*/ 1,
-                                                /*packed*/ 1,
-                                                /*stype*/ 1,
-                                                CHOLMOD_REAL,
-                                                &data->common);
-    AssertThrow(a != nullptr,
-                ExcMessage("A sparse matrix of " + std::to_string(n) +
-                           " unknowns needs more memory than this machine "
-                           "has: reduce the node count (Discretization/"
-                           "Subdivisions x and y, Discretization/Initial "
-                           "refinements, Adaptivity/Max cells)."));
-    int    *p = static_cast<int *>(a->p);
-    int    *r = static_cast<int *>(a->i);
-    double *x = static_cast<double *>(a->x);
-    p[0]      = 0;
-    for (unsigned int j = 0; j < n; ++j)
-      {
-        int k = p[j];
-        for (const auto &e : columns[j])
-          {
-            r[k] = e.first;
-            x[k] = e.second;
-            ++k;
-          }
-        p[j + 1] = k;
-      }
-
+    cholmod_sparse *a = upper_triangle(matrix, rows, false, data->common);
+    AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
     data->factor = cholmod_analyze(a, &data->common);
+    factorize_numerically(a);
+  }
+
+  void
+  SparseCholesky::analyze(const SparseMatrix<double> &matrix)
+  {
+    data->free_factor();
+    const unsigned int n = matrix.m();
+    data->n              = n;
+    if (n == 0)
+      return;
+    cholmod_sparse *a = upper_triangle(matrix, all_rows(n), true, data->common);
+    AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
+    data->factor = cholmod_analyze(a, &data->common);
+    cholmod_free_sparse(&a, &data->common);
+    AssertThrow(data->factor != nullptr, ExcMessage(does_not_fit(what, n)));
+  }
+
+  void
+  SparseCholesky::factorize_as(const SparseCholesky       &analysed,
+                               const SparseMatrix<double> &matrix)
+  {
+    AssertThrow(analysed.data->factor != nullptr &&
+                  analysed.data->n == matrix.m(),
+                ExcMessage("SparseCholesky::factorize_as: the analysis is "
+                           "of another matrix size."));
+    data->free_factor();
+    const unsigned int n = matrix.m();
+    data->n              = n;
+    cholmod_sparse *a = upper_triangle(matrix, all_rows(n), true, data->common);
+    AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
+    // The copy of a symbolic factor is its structure only; the values
+    // are allocated by cholmod_factorize.
+    data->factor = cholmod_copy_factor(analysed.data->factor, &data->common);
+    factorize_numerically(a);
+  }
+
+  void
+  SparseCholesky::factorize_numerically(cholmod_sparse_struct *a)
+  {
+    const unsigned int n = data->n;
     if (data->factor != nullptr)
       cholmod_factorize(a, data->factor, &data->common);
     const bool out_of_memory = data->factor == nullptr ||
@@ -119,16 +218,10 @@ namespace PlateOnHalfspace
                                    data->common.status == CHOLMOD_OK &&
                                    data->factor->minor == n;
     cholmod_free_sparse(&a, &data->common);
-    AssertThrow(!out_of_memory,
-                ExcMessage("A sparse Cholesky factorisation of " +
-                           std::to_string(n) +
-                           " unknowns needs more memory than this machine "
-                           "has: reduce the node count (Discretization/"
-                           "Subdivisions x and y, Discretization/Initial "
-                           "refinements, Adaptivity/Max cells)."));
+    AssertThrow(!out_of_memory, ExcMessage(does_not_fit(what, n)));
     AssertThrow(positive_definite,
-                ExcMessage("The plate's rotation block is not positive "
-                           "definite (a mechanism inside the plate)."));
+                ExcMessage("The sparse Cholesky factorisation of " + what +
+                           " found it not positive definite."));
   }
 
   void
@@ -139,6 +232,9 @@ namespace PlateOnHalfspace
     AssertDimension(block.size(), std::size_t(n) * n_columns);
     if (n == 0 || n_columns == 0)
       return;
+    AssertThrow(data->factor != nullptr &&
+                  data->factor->xtype != CHOLMOD_PATTERN,
+                ExcMessage("SparseCholesky::solve before a factorisation."));
     cholmod_dense b;
     b.nrow  = n;
     b.ncol  = n_columns;
@@ -151,8 +247,8 @@ namespace PlateOnHalfspace
     cholmod_dense *solution =
       cholmod_solve(CHOLMOD_A, data->factor, &b, &data->common);
     AssertThrow(solution != nullptr,
-                ExcMessage("CHOLMOD could not solve with the plate's "
-                           "rotation block."));
+                ExcMessage("CHOLMOD could not solve with the factor of " +
+                           what + "."));
     std::memcpy(block.data(),
                 solution->x,
                 sizeof(double) * std::size_t(n) * n_columns);

@@ -120,8 +120,8 @@ namespace PlateOnHalfspace
       std::vector<bool>           factored_set;
       SparsityPattern             sparsity;
       SparseMatrix<double>        supported_plate;
-      std::vector<types::global_dof_index>     solved_dofs;
-      SparseCholesky                           factor;
+      std::vector<types::global_dof_index> solved_dofs;
+      SparseCholesky factor{"the plate on springs (Contact/Preconditioner)"};
       std::unique_ptr<DistributedSparseDirect> distributed;
       double                                   time = 0;
     };

@@ -4,7 +4,6 @@
 #include <plate_on_halfspace/halfspace/dense_liquid_operator.h>
 
 #include <algorithm>
-#include <numeric>
 
 namespace PlateOnHalfspace
 {
@@ -17,9 +16,7 @@ namespace PlateOnHalfspace
       explicit SparseCholeskyInverse(const SparseMatrix<double> &flexibility)
         : n(flexibility.m())
       {
-        std::vector<types::global_dof_index> rows(n);
-        std::iota(rows.begin(), rows.end(), types::global_dof_index(0));
-        factor.factorize(flexibility, rows);
+        factor.factorize(flexibility);
       }
 
       void
@@ -41,7 +38,7 @@ namespace PlateOnHalfspace
 
     private:
       const unsigned int n;
-      SparseCholesky     factor;
+      SparseCholesky     factor{"the dense liquid's flexibility"};
     };
   } // namespace
 

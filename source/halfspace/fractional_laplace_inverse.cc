@@ -1,7 +1,10 @@
 #include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
+#include <plate_on_halfspace/halfspace/memory_guard.h>
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace PlateOnHalfspace
 {
@@ -17,13 +20,43 @@ namespace PlateOnHalfspace
     constexpr double log_step = 2.;
     constexpr double margin   = 2.;
 
-    std::vector<types::global_dof_index>
-    all_rows(const unsigned int n)
+    /** c of A = L + c M: the constant pressure of the rigid disk of the
+     *  plate's area, 4 / (pi r) per unit settlement over 2 pi alpha. */
+    double
+    shift(const double area)
     {
-      std::vector<types::global_dof_index> rows(n);
-      for (unsigned int i = 0; i < n; ++i)
-        rows[i] = i;
-      return rows;
+      return 16. / (M_PI * area);
+    }
+
+    /** The trapezoidal rule in log t from sqrt(c) / margin to margin
+     *  sqrt(largest eigenvalue of M^{-1} A), and its tails' weights. */
+    struct Rule
+    {
+      std::vector<double> t, weight;
+      double              identity_weight = 0, top_weight = 0;
+    };
+
+    Rule
+    trapezoid_rule(const double c, const double largest)
+    {
+      const double t_low      = std::sqrt(c) / margin,
+                   t_high     = margin * std::sqrt(std::max(largest, c));
+      const double       from = std::log(t_low), to = std::log(t_high);
+      const unsigned int intervals =
+        std::max(1u,
+                 static_cast<unsigned int>(std::ceil((to - from) / log_step)));
+      const double h = (to - from) / intervals;
+      Rule         rule;
+      rule.identity_weight = t_low;
+      rule.top_weight      = 1. / t_high;
+      for (unsigned int j = 0; j <= intervals; ++j)
+        {
+          const double t = std::exp(from + j * h);
+          rule.t.push_back(t);
+          rule.weight.push_back((j == 0 || j == intervals ? 0.5 : 1.) * h * t);
+          rule.identity_weight += rule.weight.back();
+        }
+      return rule;
     }
 
     void
@@ -38,13 +71,35 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
+  unsigned int
+  FractionalLaplaceInverse::n_factors(const double area,
+                                      const double largest_eigenvalue)
+  {
+    const double c = shift(area);
+    return trapezoid_rule(c, largest_eigenvalue + c).t.size() + 1;
+  }
+
+  double
+  FractionalLaplaceInverse::largest_eigenvalue_estimate(
+    const FoundationSpace &space)
+  {
+    double largest = 0;
+    for (const auto &cell : space.cells)
+      largest = std::max(
+        largest,
+        120. * std::pow(cell.geometry.diameter() / cell.geometry.area(), 2));
+    return largest;
+  }
+
   FractionalLaplaceInverse::FractionalLaplaceInverse(
     const SparseMatrix<double> &mass,
     const SparseMatrix<double> &laplace,
     const double                alpha,
-    const double                area)
+    const double                area,
+    const SparseCholesky       &analysis)
     : shifted(mass.get_sparsity_pattern())
-    , mass_factor(std::make_unique<SparseCholesky>())
+    , mass_factor(std::make_unique<SparseCholesky>(
+        "the mass matrix of the pressure nodes"))
     , scale(1. / (M_PI * M_PI * alpha))
   {
     const unsigned int n = mass.m();
@@ -54,13 +109,10 @@ namespace PlateOnHalfspace
     AssertThrow(&laplace.get_sparsity_pattern() == &mass.get_sparsity_pattern(),
                 ExcMessage("FractionalLaplaceInverse: L and M must share "
                            "the mass matrix's pattern."));
-    // c: the constant pressure of the rigid disk of the plate's area,
-    // 4 / (pi r) per unit settlement over 2 pi alpha.
-    const double c = 16. / (M_PI * area);
+    const double c = shift(area);
     shifted.copy_from(laplace);
     shifted.add(c, mass);
-    const auto rows = all_rows(n);
-    mass_factor->factorize(mass, rows);
+    mass_factor->factorize_as(analysis, mass);
 
     // The largest eigenvalue of M^{-1} A: a Rayleigh quotient after a few
     // power steps from a rough vector, an estimate from below that the
@@ -85,30 +137,42 @@ namespace PlateOnHalfspace
         }
     }
 
-    const double t_low      = std::sqrt(c) / margin,
-                 t_high     = margin * std::sqrt(largest);
-    const double       from = std::log(t_low), to = std::log(t_high);
-    const unsigned int intervals =
-      std::max(1u,
-               static_cast<unsigned int>(std::ceil((to - from) / log_step)));
-    const double h  = (to - from) / intervals;
-    identity_weight = t_low;
-    top_weight      = 1. / t_high;
-    poles.resize(intervals + 1);
-    for (unsigned int j = 0; j <= intervals; ++j)
-      {
-        poles[j].t = std::exp(from + j * h);
-        poles[j].weight =
-          (j == 0 || j == intervals ? 0.5 : 1.) * h * poles[j].t;
-        identity_weight += poles[j].weight;
-      }
+    const Rule rule = trapezoid_rule(c, largest);
+    identity_weight = rule.identity_weight;
+    top_weight      = rule.top_weight;
+    // The poles' factors are the preconditioner's memory: refuse before
+    // allocating them rather than be stopped by the system halfway.
+    {
+      const std::size_t needed    = rule.t.size() * analysis.factor_bytes();
+      const std::size_t available = available_memory_bytes();
+      if (available > 0 && needed > available)
+        {
+          std::ostringstream text;
+          text << std::setprecision(3)
+               << "Contact/Preconditioner = soil inverse with Foundation "
+                  "operator/Storage = fft: the fractional soil inverse's "
+               << rule.t.size() << " sparse factors on " << n
+               << " pressure nodes need about " << needed / 1073741824.
+               << " GiB, but only " << available / 1073741824.
+               << " GiB are available. ";
+          throw StorageDoesNotFit(
+            text.str(),
+            "Use Contact/Preconditioner = plate on springs, or reduce the "
+            "node count (Discretization/Subdivisions x and y, "
+            "Discretization/Initial refinements, Adaptivity/Max cells).");
+        }
+    }
     SparseMatrix<double> matrix(shifted.get_sparsity_pattern());
-    for (Pole &pole : poles)
+    for (unsigned int j = 0; j < rule.t.size(); ++j)
       {
+        Pole &pole  = poles.emplace_back();
+        pole.t      = rule.t[j];
+        pole.weight = rule.weight[j];
         matrix.copy_from(shifted);
         matrix.add(pole.t * pole.t, mass);
-        pole.factor = std::make_unique<SparseCholesky>();
-        pole.factor->factorize(matrix, rows);
+        pole.factor = std::make_unique<SparseCholesky>(
+          "the fractional soil inverse's L + (c + t^2) M");
+        pole.factor->factorize_as(analysis, matrix);
       }
   }
 

@@ -1,8 +1,10 @@
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parallel.h>
 #include <deal.II/base/quadrature_lib.h>
 
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <boost/container_hash/hash.hpp>
 
+#include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
 #include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
@@ -12,11 +14,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <iomanip>
 #include <limits>
 #include <map>
 #include <numeric>
 #include <sstream>
+#include <unordered_map>
 
 namespace PlateOnHalfspace
 {
@@ -78,6 +82,157 @@ namespace PlateOnHalfspace
     {
       unsigned int first, cell;
     };
+
+    /**
+     * The near field's blocks shared by translated pairs. The block of two
+     * cells depends only on where their vertices lie relative to each
+     * other and on how their shape functions expand into their nodes
+     * (the same on cells without hanging nodes): on a uniform mesh, and
+     * among the cells of one level of an adaptive one, most pairs repeat
+     * an earlier pair's block. A pair takes an earlier
+     * one's block when its seven vertices relative to the first cell's
+     * first agree with that pair's to 1e-10 of the first cell's diameter;
+     * translates agree to rounding. At most @p capacity blocks are kept
+     * (a Gmsh mesh has few translates).
+     */
+    class TranslatedPairs
+    {
+    public:
+      TranslatedPairs(const std::vector<FoundationSpace::Cell> &cells,
+                      const std::size_t                         capacity)
+        : cells(cells)
+        , capacity(capacity)
+      {
+        // each cell's expansion as positions in its node list and weights:
+        // cells with equal ones have the same node shape functions
+        std::map<std::vector<std::pair<unsigned int, double>>, unsigned int>
+          kinds;
+        expansion_kind.reserve(cells.size());
+        for (const FoundationSpace::Cell &cell : cells)
+          {
+            const std::vector<unsigned int>              nodes = cell.nodes();
+            std::vector<std::pair<unsigned int, double>> form;
+            for (const auto &terms : cell.expansion)
+              {
+                for (const auto &[node, weight] : terms)
+                  form.emplace_back(
+                    std::find(nodes.begin(), nodes.end(), node) - nodes.begin(),
+                    weight);
+                form.emplace_back(numbers::invalid_unsigned_int, 0.);
+              }
+            expansion_kind.push_back(
+              kinds.emplace(std::move(form), kinds.size()).first->second);
+          }
+      }
+
+      /**
+       * The block that pair (@p k, @p l) shares with its translates, and
+       * whether this pair is the first of them (which integrates it);
+       * {nullptr, true} where the pair's block is its own.
+       */
+      std::pair<FullMatrix<double> *, bool>
+      find_or_add(const unsigned int k, const unsigned int l)
+      {
+        const auto &first     = cells[k].geometry.get_vertices(),
+                   &second    = cells[l].geometry.get_vertices();
+        const Point<2> origin = first[0];
+        Offsets        offsets;
+        for (unsigned int v = 1; v < 4; ++v)
+          for (unsigned int d = 0; d < 2; ++d)
+            offsets[2 * (v - 1) + d] = first[v][d] - origin[d];
+        for (unsigned int v = 0; v < 4; ++v)
+          for (unsigned int d = 0; d < 2; ++d)
+            offsets[6 + 2 * v + d] = second[v][d] - origin[d];
+        const double diameter = cells[k].geometry.diameter();
+        // keys in units of 2^-24 of the diameter's power of two, which
+        // the key holds too: different scales never share a key
+        const int    exponent = std::ilogb(diameter);
+        const double unit     = std::ldexp(1., exponent - 24);
+        Key          key;
+        for (unsigned int i = 0; i < offsets.size(); ++i)
+          key[i] = std::llround(offsets[i] / unit);
+        key[14]        = exponent;
+        key[15]        = expansion_kind[k];
+        key[16]        = expansion_kind[l];
+        const auto hit = index.find(key);
+        if (hit != index.end())
+          {
+            for (unsigned int i = 0; i < offsets.size(); ++i)
+              if (std::abs(offsets[i] - hit->second->offsets[i]) >
+                  1e-10 * diameter)
+                return {nullptr, true};
+            return {&hit->second->block, false};
+          }
+        if (entries.size() >= capacity)
+          return {nullptr, true};
+        Entry &entry  = entries.emplace_back();
+        entry.offsets = offsets;
+        index.emplace(key, &entry);
+        return {&entry.block, true};
+      }
+
+    private:
+      using Offsets = std::array<double, 14>;
+      using Key     = std::array<long long, 17>;
+      struct Entry
+      {
+        Offsets            offsets;
+        FullMatrix<double> block;
+      };
+      const std::vector<FoundationSpace::Cell>          &cells;
+      const std::size_t                                  capacity;
+      std::vector<unsigned int>                          expansion_kind;
+      std::unordered_map<Key, Entry *, boost::hash<Key>> index;
+      std::deque<Entry>                                  entries;
+    };
+
+    /**
+     * The near field's pattern: row i holds the nodes of every cell paired
+     * (a term, either way round) with a cell that has node i, which are the
+     * entries the terms' blocks add. Built row by row in parallel.
+     */
+    void
+    near_field_pattern(const CellPairIntegrator &integrator,
+                       const unsigned int        n_cells,
+                       const std::vector<Term>  &terms,
+                       const unsigned int        n_nodes,
+                       SparsityPattern          &sparsity)
+    {
+      std::vector<std::vector<unsigned int>> partners(n_cells),
+        node_cells(n_nodes);
+      for (const Term &t : terms)
+        {
+          partners[t.first].push_back(t.cell);
+          if (t.cell != t.first)
+            partners[t.cell].push_back(t.first);
+        }
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (const unsigned int i : integrator.nodes(c))
+          node_cells[i].push_back(c);
+      std::vector<std::vector<unsigned int>> rows(n_nodes);
+      parallel::apply_to_subranges(
+        0u,
+        n_nodes,
+        [&](const unsigned int from, const unsigned int to) {
+          // the row that last took each column
+          std::vector<unsigned int> taken_by(n_nodes,
+                                             numbers::invalid_unsigned_int);
+          for (unsigned int i = from; i < to; ++i)
+            {
+              for (const unsigned int c : node_cells[i])
+                for (const unsigned int d : partners[c])
+                  for (const unsigned int j : integrator.nodes(d))
+                    if (taken_by[j] != i)
+                      {
+                        taken_by[j] = i;
+                        rows[i].push_back(j);
+                      }
+              std::sort(rows[i].begin(), rows[i].end());
+            }
+        },
+        n_nodes / (4 * MultithreadInfo::n_threads()) + 1);
+      sparsity.copy_from(n_nodes, n_nodes, rows.begin(), rows.end());
+    }
   } // namespace
 
   struct SplitKernelFftOperator::CellPoints
@@ -162,7 +317,12 @@ namespace PlateOnHalfspace
     build_mass_matrix(space, cell_in_foundation);
     set_pressure_basis(space, true);
     space.assemble_laplace_matrix(mass_sparsity, laplace);
-    plate_area                 = space.area() * space.symmetry.n_copies();
+    plate_area = space.area() * space.symmetry.n_copies();
+    // The soil inverse's factors share this analysis; its factor size
+    // enters the memory estimate below.
+    inverse_analysis = std::make_unique<SparseCholesky>(
+      "the fractional soil inverse's L + (c + t^2) M");
+    inverse_analysis->analyze(mass);
     const SurfaceKernel kernel = elastic->kernel(maximal_distance(space));
     AssertThrow(!kernel.remainder,
                 ExcMessage("Foundation operator/Storage = fft holds the "
@@ -271,7 +431,14 @@ namespace PlateOnHalfspace
                    integrator.nodes(t.first).size() *
                    integrator.nodes(t.cell).size();
       // a value and a column index in the matrix, and the pattern's copy
-      const std::size_t needed    = entries * (sizeof(double) + 8);
+      const std::size_t near_bytes = entries * (sizeof(double) + 8);
+      // The soil inverse: one factor per node of its rule and M's.
+      const std::size_t inverse_bytes =
+        FractionalLaplaceInverse::n_factors(
+          plate_area,
+          FractionalLaplaceInverse::largest_eigenvalue_estimate(space)) *
+        inverse_analysis->factor_bytes();
+      const std::size_t needed    = near_bytes + inverse_bytes;
       const std::size_t available = available_memory_bytes();
       double            finest    = std::numeric_limits<double>::max();
       for (const auto &cell : space.cells)
@@ -282,10 +449,11 @@ namespace PlateOnHalfspace
           text << std::setprecision(3)
                << "Foundation operator/Storage = fft: the near field needs "
                   "about "
-               << needed / 1073741824. << " GiB (" << terms.size()
+               << near_bytes / 1073741824. << " GiB (" << terms.size()
                << " cell pairs within " << cutoff
-               << " of each other), but only " << available / 1073741824.
-               << " GiB are available. ";
+               << " of each other) and the soil inverse's sparse factors "
+               << inverse_bytes / 1073741824. << " GiB, but only "
+               << available / 1073741824. << " GiB are available. ";
           if (finest < 0.25 * sigma)
             text << "The kernel is split at sigma = " << sigma
                  << ", the median cell size, and the cells down to " << finest
@@ -302,38 +470,72 @@ namespace PlateOnHalfspace
     const SurfaceKernel near_kernel(alpha, near_remainder);
     integrator.integrate_singular_pairs(singular, near_remainder.get());
 
-    {
-      DynamicSparsityPattern pattern(space.n_nodes());
-      for (const Term &t : terms)
-        {
-          const auto &a = integrator.nodes(t.first),
-                     &b = integrator.nodes(t.cell);
-          for (const unsigned int i : a)
-            for (const unsigned int j : b)
-              {
-                pattern.add(i, j);
-                pattern.add(j, i);
-              }
-        }
-      near_sparsity.copy_from(pattern);
-    }
+    near_field_pattern(
+      integrator, n_cells, terms, space.n_nodes(), near_sparsity);
     near_field.reinit(near_sparsity);
 
-    // Integrate in chunks (tasks), scatter each chunk in order: the sum
-    // does not depend on the threads.
+    // Each cell's nodes in increasing order and their places in its node
+    // list: a block's row is added along the sorted columns of a row of
+    // the near field.
+    std::vector<std::vector<unsigned int>> sorted_order(n_cells),
+      sorted_nodes(n_cells);
+    for (unsigned int c = 0; c < n_cells; ++c)
+      {
+        const auto &nodes = integrator.nodes(c);
+        AssertThrow(nodes.size() <= 64, ExcInternalError());
+        sorted_order[c].resize(nodes.size());
+        std::iota(sorted_order[c].begin(), sorted_order[c].end(), 0u);
+        std::sort(sorted_order[c].begin(),
+                  sorted_order[c].end(),
+                  [&](unsigned x, unsigned y) { return nodes[x] < nodes[y]; });
+        for (const unsigned int m : sorted_order[c])
+          sorted_nodes[c].push_back(nodes[m]);
+      }
+    // Integrate in chunks (tasks), then add each chunk to the near field:
+    // the sums do not depend on the threads.
+    const unsigned int row_grain =
+      space.n_nodes() / (4 * MultithreadInfo::n_threads()) + 1;
     const std::size_t               chunk = 16384;
-    std::vector<FullMatrix<double>> blocks(std::min(chunk, terms.size()));
+    std::vector<FullMatrix<double>> own_blocks(std::min(chunk, terms.size()));
+    // the block each term of the chunk adds, and which the chunk computes
+    std::vector<const FullMatrix<double> *> blocks(own_blocks.size());
+    std::vector<std::pair<std::size_t, FullMatrix<double> *>> to_integrate;
+    TranslatedPairs translates(cells, 16384);
+    std::size_t     shared = 0;
     for (std::size_t begin = 0; begin < terms.size(); begin += chunk)
       {
         const std::size_t end = std::min(terms.size(), begin + chunk);
+        // Which terms take a translate's block is decided in term order,
+        // so the blocks do not depend on the threads.
+        to_integrate.clear();
+        for (std::size_t k = begin; k < end; ++k)
+          {
+            const Term &t = terms[k];
+            // a cell and its own image are symmetrised below; singular
+            // pairs have their own rules
+            const bool own_image =
+              t.first == t.cell % n_computed && t.cell >= n_computed;
+            auto [block, first] =
+              own_image || integrator.singular_pair(t.first, t.cell) ?
+                std::pair<FullMatrix<double> *, bool>{nullptr, true} :
+                translates.find_or_add(t.first, t.cell);
+            if (block == nullptr)
+              block = &own_blocks[k - begin];
+            if (first)
+              to_integrate.emplace_back(k, block);
+            else
+              ++shared;
+            blocks[k - begin] = block;
+          }
         parallel::apply_to_subranges(
-          begin,
-          end,
+          std::size_t(0),
+          to_integrate.size(),
           [&](const std::size_t from, const std::size_t to) {
             const std::vector<bool> all;
-            for (std::size_t k = from; k < to; ++k)
+            for (std::size_t m = from; m < to; ++m)
               {
-                const Term &t = terms[k];
+                const Term         &t     = terms[to_integrate[m].first];
+                FullMatrix<double> &block = *to_integrate[m].second;
                 // erfc(r / sigma) / r is 1/r closer than sigma, where a
                 // graded mesh's fine cells meet, and erfc(gap / sigma) of
                 // it beyond: the rule needs that much less accuracy
@@ -352,7 +554,7 @@ namespace PlateOnHalfspace
                 integrator.integrate_kernel(t.first,
                                             t.cell,
                                             near_kernel,
-                                            blocks[k - begin],
+                                            block,
                                             all,
                                             all,
                                             SurfaceKernel::separated_accuracy /
@@ -360,25 +562,57 @@ namespace PlateOnHalfspace
                 if (t.first == t.cell % n_computed && t.cell >= n_computed)
                   symmetrise_self_image_block(integrator.nodes(t.first),
                                               integrator.nodes(t.cell),
-                                              blocks[k - begin]);
+                                              block);
               }
           },
           64);
-        for (std::size_t k = begin; k < end; ++k)
-          {
-            const Term               &t     = terms[k];
-            const FullMatrix<double> &block = blocks[k - begin];
-            const auto               &a     = integrator.nodes(t.first),
-                       &b                   = integrator.nodes(t.cell);
-            const bool transposed           = t.first != t.cell % n_computed;
-            for (unsigned int i = 0; i < a.size(); ++i)
-              for (unsigned int j = 0; j < b.size(); ++j)
-                {
-                  near_field.add(a[i], b[j], block(i, j));
-                  if (transposed)
-                    near_field.add(b[j], a[i], block(i, j));
-                }
-          }
+        // Rows split among tasks, each taking the chunk's terms in order:
+        // every entry sums its terms in the same order on any number of
+        // threads.
+        parallel::apply_to_subranges(
+          0u,
+          space.n_nodes(),
+          [&](const unsigned int row_from, const unsigned int row_to) {
+            const auto mine = [&](const unsigned int row) {
+              return row >= row_from && row < row_to;
+            };
+            std::array<double, 64> values;
+            for (std::size_t k = begin; k < end; ++k)
+              {
+                const Term               &t     = terms[k];
+                const FullMatrix<double> &block = *blocks[k - begin];
+                const auto               &a     = integrator.nodes(t.first),
+                           &b                   = integrator.nodes(t.cell);
+                const auto &a_order             = sorted_order[t.first],
+                           &b_order             = sorted_order[t.cell];
+                for (unsigned int i = 0; i < a.size(); ++i)
+                  if (mine(a[i]))
+                    {
+                      for (unsigned int m = 0; m < b.size(); ++m)
+                        values[m] = block(i, b_order[m]);
+                      near_field.add(a[i],
+                                     b.size(),
+                                     sorted_nodes[t.cell].data(),
+                                     values.data(),
+                                     false,
+                                     true);
+                    }
+                if (t.first != t.cell % n_computed)
+                  for (unsigned int j = 0; j < b.size(); ++j)
+                    if (mine(b[j]))
+                      {
+                        for (unsigned int m = 0; m < a.size(); ++m)
+                          values[m] = block(a_order[m], j);
+                        near_field.add(b[j],
+                                       a.size(),
+                                       sorted_nodes[t.first].data(),
+                                       values.data(),
+                                       false,
+                                       true);
+                      }
+              }
+          },
+          row_grain);
       }
 
     for (CellPoints &cp : far_points)
@@ -395,6 +629,7 @@ namespace PlateOnHalfspace
     chosen.grid_nodes        = grid->n_grid_nodes();
     chosen.near_entries      = near_sparsity.n_nonzero_elements();
     chosen.near_pairs        = terms.size();
+    chosen.translated_pairs  = shared;
     chosen.quadrature_points = n_points;
   }
 
@@ -693,10 +928,10 @@ namespace PlateOnHalfspace
     // the near field alone misses the far field's long waves, which cost
     // four to six times the CG iterations (doc/performance.md, "With the
     // fractional soil inverse").
-    auto on_values = std::make_unique<FractionalLaplaceInverse>(mass,
-                                                                laplace,
-                                                                alpha,
-                                                                plate_area);
+    Assert(inverse_analysis,
+           ExcMessage("make_approximate_inverse before build"));
+    auto on_values = std::make_unique<FractionalLaplaceInverse>(
+      mass, laplace, alpha, plate_area, *inverse_analysis);
     if (!positive_basis)
       return on_values;
     return std::make_unique<InverseInPressureBasis>(
@@ -718,6 +953,7 @@ namespace PlateOnHalfspace
     text << std::setprecision(3) << "Foundation operator/Storage = fft: "
          << "kernel split at sigma = " << chosen.sigma << ", near field of "
          << chosen.near_pairs << " cell pairs within " << chosen.cutoff << " ("
+         << chosen.translated_pairs << " of them translates of another; "
          << chosen.near_entries << " entries), far field on "
          << chosen.quadrature_points << " Gauss points and a grid of "
          << chosen.grid_nodes << " nodes (spacing " << chosen.spacing
@@ -732,6 +968,7 @@ namespace PlateOnHalfspace
     std::size_t bytes =
       coupling_memory_consumption() + near_field.memory_consumption() +
       near_sparsity.memory_consumption() + laplace.memory_consumption() +
+      (inverse_analysis ? inverse_analysis->memory_consumption() : 0) +
       (grid ? grid->memory_consumption() : 0);
     for (const CellPoints &cp : far_points)
       bytes += cp.nodes.size() * sizeof(unsigned int) +

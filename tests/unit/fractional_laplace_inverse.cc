@@ -13,15 +13,23 @@
 //    of F x = mu B^{-1} x bound the condition number of B F below 4 on the
 //    rectangle of example 2 at 12 x 8 and 24 x 16 cells, and the quarter
 //    square at 16 x 16 and 32 x 32 (measured 2.60, 2.74, 2.64, 2.80), and
-//    refining once raises it by at most 10 % (measured 5 % and 6 %).
+//    refining once raises it by at most 10 % (measured 5 % and 6 %);
+//  - the fft storage's memory estimate: the cells' bound on the largest
+//    eigenvalue of M^{-1} L lies between the exact one (LAPACK) and four
+//    times it, and the factor count it implies covers the factors made;
+//  - under a memory limit of 1 KiB the constructor refuses with
+//    StorageDoesNotFit before allocating the poles' factors.
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
 #include <plate_on_halfspace/halfspace/galerkin_operator.h>
+#include <plate_on_halfspace/halfspace/memory_guard.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "../tests.h"
 
@@ -46,14 +54,14 @@ namespace
     {
       scene.space.assemble_mass_matrix({}, sparsity, mass);
       scene.space.assemble_laplace_matrix(sparsity, laplace);
-      inverse = std::make_unique<FractionalLaplaceInverse>(mass,
-                                                           laplace,
-                                                           scene.alpha,
-                                                           plate_area(scene));
+      analysis.analyze(mass);
+      inverse = std::make_unique<FractionalLaplaceInverse>(
+        mass, laplace, scene.alpha, plate_area(scene), analysis);
     }
 
     SparsityPattern                           sparsity;
     SparseMatrix<double>                      mass, laplace;
+    SparseCholesky                            analysis{"L + c M"};
     std::unique_ptr<FractionalLaplaceInverse> inverse;
   };
 
@@ -122,6 +130,19 @@ namespace
     require(name + ": x^T M B M x within 8 % of the exact power",
             worst_value < 0.08);
     require(name + ": B M x parallel to x to 1e-8", worst_direction < 1e-8);
+    // The storage's memory estimate: the cells' bound on the spectrum and
+    // the factor count it implies.
+    double largest = 0;
+    for (unsigned int k = 0; k < n; ++k)
+      largest = std::max(largest, a.eigenvalue(k).real() - c);
+    const double estimate =
+      FractionalLaplaceInverse::largest_eigenvalue_estimate(scene.space);
+    require(name + ": the cells' bound is above the largest eigenvalue "
+                   "of M^-1 L and within 4 times it",
+            estimate >= largest && estimate <= 4 * largest);
+    require(name + ": the memory estimate counts at least the factors made",
+            FractionalLaplaceInverse::n_factors(plate_area(scene), estimate) >=
+              inverse.n_poles() + 1);
   }
 
   /** The condition number of B F, F the dense Galerkin flexibility. */
@@ -174,6 +195,35 @@ namespace
             kappa_fine < 1.1 * kappa_coarse);
   }
 
+  /** Under a memory limit below the poles' factors the inverse refuses
+   *  with StorageDoesNotFit, which names the bytes and the remedy. */
+  void
+  check_memory_guard(const Scene &scene)
+  {
+    SparsityPattern      sparsity;
+    SparseMatrix<double> mass, laplace;
+    scene.space.assemble_mass_matrix({}, sparsity, mass);
+    scene.space.assemble_laplace_matrix(sparsity, laplace);
+    SparseCholesky analysis("L + c M");
+    analysis.analyze(mass);
+    setenv("PLATE_ON_HALFSPACE_MEMORY_LIMIT", "1K", 1);
+    std::string message;
+    try
+      {
+        FractionalLaplaceInverse(
+          mass, laplace, scene.alpha, plate_area(scene), analysis);
+      }
+    catch (const StorageDoesNotFit &shortfall)
+      {
+        message = shortfall.what();
+      }
+    unsetenv("PLATE_ON_HALFSPACE_MEMORY_LIMIT");
+    require("memory limit of 1 KiB: the inverse refuses with "
+            "StorageDoesNotFit naming Contact/Preconditioner",
+            message.find("Contact/Preconditioner = plate on springs") !=
+              std::string::npos);
+  }
+
   Scene
   rectangle(const unsigned int nx, const unsigned int ny)
   {
@@ -209,4 +259,5 @@ main()
                4.));
   check_growth("rectangle", rectangle(12, 8), rectangle(24, 16));
   check_growth("quarter square", quarter_square(16), quarter_square(32));
+  check_memory_guard(quarter_square(8));
 }

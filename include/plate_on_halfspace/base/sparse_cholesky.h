@@ -7,6 +7,11 @@
  * foundation node; UMFPACK solves one vector at a time, while CHOLMOD's
  * supernodal solve treats a block of columns with level-3 BLAS (OpenBLAS),
  * which is over an order of magnitude faster here.
+ *
+ * Several matrices on one pattern (the shifted Laplacians of the fractional
+ * soil inverse) share one symbolic analysis: analyze() once, then
+ * factorize_as() for each; the analysis also tells the factor's bytes
+ * before its values are allocated.
  */
 #ifndef plate_on_halfspace_base_sparse_cholesky_h
 #define plate_on_halfspace_base_sparse_cholesky_h
@@ -14,7 +19,10 @@
 #include <deal.II/lac/sparse_matrix.h>
 
 #include <memory>
+#include <string>
 #include <vector>
+
+struct cholmod_sparse_struct;
 
 namespace PlateOnHalfspace
 {
@@ -25,7 +33,9 @@ namespace PlateOnHalfspace
   class SparseCholesky
   {
   public:
-    SparseCholesky();
+    /** @p what names the matrix in the messages of a failure, e.g. "the
+     *  plate's rotation block". */
+    explicit SparseCholesky(const std::string &what);
     ~SparseCholesky();
     SparseCholesky(const SparseCholesky &) = delete;
     SparseCholesky &
@@ -34,11 +44,34 @@ namespace PlateOnHalfspace
     /**
      * Factorise A(rows, rows). @p rows lists global indices of @p matrix
      * (symmetric storage, both triangles present). Throws if the submatrix
-     * is not positive definite.
+     * is not positive definite, or naming the node-count entries if it
+     * does not fit the memory.
      */
     void
     factorize(const SparseMatrix<double>                 &matrix,
               const std::vector<types::global_dof_index> &rows);
+
+    /** factorize() of all rows. */
+    void
+    factorize(const SparseMatrix<double> &matrix);
+
+    /**
+     * The symbolic analysis of all rows of @p matrix's sparsity pattern
+     * (every stored entry, zero or not): the ordering and the factor's
+     * structure, without values. factor_bytes() then tells the factor's
+     * size; factorize_as() of another object reuses it.
+     */
+    void
+    analyze(const SparseMatrix<double> &matrix);
+
+    /**
+     * Factorise all rows of @p matrix with the symbolic analysis of
+     * @p analysed (analyze()), which must have been made on a matrix with
+     * the same sparsity pattern.
+     */
+    void
+    factorize_as(const SparseCholesky       &analysed,
+                 const SparseMatrix<double> &matrix);
 
     /** Size of the factorised submatrix. */
     unsigned int
@@ -48,6 +81,11 @@ namespace PlateOnHalfspace
     std::size_t
     memory_consumption() const;
 
+    /** Bytes of the factor's values and indices, known after analyze() or
+     *  any factorisation. */
+    std::size_t
+    factor_bytes() const;
+
     /**
      * Solve in place for @p n_columns right-hand sides stored column by
      * column in @p block (size() * n_columns values).
@@ -56,8 +94,14 @@ namespace PlateOnHalfspace
     solve(std::vector<double> &block, const unsigned int n_columns) const;
 
   private:
+    /** cholmod_factorize(@p a) into the factor (analysed, or nullptr if
+     *  the analysis ran out of memory); frees @p a; throws on failure. */
+    void
+    factorize_numerically(cholmod_sparse_struct *a);
+
     struct Data;
     std::unique_ptr<Data> data;
+    const std::string     what;
   };
 } // namespace PlateOnHalfspace
 

@@ -43,12 +43,17 @@ namespace PlateOnHalfspace
      * @p mass and @p laplace on the same pattern (FoundationSpace::
      * assemble_mass_matrix() with every cell, assemble_laplace_matrix()),
      * @p alpha the kernel's alpha / r, @p area the plate's area with its
-     * mirror images.
+     * mirror images, @p analysis the symbolic analysis of that pattern
+     * (SparseCholesky::analyze()), which every factor shares. Throws
+     * StorageDoesNotFit (halfspace/memory_guard.h) before the poles'
+     * factors are allocated if they need more than
+     * available_memory_bytes().
      */
     FractionalLaplaceInverse(const SparseMatrix<double> &mass,
                              const SparseMatrix<double> &laplace,
                              const double                alpha,
-                             const double                area);
+                             const double                area,
+                             const SparseCholesky       &analysis);
     ~FractionalLaplaceInverse() override;
 
     void
@@ -56,6 +61,24 @@ namespace PlateOnHalfspace
 
     std::size_t
     memory_consumption() const override;
+
+    /**
+     * The sparse factors the rule needs (one per node t_j, and M's) where
+     * the largest eigenvalue of M^{-1} L is @p largest_eigenvalue, for
+     * a plate of @p area: what a storage's memory estimate multiplies
+     * SparseCholesky::factor_bytes() by.
+     */
+    static unsigned int
+    n_factors(const double area, const double largest_eigenvalue);
+
+    /**
+     * An estimate from above of the largest eigenvalue of M^{-1} L on
+     * @p space, from its cells alone: twice the largest of a Q2 cell's
+     * own, 60 (1/a^2 + 1/b^2) = 60 d^2 / area^2 on an a x b rectangle of
+     * diagonal d; the factor two covers distorted cells.
+     */
+    static double
+    largest_eigenvalue_estimate(const FoundationSpace &space);
 
     /** The nodes t_j of the rule (one factorisation each). */
     unsigned int

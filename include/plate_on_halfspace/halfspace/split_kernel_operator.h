@@ -42,6 +42,7 @@ namespace PlateOnHalfspace
 {
   class CellPairIntegrator;
   class GridConvolution;
+  class SparseCholesky;
 
   /** How the kernel is split and gridded for a tolerance. */
   struct SplitKernelSettings
@@ -112,7 +113,9 @@ namespace PlateOnHalfspace
       double       sigma = 0, spacing = 0, cutoff = 0;
       unsigned int spline_order = 0;
       std::size_t  grid_nodes = 0, near_entries = 0, near_pairs = 0;
-      std::size_t  quadrature_points = 0;
+      /** Near pairs that took the block of an earlier translate. */
+      std::size_t translated_pairs  = 0;
+      std::size_t quadrature_points = 0;
     };
     const Layout &
     layout() const
@@ -143,7 +146,10 @@ namespace PlateOnHalfspace
      *  with its mirror images: the approximate inverse's. */
     SparseMatrix<double> laplace;
     double               plate_area = 0;
-    Layout               chosen;
+    /** The symbolic analysis of the mass pattern that the approximate
+     *  inverse's factors share. */
+    std::unique_ptr<SparseCholesky> inverse_analysis;
+    Layout                          chosen;
   };
 } // namespace PlateOnHalfspace
 

@@ -67,7 +67,7 @@ namespace PlateOnHalfspace
     const unsigned int                          n_dofs;
     std::vector<Vector<double>>                 motions;
     std::vector<types::global_dof_index>        solved_dofs;
-    SparseCholesky                              factor;
+    SparseCholesky                              factor{"the plate's stiffness"};
     /** The factorisation on several processes (factor is then unused). */
     std::unique_ptr<DistributedSparseDirect> distributed;
   };

@@ -432,7 +432,7 @@ namespace PlateOnHalfspace
     /** The unconstrained DoFs that are not foundation nodes, and the
      *  Cholesky factor of K_rr. */
     std::vector<types::global_dof_index> rest_dofs;
-    SparseCholesky                       rest_factor;
+    SparseCholesky rest_factor{"the plate's rotation block"};
   };
 } // namespace PlateOnHalfspace
 
