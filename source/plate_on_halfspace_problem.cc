@@ -797,6 +797,30 @@ namespace PlateOnHalfspace
         foundation_time_s += first_build;
         solve_with(Parameters::Contact::Solver::direct);
       }
+    catch (const StorageDoesNotFit &shortfall)
+      {
+        // The fft soil inverse checks its factors against the memory left
+        // when it makes them (the plate's factor came after the build's
+        // check): auto's own fft choice is replaced, as at the build.
+        using Storage = Parameters::FoundationOperator::Storage;
+        if (parameters.foundation_operator.storage != Storage::automatic ||
+            operator_storage != Storage::fft)
+          throw;
+        warn("Foundation operator/Storage = auto: the split kernel's (fft) "
+             "soil inverse does not fit on " +
+             std::to_string(n) +
+             " foundation nodes, so this cycle and the later ones use the "
+             "hierarchical storage. " +
+             shortfall.shortfall);
+        hierarchical_after_fft_did_not_fit = true;
+        contact_solver.reset();
+        const double first_build = foundation_time_s;
+        Timer        rebuild;
+        build_foundation_operator();
+        rebuild_time = rebuild.wall_time();
+        foundation_time_s += first_build;
+        solve_with(cycle_solver(n));
+      }
     pressure_field = mindlin_plate->foundation_field_to_solution(contact.q);
     warn_rounding_floor(contact.rounding_limited_residual,
                         "on " + std::to_string(n) + " foundation nodes");

@@ -16,6 +16,9 @@ namespace PlateOnHalfspace
     cholmod_common  common;
     cholmod_factor *factor = nullptr;
     unsigned int    n      = 0;
+    /** The analysed pattern (analyze()): column starts and row indices
+     *  of the upper triangle, which factorize_as() must meet. */
+    std::vector<int> analysed_starts, analysed_rows;
 
     void
     free_factor()
@@ -181,6 +184,10 @@ namespace PlateOnHalfspace
       return;
     cholmod_sparse *a = upper_triangle(matrix, all_rows(n), true, data->common);
     AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
+    const int *starts  = static_cast<const int *>(a->p);
+    const int *indices = static_cast<const int *>(a->i);
+    data->analysed_starts.assign(starts, starts + n + 1);
+    data->analysed_rows.assign(indices, indices + starts[n]);
     data->factor = cholmod_analyze(a, &data->common);
     cholmod_free_sparse(&a, &data->common);
     AssertThrow(data->factor != nullptr, ExcMessage(does_not_fit(what, n)));
@@ -199,6 +206,25 @@ namespace PlateOnHalfspace
     data->n              = n;
     cholmod_sparse *a = upper_triangle(matrix, all_rows(n), true, data->common);
     AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
+    // An entry outside the analysed pattern would be dropped silently.
+    const int *starts  = static_cast<const int *>(a->p);
+    const int *indices = static_cast<const int *>(a->i);
+    const bool same_pattern =
+      std::equal(starts,
+                 starts + n + 1,
+                 analysed.data->analysed_starts.begin(),
+                 analysed.data->analysed_starts.end()) &&
+      std::equal(indices,
+                 indices + starts[n],
+                 analysed.data->analysed_rows.begin(),
+                 analysed.data->analysed_rows.end());
+    if (!same_pattern)
+      cholmod_free_sparse(&a, &data->common);
+    AssertThrow(same_pattern,
+                ExcMessage("SparseCholesky::factorize_as: the matrix of " +
+                           what +
+                           " has another sparsity pattern than the "
+                           "analysed one."));
     // The copy of a symbolic factor is its structure only; the values
     // are allocated by cholmod_factorize.
     data->factor = cholmod_copy_factor(analysed.data->factor, &data->common);

@@ -375,7 +375,10 @@ namespace PlateOnHalfspace
         elastic, parameters.foundation_operator.tolerance);
     else if (storage == Parameters::FoundationOperator::Storage::fft)
       foundation = std::make_unique<SplitKernelFftOperator>(
-        elastic, parameters.foundation_operator.tolerance);
+        elastic,
+        parameters.foundation_operator.tolerance,
+        parameters.contact.preconditioner !=
+          Parameters::Contact::Preconditioner::plate_on_springs);
     else if (parameters.discretization.flexibility ==
              Parameters::Discretization::Flexibility::galerkin)
       foundation = std::make_unique<BoussinesqGalerkinOperator>(elastic);

@@ -1,6 +1,7 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parallel.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/thread_local_storage.h>
 
 #include <boost/container_hash/hash.hpp>
 
@@ -186,6 +187,59 @@ namespace PlateOnHalfspace
       std::deque<Entry>                                  entries;
     };
 
+    /** One term's block added to the rows of @p cell's nodes: the block
+     *  itself (the term's first cell) or its transpose (its other cell). */
+    struct Addition
+    {
+      unsigned int cell;
+      std::size_t  term;
+      bool         transposed;
+    };
+
+    /** A row of the near field being summed: values by column, and which
+     *  columns the row has touched. */
+    struct ScratchRow
+    {
+      std::vector<double>       values;
+      std::vector<unsigned int> stamp;
+      unsigned int              current = 0;
+
+      void
+      resize(const unsigned int n)
+      {
+        if (values.size() != n)
+          {
+            values.assign(n, 0.);
+            stamp.assign(n, 0);
+            current = 0;
+          }
+      }
+
+      void
+      start_row()
+      {
+        ++current;
+      }
+
+      void
+      add(const unsigned int column, const double value)
+      {
+        if (stamp[column] != current)
+          {
+            stamp[column]  = current;
+            values[column] = value;
+          }
+        else
+          values[column] += value;
+      }
+
+      bool
+      touched(const unsigned int column) const
+      {
+        return stamp[column] == current;
+      }
+    };
+
     /**
      * The near field's pattern: row i holds the nodes of every cell paired
      * (a term, either way round) with a cell that has node i, which are the
@@ -274,9 +328,11 @@ namespace PlateOnHalfspace
 
   SplitKernelFftOperator::SplitKernelFftOperator(
     std::shared_ptr<const ElasticSoil> soil,
-    const double                       tolerance)
+    const double                       tolerance,
+    const bool                         soil_inverse_used)
     : elastic(std::move(soil))
     , tolerance(tolerance)
+    , soil_inverse_used(soil_inverse_used)
   {
     soil_model = elastic;
   }
@@ -372,20 +428,36 @@ namespace PlateOnHalfspace
     // The far field: Gauss points on every cell, more on cells larger
     // than sigma (its quadrature error grows with size / sigma).
     far_points.assign(n_computed, CellPoints());
-    std::size_t n_points = 0;
+    std::vector<unsigned int>         points_1d(n_computed);
+    std::map<unsigned int, QGauss<2>> rules;
     for (unsigned int c = 0; c < n_computed; ++c)
       {
-        const double       ratio = diameters[c] / (std::sqrt(2.) * sigma);
-        const unsigned int m =
-          std::max(settings.gauss_points,
-                   static_cast<unsigned int>(
-                     std::ceil(settings.gauss_points * ratio - 1e-9)));
-        const QGauss<2> rule(std::min(m, 64u));
-        CellPoints     &cp = far_points[c];
-        cp.nodes           = integrator.nodes(c);
-        integrator.tabulate(c, rule, cp.points, cp.weighted_values);
-        n_points += cp.points.size();
+        const double ratio = diameters[c] / (std::sqrt(2.) * sigma);
+        points_1d[c] =
+          std::min(64u,
+                   std::max(settings.gauss_points,
+                            static_cast<unsigned int>(std::ceil(
+                              settings.gauss_points * ratio - 1e-9))));
+        rules.try_emplace(points_1d[c], points_1d[c]);
       }
+    parallel::apply_to_subranges(
+      0u,
+      n_computed,
+      [&](const unsigned int from, const unsigned int to) {
+        for (unsigned int c = from; c < to; ++c)
+          {
+            CellPoints &cp = far_points[c];
+            cp.nodes       = integrator.nodes(c);
+            integrator.tabulate(c,
+                                rules.at(points_1d[c]),
+                                cp.points,
+                                cp.weighted_values);
+          }
+      },
+      256);
+    std::size_t n_points = 0;
+    for (const CellPoints &cp : far_points)
+      n_points += cp.points.size();
     // The grid is symmetric about its centre: on the mirror planes, so
     // that the images' charges are the reflected grid charges.
     Point<2> centre = 0.5 * (low + high);
@@ -432,12 +504,16 @@ namespace PlateOnHalfspace
                    integrator.nodes(t.cell).size();
       // a value and a column index in the matrix, and the pattern's copy
       const std::size_t near_bytes = entries * (sizeof(double) + 8);
-      // The soil inverse: one factor per node of its rule and M's.
+      // The soil inverse: one factor per node of its rule and M's, and
+      // the shifted Laplacian.
       const std::size_t inverse_bytes =
-        FractionalLaplaceInverse::n_factors(
-          plate_area,
-          FractionalLaplaceInverse::largest_eigenvalue_estimate(space)) *
-        inverse_analysis->factor_bytes();
+        soil_inverse_used ?
+          FractionalLaplaceInverse::n_factors(
+            plate_area,
+            FractionalLaplaceInverse::largest_eigenvalue_estimate(space)) *
+              inverse_analysis->factor_bytes() +
+            laplace.memory_consumption() :
+          0;
       const std::size_t needed    = near_bytes + inverse_bytes;
       const std::size_t available = available_memory_bytes();
       double            finest    = std::numeric_limits<double>::max();
@@ -450,10 +526,14 @@ namespace PlateOnHalfspace
                << "Foundation operator/Storage = fft: the near field needs "
                   "about "
                << near_bytes / 1073741824. << " GiB (" << terms.size()
-               << " cell pairs within " << cutoff
-               << " of each other) and the soil inverse's sparse factors "
-               << inverse_bytes / 1073741824. << " GiB, but only "
-               << available / 1073741824. << " GiB are available. ";
+               << " cell pairs within " << cutoff << " of each other)";
+          if (inverse_bytes > 0)
+            text << " and the soil inverse's sparse factors "
+                 << inverse_bytes / 1073741824.
+                 << " GiB (none with Contact/Preconditioner = plate on "
+                    "springs)";
+          text << ", but only " << available / 1073741824.
+               << " GiB are available. ";
           if (finest < 0.25 * sigma)
             text << "The kernel is split at sigma = " << sigma
                  << ", the median cell size, and the cells down to " << finest
@@ -474,43 +554,34 @@ namespace PlateOnHalfspace
       integrator, n_cells, terms, space.n_nodes(), near_sparsity);
     near_field.reinit(near_sparsity);
 
-    // Each cell's nodes in increasing order and their places in its node
-    // list: a block's row is added along the sorted columns of a row of
-    // the near field.
-    std::vector<std::vector<unsigned int>> sorted_order(n_cells),
-      sorted_nodes(n_cells);
-    for (unsigned int c = 0; c < n_cells; ++c)
-      {
-        const auto &nodes = integrator.nodes(c);
-        AssertThrow(nodes.size() <= 64, ExcInternalError());
-        sorted_order[c].resize(nodes.size());
-        std::iota(sorted_order[c].begin(), sorted_order[c].end(), 0u);
-        std::sort(sorted_order[c].begin(),
-                  sorted_order[c].end(),
-                  [&](unsigned x, unsigned y) { return nodes[x] < nodes[y]; });
-        for (const unsigned int m : sorted_order[c])
-          sorted_nodes[c].push_back(nodes[m]);
-      }
     // Integrate in chunks (tasks), then add each chunk to the near field:
     // the sums do not depend on the threads.
     const unsigned int row_grain =
       space.n_nodes() / (4 * MultithreadInfo::n_threads()) + 1;
-    const std::size_t               chunk = 16384;
-    std::vector<FullMatrix<double>> own_blocks(std::min(chunk, terms.size()));
+    // A chunk holds at most own_limit blocks of its own (a translate's
+    // block costs none), and at most term_limit terms.
+    const std::size_t               own_limit = 16384, term_limit = 262144;
+    std::vector<FullMatrix<double>> own_blocks(
+      std::min(own_limit, terms.size()));
     // the block each term of the chunk adds, and which the chunk computes
-    std::vector<const FullMatrix<double> *> blocks(own_blocks.size());
+    std::vector<const FullMatrix<double> *>                   blocks;
     std::vector<std::pair<std::size_t, FullMatrix<double> *>> to_integrate;
+    std::vector<Addition>                                     additions;
+    Threads::ThreadLocalStorage<ScratchRow>                   scratch_rows;
     TranslatedPairs translates(cells, 16384);
     std::size_t     shared = 0;
-    for (std::size_t begin = 0; begin < terms.size(); begin += chunk)
+    for (std::size_t begin = 0, end = 0; begin < terms.size(); begin = end)
       {
-        const std::size_t end = std::min(terms.size(), begin + chunk);
         // Which terms take a translate's block is decided in term order,
         // so the blocks do not depend on the threads.
         to_integrate.clear();
-        for (std::size_t k = begin; k < end; ++k)
+        blocks.clear();
+        std::size_t n_own = 0;
+        for (end = begin; end < terms.size() && end - begin < term_limit &&
+                          n_own < own_limit;
+             ++end)
           {
-            const Term &t = terms[k];
+            const Term &t = terms[end];
             // a cell and its own image are symmetrised below; singular
             // pairs have their own rules
             const bool own_image =
@@ -520,12 +591,12 @@ namespace PlateOnHalfspace
                 std::pair<FullMatrix<double> *, bool>{nullptr, true} :
                 translates.find_or_add(t.first, t.cell);
             if (block == nullptr)
-              block = &own_blocks[k - begin];
+              block = &own_blocks[n_own++];
             if (first)
-              to_integrate.emplace_back(k, block);
+              to_integrate.emplace_back(end, block);
             else
               ++shared;
-            blocks[k - begin] = block;
+            blocks.push_back(block);
           }
         parallel::apply_to_subranges(
           std::size_t(0),
@@ -566,50 +637,65 @@ namespace PlateOnHalfspace
               }
           },
           64);
-        // Rows split among tasks, each taking the chunk's terms in order:
-        // every entry sums its terms in the same order on any number of
-        // threads.
+        // The chunk's additions grouped by the cell whose nodes are the
+        // rows: each term adds its block to its first cell's nodes and,
+        // unless it pairs a cell with its own image, the transposed block
+        // to its other cell's. Each group's terms are summed per row in
+        // term order into a scratch row, which is added once along the
+        // row's sorted columns. Rows are split among tasks; the sums do
+        // not depend on the threads.
+        additions.clear();
+        for (std::size_t k = begin; k < end; ++k)
+          {
+            const Term &t = terms[k];
+            additions.push_back({t.first, k, false});
+            if (t.first != t.cell % n_computed)
+              additions.push_back({t.cell, k, true});
+          }
+        std::stable_sort(additions.begin(),
+                         additions.end(),
+                         [](const Addition &x, const Addition &y) {
+                           return x.cell < y.cell;
+                         });
         parallel::apply_to_subranges(
           0u,
           space.n_nodes(),
           [&](const unsigned int row_from, const unsigned int row_to) {
-            const auto mine = [&](const unsigned int row) {
-              return row >= row_from && row < row_to;
-            };
-            std::array<double, 64> values;
-            for (std::size_t k = begin; k < end; ++k)
+            ScratchRow &scratch = scratch_rows.get();
+            scratch.resize(space.n_nodes());
+            for (std::size_t g = 0, g_end = 0; g < additions.size(); g = g_end)
               {
-                const Term               &t     = terms[k];
-                const FullMatrix<double> &block = *blocks[k - begin];
-                const auto               &a     = integrator.nodes(t.first),
-                           &b                   = integrator.nodes(t.cell);
-                const auto &a_order             = sorted_order[t.first],
-                           &b_order             = sorted_order[t.cell];
-                for (unsigned int i = 0; i < a.size(); ++i)
-                  if (mine(a[i]))
-                    {
-                      for (unsigned int m = 0; m < b.size(); ++m)
-                        values[m] = block(i, b_order[m]);
-                      near_field.add(a[i],
-                                     b.size(),
-                                     sorted_nodes[t.cell].data(),
-                                     values.data(),
-                                     false,
-                                     true);
-                    }
-                if (t.first != t.cell % n_computed)
-                  for (unsigned int j = 0; j < b.size(); ++j)
-                    if (mine(b[j]))
+                const unsigned int cell = additions[g].cell;
+                for (g_end = g;
+                     g_end < additions.size() && additions[g_end].cell == cell;
+                     ++g_end)
+                  ;
+                const auto &rows = integrator.nodes(cell);
+                for (unsigned int r = 0; r < rows.size(); ++r)
+                  {
+                    if (rows[r] < row_from || rows[r] >= row_to)
+                      continue;
+                    scratch.start_row();
+                    for (std::size_t m = g; m < g_end; ++m)
                       {
-                        for (unsigned int m = 0; m < a.size(); ++m)
-                          values[m] = block(a_order[m], j);
-                        near_field.add(b[j],
-                                       a.size(),
-                                       sorted_nodes[t.first].data(),
-                                       values.data(),
-                                       false,
-                                       true);
+                        const Addition           &addition = additions[m];
+                        const Term               &t = terms[addition.term];
+                        const FullMatrix<double> &block =
+                          *blocks[addition.term - begin];
+                        const auto &columns = integrator.nodes(
+                          addition.transposed ? t.first : t.cell);
+                        for (unsigned int j = 0; j < columns.size(); ++j)
+                          scratch.add(columns[j],
+                                      addition.transposed ? block(j, r) :
+                                                            block(r, j));
                       }
+                    // the group fills most of the row: walk the row
+                    for (auto entry = near_field.begin(rows[r]);
+                         entry != near_field.end(rows[r]);
+                         ++entry)
+                      if (scratch.touched(entry->column()))
+                        entry->value() += scratch.values[entry->column()];
+                  }
               }
           },
           row_grain);

@@ -18,8 +18,12 @@
 //    eigenvalue of M^{-1} L lies between the exact one (LAPACK) and four
 //    times it, and the factor count it implies covers the factors made;
 //  - under a memory limit of 1 KiB the constructor refuses with
-//    StorageDoesNotFit before allocating the poles' factors.
+//    StorageDoesNotFit before allocating the poles' factors;
+//  - SparseCholesky's shared analysis: a factor made on it solves a band
+//    matrix like the matrix's own factor (1e-14), and a matrix with
+//    entries outside the analysed pattern is refused.
 
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
@@ -224,6 +228,65 @@ namespace
               std::string::npos);
   }
 
+  /** The shared analysis: a factor on it solves like its own, and a
+   *  matrix with another pattern is refused. */
+  void
+  check_shared_analysis()
+  {
+    const unsigned int     n = 50;
+    DynamicSparsityPattern diagonal(n), band(n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        diagonal.add(i, i);
+        for (unsigned int j = (i > 0 ? i - 1 : 0); j < std::min(n, i + 2); ++j)
+          band.add(i, j);
+      }
+    SparsityPattern      diagonal_pattern, band_pattern;
+    SparseMatrix<double> d, t;
+    diagonal_pattern.copy_from(diagonal);
+    band_pattern.copy_from(band);
+    d.reinit(diagonal_pattern);
+    t.reinit(band_pattern);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        d.set(i, i, 2.);
+        t.set(i, i, 4.);
+        if (i > 0)
+          {
+            t.set(i, i - 1, -1.);
+            t.set(i - 1, i, -1.);
+          }
+      }
+    SparseCholesky analysis("a band matrix"), shared("a band matrix"),
+      own("a band matrix");
+    analysis.analyze(t);
+    shared.factorize_as(analysis, t);
+    own.factorize(t);
+    std::vector<double> x(n, 1.), y(n, 1.);
+    shared.solve(x, 1);
+    own.solve(y, 1);
+    double difference = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      difference = std::max(difference, std::abs(x[i] - y[i]));
+    require("shared analysis: the same solution as an own factor to 1e-14",
+            difference < 1e-14);
+    SparseCholesky diagonal_analysis("a diagonal matrix"),
+      refused("a band matrix");
+    diagonal_analysis.analyze(d);
+    bool thrown = false;
+    try
+      {
+        refused.factorize_as(diagonal_analysis, t);
+      }
+    catch (const std::exception &)
+      {
+        thrown = true;
+      }
+    require("shared analysis: a matrix with entries outside the analysed "
+            "pattern is refused",
+            thrown);
+  }
+
   Scene
   rectangle(const unsigned int nx, const unsigned int ny)
   {
@@ -260,4 +323,5 @@ main()
   check_growth("rectangle", rectangle(12, 8), rectangle(24, 16));
   check_growth("quarter square", quarter_square(16), quarter_square(32));
   check_memory_guard(quarter_square(8));
+  check_shared_analysis();
 }

@@ -67,7 +67,7 @@ namespace PlateOnHalfspace
     /**
      * Factorise all rows of @p matrix with the symbolic analysis of
      * @p analysed (analyze()), which must have been made on a matrix with
-     * the same sparsity pattern.
+     * the same sparsity pattern: throws if the stored entries differ.
      */
     void
     factorize_as(const SparseCholesky       &analysed,

@@ -72,8 +72,14 @@ namespace PlateOnHalfspace
   class SplitKernelFftOperator : public FoundationOperator
   {
   public:
+    /**
+     * @p soil_inverse_used: whether the contact solver may precondition
+     * with make_approximate_inverse() (Contact/Preconditioner not plate
+     * on springs), whose sparse factors the memory check then counts.
+     */
     SplitKernelFftOperator(std::shared_ptr<const ElasticSoil> soil,
-                           const double                       tolerance);
+                           const double                       tolerance,
+                           const bool soil_inverse_used = true);
     ~SplitKernelFftOperator() override;
 
     void
@@ -133,6 +139,7 @@ namespace PlateOnHalfspace
 
     const std::shared_ptr<const ElasticSoil> elastic;
     const double                             tolerance;
+    const bool                               soil_inverse_used;
     double                                   alpha      = 0;
     unsigned int                             n_computed = 0;
     /** Per computed cell (the images' charges are the reflected grid's). */
