@@ -144,6 +144,29 @@ namespace PlateOnHalfspace
         "the foundation nodes each MPI process owns, one entry per process "
         "([parallel.md](parallel.md))",
         ResultKind::list}});
+    /**
+     * The warning with which auto's own fft choice gives way to the
+     * hierarchical storage after @p shortfall in @p part ("" where the
+     * storage was requested or is not fft: then the shortfall stops the
+     * run, doc/errors-and-limits.md, "Memory guard").
+     */
+    std::string
+    fft_fallback_warning(const SceneParameters &parameters,
+                         const Parameters::FoundationOperator::Storage storage,
+                         const unsigned int                            n,
+                         const std::string                            &part,
+                         const StorageDoesNotFit &shortfall)
+    {
+      using Storage = Parameters::FoundationOperator::Storage;
+      if (parameters.foundation_operator.storage != Storage::automatic ||
+          storage != Storage::fft)
+        return "";
+      return "Foundation operator/Storage = auto: " + part +
+             " does not fit on " + std::to_string(n) +
+             " foundation nodes, so this cycle and the later ones use the "
+             "hierarchical storage. " +
+             shortfall.shortfall;
+    }
   } // namespace
 
   PlateOnHalfspaceProblem::PlateOnHalfspaceProblem(
@@ -685,17 +708,11 @@ namespace PlateOnHalfspace
       }
     catch (const StorageDoesNotFit &shortfall)
       {
-        // Only auto's own choice is replaced; a requested fft says why it
-        // cannot run (doc/errors-and-limits.md, "Memory guard").
-        if (parameters.foundation_operator.storage != Storage::automatic ||
-            storage != Storage::fft)
+        const std::string warning = fft_fallback_warning(
+          parameters, storage, n, "the split kernel (fft)", shortfall);
+        if (warning.empty())
           throw;
-        warn("Foundation operator/Storage = auto: the split kernel (fft) "
-             "does not fit on " +
-             std::to_string(n) +
-             " foundation nodes, so this cycle and the later ones use the "
-             "hierarchical storage. " +
-             shortfall.shortfall);
+        warn(warning);
         hierarchical_after_fft_did_not_fit = true;
         foundation_operator =
           create_foundation_operator(parameters, soil, Storage::hierarchical);
@@ -802,16 +819,15 @@ namespace PlateOnHalfspace
         // The fft soil inverse checks its factors against the memory left
         // when it makes them (the plate's factor came after the build's
         // check): auto's own fft choice is replaced, as at the build.
-        using Storage = Parameters::FoundationOperator::Storage;
-        if (parameters.foundation_operator.storage != Storage::automatic ||
-            operator_storage != Storage::fft)
+        const std::string warning =
+          fft_fallback_warning(parameters,
+                               operator_storage,
+                               n,
+                               "the split kernel's (fft) soil inverse",
+                               shortfall);
+        if (warning.empty())
           throw;
-        warn("Foundation operator/Storage = auto: the split kernel's (fft) "
-             "soil inverse does not fit on " +
-             std::to_string(n) +
-             " foundation nodes, so this cycle and the later ones use the "
-             "hierarchical storage. " +
-             shortfall.shortfall);
+        warn(warning);
         hierarchical_after_fft_did_not_fit = true;
         contact_solver.reset();
         const double first_build = foundation_time_s;
