@@ -771,7 +771,17 @@ namespace PlateOnHalfspace
                                       mindlin_plate->get_load_vector(),
                                       seed);
     };
-    double rebuild_time = 0;
+    double     rebuild_time      = 0;
+    const auto rebuild_and_solve = [&](const Parameters::Contact::Solver s) {
+      // The iterative solver refers to the operator about to be replaced.
+      contact_solver.reset();
+      const double first_build = foundation_time_s;
+      Timer        rebuild;
+      build_foundation_operator();
+      rebuild_time = rebuild.wall_time();
+      foundation_time_s += first_build;
+      solve_with(s);
+    };
     try
       {
         solve_with(cycle_solver(n));
@@ -805,14 +815,7 @@ namespace PlateOnHalfspace
              "with dense storage (doc/errors-and-limits.md, \"Stiffness "
              "ratio\").");
         direct_after_failed_iterations = true;
-        // The iterative solver refers to the operator about to be replaced.
-        contact_solver.reset();
-        const double first_build = foundation_time_s;
-        Timer        rebuild;
-        build_foundation_operator();
-        rebuild_time = rebuild.wall_time();
-        foundation_time_s += first_build;
-        solve_with(Parameters::Contact::Solver::direct);
+        rebuild_and_solve(Parameters::Contact::Solver::direct);
       }
     catch (const StorageDoesNotFit &shortfall)
       {
@@ -829,13 +832,7 @@ namespace PlateOnHalfspace
           throw;
         warn(warning);
         hierarchical_after_fft_did_not_fit = true;
-        contact_solver.reset();
-        const double first_build = foundation_time_s;
-        Timer        rebuild;
-        build_foundation_operator();
-        rebuild_time = rebuild.wall_time();
-        foundation_time_s += first_build;
-        solve_with(cycle_solver(n));
+        rebuild_and_solve(cycle_solver(n));
       }
     pressure_field = mindlin_plate->foundation_field_to_solution(contact.q);
     warn_rounding_floor(contact.rounding_limited_residual,
