@@ -144,6 +144,7 @@ namespace PlateOnHalfspace
         "the foundation nodes each MPI process owns, one entry per process "
         "([parallel.md](parallel.md))",
         ResultKind::list}});
+
     /**
      * The warning with which auto's own fft choice gives way to the
      * hierarchical storage after @p shortfall in @p part ("" where the

@@ -375,10 +375,11 @@ namespace PlateOnHalfspace
     space.assemble_laplace_matrix(mass_sparsity, laplace);
     plate_area = space.area() * space.symmetry.n_copies();
     // The soil inverse's factors share this analysis; its factor size
-    // enters the memory estimate below.
-    inverse_analysis = std::make_unique<SparseCholesky>(
-      "the fractional soil inverse's L + (c + t^2) M");
-    inverse_analysis->analyze(mass);
+    // enters the memory estimate below. Without the soil inverse
+    // (plate on springs) there is nothing to analyse.
+    inverse_analysis.reset();
+    if (soil_inverse_used)
+      analyze_inverse_pattern();
     const SurfaceKernel kernel = elastic->kernel(maximal_distance(space));
     AssertThrow(!kernel.remainder,
                 ExcMessage("Foundation operator/Storage = fft holds the "
@@ -570,6 +571,10 @@ namespace PlateOnHalfspace
     Threads::ThreadLocalStorage<ScratchRow>                   scratch_rows;
     TranslatedPairs translates(cells, 16384);
     std::size_t     shared = 0;
+    // a cell paired with its own mirror image: its block is symmetrised
+    const auto own_image = [n_computed = n_computed](const Term &t) {
+      return t.first == t.cell % n_computed && t.cell >= n_computed;
+    };
     for (std::size_t begin = 0, end = 0; begin < terms.size(); begin = end)
       {
         // Which terms take a translate's block is decided in term order,
@@ -584,10 +589,8 @@ namespace PlateOnHalfspace
             const Term &t = terms[end];
             // a cell and its own image are symmetrised below; singular
             // pairs have their own rules
-            const bool own_image =
-              t.first == t.cell % n_computed && t.cell >= n_computed;
             auto [block, first] =
-              own_image || integrator.singular_pair(t.first, t.cell) ?
+              own_image(t) || integrator.singular_pair(t.first, t.cell) ?
                 std::pair<FullMatrix<double> *, bool>{nullptr, true} :
                 translates.find_or_add(t.first, t.cell);
             if (block == nullptr)
@@ -630,7 +633,7 @@ namespace PlateOnHalfspace
                                             all,
                                             SurfaceKernel::separated_accuracy /
                                               std::max(share, 1e-300));
-                if (t.first == t.cell % n_computed && t.cell >= n_computed)
+                if (own_image(t))
                   symmetrise_self_image_block(integrator.nodes(t.first),
                                               integrator.nodes(t.cell),
                                               block);
@@ -641,9 +644,9 @@ namespace PlateOnHalfspace
         // rows: each term adds its block to its first cell's nodes and,
         // unless it pairs a cell with its own image, the transposed block
         // to its other cell's. Each group's terms are summed per row in
-        // term order into a scratch row, which is added once along the
-        // row's sorted columns. Rows are split among tasks; the sums do
-        // not depend on the threads.
+        // term order into a scratch row, which is added to the row in one
+        // walk along it. Rows are split among tasks; the sums do not
+        // depend on the threads.
         additions.clear();
         for (std::size_t k = begin; k < end; ++k)
           {
@@ -1014,8 +1017,8 @@ namespace PlateOnHalfspace
     // the near field alone misses the far field's long waves, which cost
     // four to six times the CG iterations (doc/performance.md, "With the
     // fractional soil inverse").
-    Assert(inverse_analysis,
-           ExcMessage("make_approximate_inverse before build"));
+    if (!inverse_analysis)
+      analyze_inverse_pattern();
     auto on_values = std::make_unique<FractionalLaplaceInverse>(
       mass, laplace, alpha, plate_area, *inverse_analysis);
     if (!positive_basis)
@@ -1028,6 +1031,14 @@ namespace PlateOnHalfspace
       [this](const Vector<double> &x, Vector<double> &y) {
         coefficients_from_values(x, y);
       });
+  }
+
+  void
+  SplitKernelFftOperator::analyze_inverse_pattern()
+  {
+    inverse_analysis = std::make_unique<SparseCholesky>(
+      "the fractional soil inverse's L + (c + t^2) M");
+    inverse_analysis->analyze(mass);
   }
 
   std::string

@@ -137,6 +137,10 @@ namespace PlateOnHalfspace
     apply_far_field(const Vector<double> &values,
                     Vector<double>       &settlement) const;
 
+    /** inverse_analysis of the mass matrix's pattern. */
+    void
+    analyze_inverse_pattern();
+
     const std::shared_ptr<const ElasticSoil> elastic;
     const double                             tolerance;
     const bool                               soil_inverse_used;
