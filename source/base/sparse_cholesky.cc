@@ -55,21 +55,22 @@ namespace PlateOnHalfspace
       std::vector<int>   position(matrix.m(), -1);
       for (unsigned int i = 0; i < n; ++i)
         position[rows[i]] = i;
-      std::vector<std::vector<std::pair<int, double>>> columns(n);
-      std::size_t                                      nnz = 0;
+      // Counted first and written in place: a copy of the matrix beside
+      // CHOLMOD's would raise the peak memory by more than the matrix
+      // (doc/performance.md, "Peak memory").
+      const auto for_each_kept = [&](const unsigned int j, const auto &use) {
+        for (auto entry = matrix.begin(rows[j]); entry != matrix.end(rows[j]);
+             ++entry)
+          {
+            const int i = position[entry->column()];
+            if (i >= 0 && i <= static_cast<int>(j) &&
+                (keep_zeros || entry->value() != 0.))
+              use(i, entry->value());
+          }
+      };
+      std::size_t nnz = 0;
       for (unsigned int j = 0; j < n; ++j)
-        {
-          for (auto entry = matrix.begin(rows[j]); entry != matrix.end(rows[j]);
-               ++entry)
-            {
-              const int i = position[entry->column()];
-              if (i >= 0 && i <= static_cast<int>(j) &&
-                  (keep_zeros || entry->value() != 0.))
-                columns[j].emplace_back(i, entry->value());
-            }
-          std::sort(columns[j].begin(), columns[j].end());
-          nnz += columns[j].size();
-        }
+        for_each_kept(j, [&](int, double) { ++nnz; });
       cholmod_sparse *a = cholmod_allocate_sparse(n,
                                                   n,
                                                   nnz,
@@ -80,14 +81,20 @@ namespace PlateOnHalfspace
                                                   &common);
       if (a == nullptr)
         return nullptr;
-      int    *p = static_cast<int *>(a->p);
-      int    *r = static_cast<int *>(a->i);
-      double *x = static_cast<double *>(a->x);
-      p[0]      = 0;
+      int                                *p = static_cast<int *>(a->p);
+      int                                *r = static_cast<int *>(a->i);
+      double                             *x = static_cast<double *>(a->x);
+      std::vector<std::pair<int, double>> column;
+      p[0] = 0;
       for (unsigned int j = 0; j < n; ++j)
         {
+          column.clear();
+          for_each_kept(j, [&](const int i, const double value) {
+            column.emplace_back(i, value);
+          });
+          std::sort(column.begin(), column.end());
           int k = p[j];
-          for (const auto &e : columns[j])
+          for (const auto &e : column)
             {
               r[k] = e.first;
               x[k] = e.second;

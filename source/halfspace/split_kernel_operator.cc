@@ -14,6 +14,7 @@
 #include <plate_on_halfspace/halfspace/split_kernel_operator.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <iomanip>
@@ -241,9 +242,11 @@ namespace PlateOnHalfspace
     };
 
     /**
-     * The near field's pattern: row i holds the nodes of every cell paired
-     * (a term, either way round) with a cell that has node i, which are the
-     * entries the terms' blocks add. Built row by row in parallel.
+     * The near field's pattern, its upper triangle (the near field is
+     * symmetric; symmetric_near_product() multiplies by it): row i holds
+     * the nodes j >= i of every cell paired (a term, either way round)
+     * with a cell that has node i, which are the entries the terms' blocks
+     * add. Built row by row in parallel.
      */
     void
     near_field_pattern(const CellPairIntegrator &integrator,
@@ -276,7 +279,7 @@ namespace PlateOnHalfspace
               for (const unsigned int c : node_cells[i])
                 for (const unsigned int d : partners[c])
                   for (const unsigned int j : integrator.nodes(d))
-                    if (taken_by[j] != i)
+                    if (j >= i && taken_by[j] != i)
                       {
                         taken_by[j] = i;
                         rows[i].push_back(j);
@@ -286,6 +289,71 @@ namespace PlateOnHalfspace
         },
         n_nodes / (4 * MultithreadInfo::n_threads()) + 1);
       sparsity.copy_from(n_nodes, n_nodes, rows.begin(), rows.end());
+    }
+  } // namespace
+
+  namespace
+  {
+    /**
+     * s += N v for the symmetric N of which @p upper holds the upper
+     * triangle, the diagonal included (deal.II stores it first in each
+     * row). The rows are cut into a fixed number of blocks of about equal
+     * entries, whatever the threads; each block adds its rows' sums and,
+     * into a vector of its own, the transposed entries' contributions,
+     * which are summed block after block: the result does not depend on
+     * the threads.
+     */
+    void
+    symmetric_near_product(const SparseMatrix<double> &upper,
+                           const Vector<double>       &v,
+                           Vector<double>             &s)
+    {
+      constexpr unsigned int n_blocks = 8;
+      const unsigned int     n        = upper.m();
+      const std::size_t      entries  = upper.n_nonzero_elements();
+      std::array<unsigned int, n_blocks + 1> first_row;
+      // block b starts after the row at which b / n_blocks of the entries
+      // are passed
+      first_row[0]         = 0;
+      std::size_t  counted = 0;
+      unsigned int b       = 1;
+      for (unsigned int i = 0; i < n && b < n_blocks; ++i)
+        {
+          counted += upper.get_row_length(i);
+          while (b < n_blocks && counted * n_blocks >= b * entries)
+            first_row[b++] = i + 1;
+        }
+      while (b <= n_blocks)
+        first_row[b++] = n;
+      std::array<Vector<double>, n_blocks> transposed;
+      parallel::apply_to_subranges(
+        0u,
+        n_blocks,
+        [&](const unsigned int from, const unsigned int to) {
+          for (unsigned int block = from; block < to; ++block)
+            {
+              Vector<double> &t = transposed[block];
+              t.reinit(n);
+              for (unsigned int i = first_row[block]; i < first_row[block + 1];
+                   ++i)
+                {
+                  double       sum = 0;
+                  const double vi  = v[i];
+                  for (auto entry = upper.begin(i); entry != upper.end(i);
+                       ++entry)
+                    {
+                      const unsigned int j = entry->column();
+                      sum += entry->value() * v[j];
+                      if (j != i)
+                        t[j] += entry->value() * vi;
+                    }
+                  s[i] += sum;
+                }
+            }
+        },
+        1);
+      for (const Vector<double> &t : transposed)
+        s += t;
     }
   } // namespace
 
@@ -503,8 +571,10 @@ namespace PlateOnHalfspace
         entries += (t.first == t.cell ? 1 : 2) *
                    integrator.nodes(t.first).size() *
                    integrator.nodes(t.cell).size();
-      // a value and a column index in the matrix, and the pattern's copy
-      const std::size_t near_bytes = entries * (sizeof(double) + 8);
+      // the upper triangle (diagonal included): a value and a column
+      // index in the matrix, and the pattern's copy
+      const std::size_t near_bytes =
+        (entries + space.n_nodes()) / 2 * (sizeof(double) + 8);
       // The soil inverse: one factor per node of its rule and M's, and
       // the shifted Laplacian.
       const std::size_t inverse_bytes =
@@ -800,7 +870,7 @@ namespace PlateOnHalfspace
                                           Vector<double> &settlement) const
   {
     settlement.reinit(values.size());
-    near_field.vmult(settlement, values);
+    symmetric_near_product(near_field, values, settlement);
     apply_far_field(values, settlement);
   }
 
@@ -909,7 +979,7 @@ namespace PlateOnHalfspace
             double sum = 0;
             for (const auto &[j, tj] : columns[i])
               for (const auto &[k, tk] : columns[i])
-                sum += tj * tk * near_field.el(j, k);
+                sum += tj * tk * near_field.el(std::min(j, k), std::max(j, k));
             // the far part: basis function i's lumped weights per cell
             support.clear();
             for (const auto &column_entry : columns[i])
@@ -1051,7 +1121,8 @@ namespace PlateOnHalfspace
          << "kernel split at sigma = " << chosen.sigma << ", near field of "
          << chosen.near_pairs << " cell pairs within " << chosen.cutoff << " ("
          << chosen.translated_pairs << " of them translates of another; "
-         << chosen.near_entries << " entries), far field on "
+         << chosen.near_entries
+         << " entries in the upper triangle), far field on "
          << chosen.quadrature_points << " Gauss points and a grid of "
          << chosen.grid_nodes << " nodes (spacing " << chosen.spacing
          << ", B-splines of order " << chosen.spline_order << ", FFT "
