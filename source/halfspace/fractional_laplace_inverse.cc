@@ -1,9 +1,13 @@
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <boost/math/special_functions/jacobi_elliptic.hpp>
+
 #include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace PlateOnHalfspace
@@ -11,14 +15,13 @@ namespace PlateOnHalfspace
   namespace
   {
     /**
-     * The rule's step in log t and the margins beyond the spectrum: within
-     * 0.94 ... 1.02 of x^{1/2} over eigenvalues 1 ... 7.5e6 times the
-     * lowest (a 10^5-node plate), a ratio of 1.08 between the extremes; the
-     * CG iterations did not change between steps 1.5 and 2.5
-     * (doc/performance.md, "With the fractional soil inverse").
+     * The margin on the power iteration's estimate of the largest
+     * eigenvalue (an estimate from below), and the largest ratio between
+     * the extremes of r(x) x^{1/2} over the spectrum that the rule may
+     * leave: within 1 -+ 7 % of x^{1/2} (doc/performance.md, "With the
+     * fractional soil inverse").
      */
-    constexpr double log_step = 2.;
-    constexpr double margin   = 2.;
+    constexpr double margin = 2., largest_ratio = 1.15;
 
     /** c of A = L + c M: the constant pressure of the rigid disk of the
      *  plate's area, 4 / (pi r) per unit settlement over 2 pi alpha. */
@@ -28,8 +31,24 @@ namespace PlateOnHalfspace
       return 16. / (M_PI * area);
     }
 
-    /** The trapezoidal rule in log t from sqrt(c) / margin to margin
-     *  sqrt(largest eigenvalue of M^{-1} A), and its tails' weights. */
+    /**
+     * x^{1/2} = x r(x) on the spectrum [c, margin^2 largest] of M^{-1} A,
+     * with r Zolotarev's best relative approximation of x^{-1/2} there
+     * (Zolotarev 1877; in the form of Chiu, Hsieh, Huang and Huang, Phys.
+     * Rev. D 66 (2002) 114502): for y = x / c in [1, b],
+     *   y^{-1/2} ≈ d prod_l (y + c_{2l}) / (y + c_{2l-1}),
+     *   c_l = sn^2(l K / (2n + 1); k) / cn^2(l K / (2n + 1); k),
+     *   k = (1 - 1/b)^{1/2}, K = K(k),
+     * d scaling the relative error to equioscillate. In partial fractions
+     * the product is 1 + sum_l a_l / (y + c_{2l-1}) with a_l > 0 (zeros
+     * and poles interlace), so
+     *   x^{1/2} ≈ (d / sqrt c) [x + sum_l a_l c - sum_l a_l c t_l^2 /
+     *             (x + t_l^2)],   t_l^2 = c c_{2l-1},
+     * positive for every x >= 0: one sparse factor of A + t_l^2 M per
+     * pole, with the fewest poles n that keep the ratio within
+     * largest_ratio. The weights are those of the vmult() formula, in
+     * units of 2 / pi.
+     */
     struct Rule
     {
       std::vector<double> t, weight;
@@ -37,23 +56,62 @@ namespace PlateOnHalfspace
     };
 
     Rule
-    trapezoid_rule(const double c, const double largest)
+    zolotarev_rule(const double c, const double largest)
     {
-      const double t_low      = std::sqrt(c) / margin,
-                   t_high     = margin * std::sqrt(std::max(largest, c));
-      const double       from = std::log(t_low), to = std::log(t_high);
-      const unsigned int intervals =
-        std::max(1u,
-                 static_cast<unsigned int>(std::ceil((to - from) / log_step)));
-      const double h = (to - from) / intervals;
-      Rule         rule;
-      rule.identity_weight = t_low;
-      rule.top_weight      = 1. / t_high;
-      for (unsigned int j = 0; j <= intervals; ++j)
+      const double b =
+        std::max(margin * margin * std::max(largest, c) / c, 1. + 1e-9);
+      const double k = std::sqrt(1. - 1. / b);
+      const double K = boost::math::ellint_1(k);
+      // the ratio of r(y) y^{1/2} between its extremes on [1, b], sampled
+      // in log y (its 2n + 1 extrema are smooth in log y)
+      const auto extremes = [b](const std::vector<double> &coefficients) {
+        const unsigned int n   = coefficients.size() / 2;
+        double             low = std::numeric_limits<double>::max(), high = 0;
+        constexpr unsigned int samples = 4000;
+        for (unsigned int i = 0; i <= samples; ++i)
+          {
+            const double y     = std::pow(b, double(i) / samples);
+            double       value = std::sqrt(y);
+            for (unsigned int l = 0; l < n; ++l)
+              value *=
+                (y + coefficients[2 * l + 1]) / (y + coefficients[2 * l]);
+            low  = std::min(low, value);
+            high = std::max(high, value);
+          }
+        return std::make_pair(low, high);
+      };
+      std::vector<double>       coefficients; // c_1, c_2, ..., c_2n
+      std::pair<double, double> range;
+      for (unsigned int n = 1;; ++n)
         {
-          const double t = std::exp(from + j * h);
-          rule.t.push_back(t);
-          rule.weight.push_back((j == 0 || j == intervals ? 0.5 : 1.) * h * t);
+          coefficients.resize(2 * n);
+          for (unsigned int l = 1; l <= 2 * n; ++l)
+            {
+              double       cn = 0, dn = 0;
+              const double sn =
+                boost::math::jacobi_elliptic(k, l * K / (2 * n + 1), &cn, &dn);
+              coefficients[l - 1] = sn * sn / (cn * cn);
+            }
+          range = extremes(coefficients);
+          if (range.second <= largest_ratio * range.first || n >= 16)
+            break;
+        }
+      const unsigned int n = coefficients.size() / 2;
+      const double       d = 2. / (range.first + range.second);
+      Rule               rule;
+      rule.top_weight = 0.5 * M_PI * d / std::sqrt(c);
+      for (unsigned int l = 0; l < n; ++l)
+        {
+          const double pole = coefficients[2 * l];
+          double       a    = 1;
+          for (unsigned int m = 0; m < n; ++m)
+            {
+              a *= coefficients[2 * m + 1] - pole;
+              if (m != l)
+                a /= coefficients[2 * m] - pole;
+            }
+          rule.t.push_back(std::sqrt(c * pole));
+          rule.weight.push_back(rule.top_weight * a * c);
           rule.identity_weight += rule.weight.back();
         }
       return rule;
@@ -76,7 +134,7 @@ namespace PlateOnHalfspace
                                       const double largest_eigenvalue)
   {
     const double c = shift(area);
-    return trapezoid_rule(c, largest_eigenvalue + c).t.size() + 1;
+    return zolotarev_rule(c, largest_eigenvalue + c).t.size() + 1;
   }
 
   double
@@ -137,7 +195,7 @@ namespace PlateOnHalfspace
         }
     }
 
-    const Rule rule = trapezoid_rule(c, largest);
+    const Rule rule = zolotarev_rule(c, largest);
     identity_weight = rule.identity_weight;
     top_weight      = rule.top_weight;
     // The poles' factors are the preconditioner's memory: refuse before
@@ -182,8 +240,8 @@ namespace PlateOnHalfspace
   FractionalLaplaceInverse::vmult(Vector<double>       &q,
                                   const Vector<double> &s) const
   {
-    // (M^{-1}A)^{1/2} M^{-1} s = (2/pi) [ (t_low + sum w_j) M^{-1} s
-    //   - sum w_j t_j^2 (A + t_j^2 M)^{-1} s + M^{-1} A M^{-1} s / t_high ]
+    // (M^{-1}A)^{1/2} M^{-1} s = (2/pi) [ identity_weight M^{-1} s
+    //   - sum w_j t_j^2 (A + t_j^2 M)^{-1} s + top_weight M^{-1} A M^{-1} s ]
     // One solve after the other: CHOLMOD's triangular solves call BLAS,
     // whose own threads made concurrent solves 2.6 times slower than these
     // (doc/performance.md, "With the fractional soil inverse").

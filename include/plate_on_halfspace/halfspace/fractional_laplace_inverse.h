@@ -14,12 +14,12 @@
  * quasi-uniform meshes the preconditioned iterations do not grow with
  * the mesh (elongated cells and strong grading raise them: see the doc).
  *
- * (M^{-1} A)^{1/2} = (M^{-1} A) (M^{-1} A)^{-1/2}, and x^{-1/2} =
- * (2 / pi) ∫ dt / (t^2 + x) by the trapezoidal rule in log t over the
- * spectrum of M^{-1} A (from c to a power iteration's bound), each node a
- * sparse Cholesky factor of A + t^2 M, the two tails in closed form. The
- * rule's step keeps the approximation within about 8 % of the power at
- * every eigenvalue (fractional_laplace_inverse.cc).
+ * (M^{-1} A)^{1/2} = (M^{-1} A) (M^{-1} A)^{-1/2}, and x^{-1/2} by
+ * Zolotarev's best relative rational approximation over the spectrum of
+ * M^{-1} A (from c to a power iteration's bound), each pole a sparse
+ * Cholesky factor of A + t^2 M; the fewest poles that keep the
+ * approximation within about 7 % of the power at every eigenvalue
+ * (fractional_laplace_inverse.cc, doc/formulation.md).
  */
 #ifndef plate_on_halfspace_halfspace_fractional_laplace_inverse_h
 #define plate_on_halfspace_halfspace_fractional_laplace_inverse_h
@@ -63,7 +63,7 @@ namespace PlateOnHalfspace
     memory_consumption() const override;
 
     /**
-     * The sparse factors the rule needs (one per node t_j, and M's) where
+     * The sparse factors the rule needs (one per pole t_l, and M's) where
      * the largest eigenvalue of M^{-1} L is @p largest_eigenvalue, for
      * a plate of @p area: what a storage's memory estimate multiplies
      * SparseCholesky::factor_bytes() by.
@@ -80,7 +80,7 @@ namespace PlateOnHalfspace
     static double
     largest_eigenvalue_estimate(const FoundationSpace &space);
 
-    /** The nodes t_j of the rule (one factorisation each). */
+    /** The poles t_l of the rule (one factorisation each). */
     unsigned int
     n_poles() const
     {
