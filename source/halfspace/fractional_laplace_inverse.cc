@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <string>
 
 namespace PlateOnHalfspace
 {
@@ -18,8 +19,8 @@ namespace PlateOnHalfspace
      * The margin on the power iteration's estimate of the largest
      * eigenvalue (an estimate from below), and the largest ratio between
      * the extremes of r(x) x^{1/2} over the spectrum that the rule may
-     * leave: within 1 -+ 7 % of x^{1/2} (doc/performance.md, "With the
-     * fractional soil inverse").
+     * leave: within 1 -+ 7 % of x^{1/2} (doc/performance.md, "Zolotarev's
+     * rule for the soil inverse").
      */
     constexpr double margin = 2., largest_ratio = 1.15;
 
@@ -44,7 +45,7 @@ namespace PlateOnHalfspace
      * and poles interlace), so
      *   x^{1/2} ≈ (d / sqrt c) [x + sum_l a_l c - sum_l a_l c t_l^2 /
      *             (x + t_l^2)],   t_l^2 = c c_{2l-1},
-     * positive for every x >= 0: one sparse factor of A + t_l^2 M per
+     * positive for every x > 0: one sparse factor of A + t_l^2 M per
      * pole, with the fewest poles n that keep the ratio within
      * largest_ratio. The weights are those of the vmult() formula, in
      * units of 2 / pi.
@@ -58,12 +59,23 @@ namespace PlateOnHalfspace
     Rule
     zolotarev_rule(const double c, const double largest)
     {
-      const double b =
-        std::max(margin * margin * std::max(largest, c) / c, 1. + 1e-9);
+      // The interval's ratio b, rounded up to a power of 2^(1/8): the
+      // pole count then grows with b, also where rounding decides the
+      // ratio's test (the memory estimate's count must cover the
+      // constructor's). Beyond 1e15 k rounds to 1.
+      const double ratio = margin * margin * std::max(largest, c) / c;
+      AssertThrow(std::isfinite(ratio) && ratio < 1e15,
+                  ExcMessage("FractionalLaplaceInverse: the spectrum of the "
+                             "pressure nodes' Laplacian spans " +
+                             std::to_string(ratio) +
+                             " times its lowest eigenvalue; at most 1e15 is "
+                             "supported (a degenerate or far too fine "
+                             "mesh)."));
+      const double b = std::exp2(std::ceil(8. * std::log2(ratio)) / 8.);
       const double k = std::sqrt(1. - 1. / b);
       const double K = boost::math::ellint_1(k);
       // the ratio of r(y) y^{1/2} between its extremes on [1, b], sampled
-      // in log y (its 2n + 1 extrema are smooth in log y)
+      // in log y (2n interior extrema and the two ends, smooth in log y)
       const auto extremes = [b](const std::vector<double> &coefficients) {
         const unsigned int n   = coefficients.size() / 2;
         double             low = std::numeric_limits<double>::max(), high = 0;

@@ -3,8 +3,8 @@
 // soil inverse"), against independent dense computations:
 //  - its rule against the exact power: with the generalized eigenpairs
 //    A x = lambda M x (LAPACK, M-orthonormal), 2 pi alpha x^T M B M x lies
-//    within 8 % of sqrt(lambda) for every pair (measured 2.7 % and 3.1 %;
-//    the rule's bound over 10^5 nodes' spectrum: 0.94 ... 1.02), and B M x
+//    within 8 % of sqrt(lambda) for every pair (the rule's own bound: 7 %,
+//    the fewest Zolotarev poles that keep it), and B M x
 //    is parallel to x to 1e-8 (B is a function of M^{-1} A: measured
 //    3e-13), on the quarter of the flexible square (mirror images) and a
 //    graded rectangle (hanging nodes);
