@@ -463,6 +463,26 @@ namespace PlateOnHalfspace
                            "= galerkin) built on the plate's foundation "
                            "nodes; the collocation operator stays on the "
                            "direct solver."));
+    // Once per cycle: K^+ and R, and the contact-set independent parts
+    // B N K^+ P (for d), B N R (for G) and R^T P, with B = T^T M the test
+    // coupling of the contact basis. G is B N R because equilibrium
+    // R^T (P - N^T M T q) = 0 reads (B N R)^T q = R^T P (M T = B^T): the
+    // same G that the gap equation H q - G alpha = d has.
+    // K^+ comes before the preconditioner: the transient copies of K in
+    // its factorisation then do not meet the soil inverse's factors, which
+    // lowers the heap's peak (doc/performance.md, "Where the resident
+    // memory goes"),
+    // and the soil inverse's check of the memory left counts K^+.
+    inverse = std::make_unique<PlateGeneralizedInverse>(plate);
+    const SparseMatrix<double> &test_coupling = foundation.test_coupling();
+    const auto                 &motions       = inverse->rigid_motions();
+    tested_motions.clear();
+    for (unsigned int j = 0; j < motions.size(); ++j)
+      {
+        Vector<double> column(n);
+        test_coupling.vmult(column, plate.restrict_to_foundation(motions[j]));
+        tested_motions.push_back(column);
+      }
     {
       using Choice  = Parameters::Contact::Preconditioner;
       Choice choice = control.preconditioner;
@@ -489,22 +509,6 @@ namespace PlateOnHalfspace
         log << "   pressure preconditioner: " << preconditioner->name()
             << std::endl;
     }
-
-    // Once per cycle: K^+ and R, and the contact-set independent parts
-    // B N K^+ P (for d), B N R (for G) and R^T P, with B = T^T M the test
-    // coupling of the contact basis. G is B N R because equilibrium
-    // R^T (P - N^T M T q) = 0 reads (B N R)^T q = R^T P (M T = B^T): the
-    // same G that the gap equation H q - G alpha = d has.
-    inverse = std::make_unique<PlateGeneralizedInverse>(plate);
-    const SparseMatrix<double> &test_coupling = foundation.test_coupling();
-    const auto                 &motions       = inverse->rigid_motions();
-    tested_motions.clear();
-    for (unsigned int j = 0; j < motions.size(); ++j)
-      {
-        Vector<double> column(n);
-        test_coupling.vmult(column, plate.restrict_to_foundation(motions[j]));
-        tested_motions.push_back(column);
-      }
   }
 
   void

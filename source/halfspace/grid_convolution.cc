@@ -34,6 +34,47 @@ namespace PlateOnHalfspace
     }
 
     /**
+     * The pieces of the cardinal B-spline of order @p n as polynomials:
+     * the recurrence of cardinal_bspline() run on coefficient arrays, so
+     * that coefficients[k * max_order + e] multiplies u^e in the value
+     * cardinal_bspline(u, n, .)[k].
+     */
+    void
+    cardinal_bspline_polynomials(const unsigned int n, double *coefficients)
+    {
+      constexpr unsigned int                   m = GridConvolution::max_order;
+      std::array<std::array<double, m + 1>, m> p{};
+      p[0][1] = 1.; // u
+      p[1][0] = 1.; // 1 - u
+      p[1][1] = -1.;
+      for (unsigned int j = 3; j <= n; ++j)
+        {
+          const double inverse = 1. / (j - 1);
+          p[j - 1].fill(0.);
+          for (unsigned int k = j - 1; k > 0; --k)
+            {
+              // ((u + k) p_k + (j - u - k) p_{k-1}) / (j - 1)
+              std::array<double, m + 1> next{};
+              for (unsigned int e = 0; e < m; ++e)
+                {
+                  next[e + 1] += p[k][e] - p[k - 1][e];
+                  next[e] += double(k) * p[k][e] + double(j - k) * p[k - 1][e];
+                }
+              for (double &c : next)
+                c *= inverse;
+              p[k] = next;
+            }
+          std::array<double, m + 1> next{};
+          for (unsigned int e = 0; e < m; ++e)
+            next[e + 1] = p[0][e] * inverse;
+          p[0] = next;
+        }
+      for (unsigned int k = 0; k < n; ++k)
+        for (unsigned int e = 0; e < m; ++e)
+          coefficients[k * m + e] = p[k][e];
+    }
+
+    /**
      * FFTW's planner is not thread-safe, and its threads are set up once
      * per process: plans are made and destroyed under this lock, each for
      * deal.II's thread count (MultithreadInfo::n_threads()).
@@ -112,6 +153,15 @@ namespace PlateOnHalfspace
                            std::to_string(max_order) + "."));
     AssertThrow(spacing > 0 && std::isfinite(spacing),
                 ExcMessage("GridConvolution: the spacing must be positive."));
+    // The stencil's weights are evaluated in every product rather than
+    // stored (136 bytes a Gauss point): weight j is the spline's piece
+    // order - 1 - j.
+    std::array<double, max_order * max_order> pieces{};
+    cardinal_bspline_polynomials(order, pieces.data());
+    for (unsigned int j = 0; j < order; ++j)
+      for (unsigned int e = 0; e < max_order; ++e)
+        weight_polynomials[e * max_order + j] =
+          pieces[(order - 1 - j) * max_order + e];
     // Nodes centre + (i - (n-1)/2) h, enough that every stencil of a point
     // within the half widths lies on the grid.
     for (unsigned int d = 0; d < 2; ++d)
@@ -239,27 +289,64 @@ namespace PlateOnHalfspace
 
   GridConvolution::~GridConvolution() = default;
 
+  namespace
+  {
+    /**
+     * The @p P weights at offset @p u by Horner's rule, all weights at
+     * once, power by power: independent lanes with a fixed count, which
+     * the compiler unrolls and vectorises (coefficients as in
+     * GridConvolution::weight_polynomials).
+     */
+    template <unsigned int P>
+    void
+    spline_weights(const double u, const double *coefficients, double *weights)
+    {
+      constexpr unsigned int m = GridConvolution::max_order;
+      double                 w[P];
+      for (unsigned int j = 0; j < P; ++j)
+        w[j] = coefficients[(P - 1) * m + j];
+      for (unsigned int e = P - 1; e-- > 0;)
+        for (unsigned int j = 0; j < P; ++j)
+          w[j] = w[j] * u + coefficients[e * m + j];
+      for (unsigned int j = 0; j < P; ++j)
+        weights[j] = w[j];
+    }
+  } // namespace
+
+  int
+  GridConvolution::stencil_1d(const double       x,
+                              const unsigned int d,
+                              double            *weights) const
+  {
+    // t > 0: every point lies inside the grid (constructor)
+    const double t    = (x - origin[d]) / h;
+    const int    cell = static_cast<int>(t);
+    const double u    = t - cell;
+    // node cell + n/2 - k has the weight M_n(u + k) (constructor)
+    switch (spline_order)
+      {
+        case 4:
+          spline_weights<4>(u, weight_polynomials.data(), weights);
+          break;
+        case 6:
+          spline_weights<6>(u, weight_polynomials.data(), weights);
+          break;
+        default:
+          Assert(spline_order == 8, ExcInternalError());
+          spline_weights<8>(u, weight_polynomials.data(), weights);
+      }
+    const int first = cell - int(spline_order / 2) + 1;
+    Assert(t > 0 && first >= 0 && first + spline_order <= n[d],
+           ExcInternalError());
+    return first;
+  }
+
   GridConvolution::Stencil
   GridConvolution::stencil(const Point<2> &x) const
   {
-    Stencil                       s;
-    std::array<double, max_order> w;
-    for (unsigned int d = 0; d < 2; ++d)
-      {
-        const double t = (x[d] - origin[d]) / h;
-        const double f = std::floor(t);
-        cardinal_bspline(t - f, spline_order, w.data());
-        // node f + n/2 - k has the weight M_n(u + k)
-        const int first = static_cast<int>(f) - int(spline_order / 2) + 1;
-        auto     &out   = d == 0 ? s.x : s.y;
-        for (unsigned int j = 0; j < spline_order; ++j)
-          out[j] = w[spline_order - 1 - j];
-        (d == 0 ? s.first_x : s.first_y) = first;
-      }
-    Assert(s.first_x >= 0 && s.first_y >= 0 &&
-             s.first_x + spline_order <= n[0] &&
-             s.first_y + spline_order <= n[1],
-           ExcInternalError());
+    Stencil s;
+    s.first_x = stencil_1d(x[0], 0, s.x.data());
+    s.first_y = stencil_1d(x[1], 1, s.y.data());
     return s;
   }
 
@@ -275,6 +362,20 @@ namespace PlateOnHalfspace
         for (unsigned int i = 0; i < spline_order; ++i)
           row[i] += c * s.x[i];
       }
+  }
+
+  void
+  GridConvolution::spread(const Point<2> &x,
+                          const double    charge,
+                          double         *charges) const
+  {
+    spread(stencil(x), charge, charges);
+  }
+
+  double
+  GridConvolution::interpolate(const Point<2> &x, const double *values) const
+  {
+    return interpolate(stencil(x), values);
   }
 
   double

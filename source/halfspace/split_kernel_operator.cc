@@ -290,41 +290,52 @@ namespace PlateOnHalfspace
         n_nodes / (4 * MultithreadInfo::n_threads()) + 1);
       sparsity.copy_from(n_nodes, n_nodes, rows.begin(), rows.end());
     }
-  } // namespace
 
-  namespace
-  {
+    using NearRowBlocks = std::array<unsigned int, 9>;
+
+    /**
+     * The rows of @p pattern cut into blocks of about equal entries, for
+     * symmetric_near_product(): block b starts after the row at which
+     * b / n_blocks of the entries are passed.
+     */
+    NearRowBlocks
+    near_row_blocks(const SparsityPattern &pattern)
+    {
+      constexpr unsigned int n_blocks = NearRowBlocks().size() - 1;
+      const unsigned int     n        = pattern.n_rows();
+      const std::size_t      entries  = pattern.n_nonzero_elements();
+      NearRowBlocks          first_row;
+      first_row[0]         = 0;
+      std::size_t  counted = 0;
+      unsigned int b       = 1;
+      for (unsigned int i = 0; i < n && b < n_blocks; ++i)
+        {
+          counted += pattern.row_length(i);
+          while (b < n_blocks && counted * n_blocks >= b * entries)
+            first_row[b++] = i + 1;
+        }
+      while (b <= n_blocks)
+        first_row[b++] = n;
+      return first_row;
+    }
+
     /**
      * s += N v for the symmetric N of which @p upper holds the upper
      * triangle, the diagonal included (deal.II stores it first in each
-     * row). The rows are cut into a fixed number of blocks of about equal
-     * entries, whatever the threads; each block adds its rows' sums and,
+     * row). @p first_row cuts the rows into blocks (near_row_blocks()),
+     * the same whatever the threads; each block adds its rows' sums and,
      * into a vector of its own, the transposed entries' contributions,
      * which are summed block after block: the result does not depend on
      * the threads.
      */
     void
     symmetric_near_product(const SparseMatrix<double> &upper,
+                           const NearRowBlocks        &first_row,
                            const Vector<double>       &v,
                            Vector<double>             &s)
     {
-      constexpr unsigned int n_blocks = 8;
+      constexpr unsigned int n_blocks = NearRowBlocks().size() - 1;
       const unsigned int     n        = upper.m();
-      const std::size_t      entries  = upper.n_nonzero_elements();
-      std::array<unsigned int, n_blocks + 1> first_row;
-      // block b starts after the row at which b / n_blocks of the entries
-      // are passed
-      first_row[0]         = 0;
-      std::size_t  counted = 0;
-      unsigned int b       = 1;
-      for (unsigned int i = 0; i < n && b < n_blocks; ++i)
-        {
-          counted += upper.get_row_length(i);
-          while (b < n_blocks && counted * n_blocks >= b * entries)
-            first_row[b++] = i + 1;
-        }
-      while (b <= n_blocks)
-        first_row[b++] = n;
       std::array<Vector<double>, n_blocks> transposed;
       parallel::apply_to_subranges(
         0u,
@@ -363,8 +374,6 @@ namespace PlateOnHalfspace
     std::vector<Point<2>>     points;
     /** JxW psi_a at point q: [q * nodes.size() + a]. */
     std::vector<double> weighted_values;
-    /** The grid nodes and B-spline weights of each point. */
-    std::vector<GridConvolution::Stencil> stencils;
   };
 
   SplitKernelSettings
@@ -624,6 +633,7 @@ namespace PlateOnHalfspace
     near_field_pattern(
       integrator, n_cells, terms, space.n_nodes(), near_sparsity);
     near_field.reinit(near_sparsity);
+    near_row_blocks = PlateOnHalfspace::near_row_blocks(near_sparsity);
 
     // Integrate in chunks (tasks), then add each chunk to the near field:
     // the sums do not depend on the threads.
@@ -757,10 +767,12 @@ namespace PlateOnHalfspace
                           *blocks[addition.term - begin];
                         const auto &columns = integrator.nodes(
                           addition.transposed ? t.first : t.cell);
+                        // the lower triangle is not stored
                         for (unsigned int j = 0; j < columns.size(); ++j)
-                          scratch.add(columns[j],
-                                      addition.transposed ? block(j, r) :
-                                                            block(r, j));
+                          if (columns[j] >= rows[r])
+                            scratch.add(columns[j],
+                                        addition.transposed ? block(j, r) :
+                                                              block(r, j));
                       }
                     // the group fills most of the row: walk the row
                     for (auto entry = near_field.begin(rows[r]);
@@ -772,13 +784,6 @@ namespace PlateOnHalfspace
               }
           },
           row_grain);
-      }
-
-    for (CellPoints &cp : far_points)
-      {
-        cp.stencils.resize(cp.points.size());
-        for (unsigned int q = 0; q < cp.points.size(); ++q)
-          cp.stencils[q] = grid->stencil(cp.points[q]);
       }
 
     chosen.sigma             = sigma;
@@ -823,7 +828,7 @@ namespace PlateOnHalfspace
                     for (unsigned int a = 0; a < n; ++a)
                       charge +=
                         cp.weighted_values[q * n + a] * values[cp.nodes[a]];
-                    grid->spread(cp.stencils[q], charge, parts[part].data());
+                    grid->spread(cp.points[q], charge, parts[part].data());
                   }
               }
           }
@@ -850,7 +855,7 @@ namespace PlateOnHalfspace
             at_points[c].resize(cp.points.size());
             for (unsigned int q = 0; q < cp.points.size(); ++q)
               at_points[c][q] =
-                grid->interpolate(cp.stencils[q], potentials.data());
+                grid->interpolate(cp.points[q], potentials.data());
           }
       },
       256);
@@ -870,7 +875,7 @@ namespace PlateOnHalfspace
                                           Vector<double> &settlement) const
   {
     settlement.reinit(values.size());
-    symmetric_near_product(near_field, values, settlement);
+    symmetric_near_product(near_field, near_row_blocks, values, settlement);
     apply_far_field(values, settlement);
   }
 
@@ -1140,8 +1145,7 @@ namespace PlateOnHalfspace
       (grid ? grid->memory_consumption() : 0);
     for (const CellPoints &cp : far_points)
       bytes += cp.nodes.size() * sizeof(unsigned int) +
-               cp.points.size() *
-                 (sizeof(Point<2>) + sizeof(GridConvolution::Stencil)) +
+               cp.points.size() * sizeof(Point<2>) +
                cp.weighted_values.size() * sizeof(double);
     return bytes;
   }

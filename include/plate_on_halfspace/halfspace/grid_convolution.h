@@ -92,9 +92,18 @@ namespace PlateOnHalfspace
     void
     spread(const Stencil &s, const double charge, double *charges) const;
 
+    /** Add @p charge at point @p x to the grid @p charges: spread() at
+     *  stencil(@p x), with the stencil made on the fly. */
+    void
+    spread(const Point<2> &x, const double charge, double *charges) const;
+
     /** The spline value at the stencil @p s of the grid field @p values. */
     double
     interpolate(const Stencil &s, const double *values) const;
+
+    /** The spline value at point @p x of the grid field @p values. */
+    double
+    interpolate(const Point<2> &x, const double *values) const;
 
     /**
      * A zeroed grid field (n_grid_nodes() values, x fastest) for spread()
@@ -126,11 +135,23 @@ namespace PlateOnHalfspace
     memory_consumption() const;
 
   private:
+    /** Stencil of coordinate @p x in direction @p d: its first grid
+     *  index, and its weights into @p weights (spline_order of them). */
+    int
+    stencil_1d(const double x, const unsigned int d, double *weights) const;
+
     unsigned int                spline_order;
     double                      h;
     Point<2>                    origin; ///< node (0, 0)
     std::array<unsigned int, 2> n;      ///< grid nodes per direction
     std::array<unsigned int, 2> padded; ///< FFT sizes
+    /**
+     * The stencil's weights as polynomials in the point's offset u in
+     * [0, 1) from its grid cell: weight k is the sum over m of
+     * weight_polynomials[m * max_order + k] u^m, the pieces of the
+     * cardinal B-spline.
+     */
+    std::array<double, max_order * max_order> weight_polynomials{};
     /** The filtered kernel's transform, padded[0] x (padded[1]/2 + 1). */
     std::vector<double> kernel_transform;
     struct Plans;

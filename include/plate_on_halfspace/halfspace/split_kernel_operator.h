@@ -153,6 +153,9 @@ namespace PlateOnHalfspace
     std::unique_ptr<GridConvolution>   grid;
     SparsityPattern                    near_sparsity;
     SparseMatrix<double>               near_field;
+    /** The near field's rows cut into 8 blocks of about equal entries:
+     *  block b is rows near_row_blocks[b] to near_row_blocks[b + 1] - 1. */
+    std::array<unsigned int, 9> near_row_blocks{};
     /** The Laplacian on the mass matrix's pattern, and the plate's area
      *  with its mirror images: the approximate inverse's. */
     SparseMatrix<double> laplace;
