@@ -470,9 +470,9 @@ namespace PlateOnHalfspace
     // same G that the gap equation H q - G alpha = d has.
     // K^+ comes before the preconditioner: the transient copies of K in
     // its factorisation then do not meet the soil inverse's factors, which
-    // lowers the heap's peak (doc/performance.md, "Where the resident
-    // memory goes"),
-    // and the soil inverse's check of the memory left counts K^+.
+    // lowers the run's peak memory, and the soil inverse's check of the
+    // memory left counts K^+ (doc/performance.md, "Where the resident
+    // memory goes").
     inverse = std::make_unique<PlateGeneralizedInverse>(plate);
     const SparseMatrix<double> &test_coupling = foundation.test_coupling();
     const auto                 &motions       = inverse->rigid_motions();

@@ -13,31 +13,11 @@ namespace PlateOnHalfspace
   namespace
   {
     /**
-     * values[k] = M_n(u + k), k < n: the cardinal B-spline of order n
-     * (support [0, n]) at u + k, 0 <= u < 1, by the recursion
-     * M_j(x) = (x M_{j-1}(x) + (j - x) M_{j-1}(x - 1)) / (j - 1).
-     */
-    void
-    cardinal_bspline(const double u, const unsigned int n, double *values)
-    {
-      values[0] = u;
-      values[1] = 1. - u;
-      for (unsigned int j = 3; j <= n; ++j)
-        {
-          const double inverse = 1. / (j - 1);
-          values[j - 1]        = 0.;
-          for (unsigned int k = j - 1; k > 0; --k)
-            values[k] =
-              ((u + k) * values[k] + (j - u - k) * values[k - 1]) * inverse;
-          values[0] = u * values[0] * inverse;
-        }
-    }
-
-    /**
-     * The pieces of the cardinal B-spline of order @p n as polynomials:
-     * the recurrence of cardinal_bspline() run on coefficient arrays, so
-     * that coefficients[k * max_order + e] multiplies u^e in the value
-     * cardinal_bspline(u, n, .)[k].
+     * The pieces of the cardinal B-spline M_n of order @p n (support
+     * [0, n]) as polynomials: coefficients[k * max_order + e] multiplies
+     * u^e in M_n(u + k), k < n, 0 <= u < 1. The recursion
+     * M_j(x) = (x M_{j-1}(x) + (j - x) M_{j-1}(x - 1)) / (j - 1)
+     * run on coefficient arrays.
      */
     void
     cardinal_bspline_polynomials(const unsigned int n, double *coefficients)
@@ -262,8 +242,11 @@ namespace PlateOnHalfspace
 
     // The B-splines' symbol B(w) = sum_m M(m) e^{-i w m} (real, positive
     // for an even order), from the samples at the integers.
+    // M_n(k), k < n: the pieces' constant terms (stored as weights
+    // order - 1 - k)
     std::array<double, max_order> samples;
-    cardinal_bspline(0., order, samples.data()); // M_n(k), k < n
+    for (unsigned int k = 0; k < order; ++k)
+      samples[k] = weight_polynomials[order - 1 - k];
     const auto symbol = [&](const double w) {
       // centred: offsets k - n/2
       double sum = 0;
