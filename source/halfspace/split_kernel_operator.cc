@@ -1,3 +1,4 @@
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parallel.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -266,28 +267,51 @@ namespace PlateOnHalfspace
       for (unsigned int c = 0; c < n_cells; ++c)
         for (const unsigned int i : integrator.nodes(c))
           node_cells[i].push_back(c);
-      std::vector<std::vector<unsigned int>> rows(n_nodes);
+      // Rows in blocks, each block's columns in one list (a vector per row
+      // held half again as much, in many small blocks that stayed resident).
+      const unsigned int grain =
+        n_nodes / (4 * MultithreadInfo::n_threads()) + 1;
+      const unsigned int n_blocks = (n_nodes + grain - 1) / grain;
+      std::vector<std::vector<unsigned int>> block_columns(n_blocks);
+      std::vector<std::size_t>               row_end(n_nodes);
       parallel::apply_to_subranges(
         0u,
-        n_nodes,
-        [&](const unsigned int from, const unsigned int to) {
+        n_blocks,
+        [&](const unsigned int block_from, const unsigned int block_to) {
           // the row that last took each column
           std::vector<unsigned int> taken_by(n_nodes,
                                              numbers::invalid_unsigned_int);
-          for (unsigned int i = from; i < to; ++i)
+          for (unsigned int b = block_from; b < block_to; ++b)
             {
-              for (const unsigned int c : node_cells[i])
-                for (const unsigned int d : partners[c])
-                  for (const unsigned int j : integrator.nodes(d))
-                    if (j >= i && taken_by[j] != i)
-                      {
-                        taken_by[j] = i;
-                        rows[i].push_back(j);
-                      }
-              std::sort(rows[i].begin(), rows[i].end());
+              std::vector<unsigned int> &columns = block_columns[b];
+              for (unsigned int i = b * grain;
+                   i < std::min(n_nodes, (b + 1) * grain);
+                   ++i)
+                {
+                  const std::size_t row_start = columns.size();
+                  for (const unsigned int c : node_cells[i])
+                    for (const unsigned int d : partners[c])
+                      for (const unsigned int j : integrator.nodes(d))
+                        if (j >= i && taken_by[j] != i)
+                          {
+                            taken_by[j] = i;
+                            columns.push_back(j);
+                          }
+                  std::sort(columns.begin() + row_start, columns.end());
+                  row_end[i] = columns.size();
+                }
+              columns.shrink_to_fit();
             }
         },
-        n_nodes / (4 * MultithreadInfo::n_threads()) + 1);
+        1);
+      std::vector<ArrayView<const unsigned int>> rows(n_nodes);
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        {
+          const std::vector<unsigned int> &columns = block_columns[i / grain];
+          const std::size_t start = i % grain == 0 ? 0 : row_end[i - 1];
+          rows[i]                 = make_array_view(columns.data() + start,
+                                    columns.data() + row_end[i]);
+        }
       sparsity.copy_from(n_nodes, n_nodes, rows.begin(), rows.end());
     }
 
@@ -466,10 +490,8 @@ namespace PlateOnHalfspace
 
     const std::vector<FoundationSpace::Cell> cells =
       CellPairSummation::cells_with_images(space);
-    n_computed                       = space.cells.size();
-    const unsigned int       n_cells = cells.size();
-    const CellPairIntegrator integrator(cells,
-                                        elastic->singular_quadrature_order());
+    n_computed                 = space.cells.size();
+    const unsigned int n_cells = cells.size();
 
     // The split length: the median cell size, so that most cells meet
     // their near field within a few neighbours; the grid no finer than 64
@@ -502,6 +524,33 @@ namespace PlateOnHalfspace
                                      largest / 16.});
     const double spacing = sigma / settings.sigma_over_h;
     const double cutoff  = settings.cutoff * sigma;
+
+    // The near field's terms, in CellPairSummation's canonical order
+    // (first, other, image), from buckets as wide as the reach of a pair.
+    std::vector<Term> terms;
+    for (const auto &[first, l] : CellPairSummation::canonical_pairs_within(
+           centres,
+           n_computed,
+           cutoff + largest,
+           [&](const unsigned int first, const unsigned int l) {
+             return centres[first].distance(centres[l]) -
+                      0.5 * (diameters[first] + diameters[l]) <
+                    cutoff;
+           }))
+      terms.push_back({first, l});
+    // Only the computed cells and the images that the terms meet (next to
+    // the mirror planes) need the integrator's tables.
+    std::vector<bool> met(n_cells, false);
+    std::fill(met.begin(), met.begin() + n_computed, true);
+    for (const Term &t : terms)
+      met[t.cell] = true;
+    const CellPairIntegrator                           integrator(cells,
+                                        elastic->singular_quadrature_order(),
+                                        met);
+    std::vector<std::pair<unsigned int, unsigned int>> singular;
+    for (const Term &t : terms)
+      if (integrator.singular_pair(t.first, t.cell))
+        singular.emplace_back(t.first, t.cell);
 
     // The far field: Gauss points on every cell, more on cells larger
     // than sigma (its quadrature error grows with size / sigma).
@@ -553,24 +602,6 @@ namespace PlateOnHalfspace
       settings.spline_order,
       [a = alpha, sigma](const double r) { return far_kernel(a, sigma, r); });
 
-    // The near field's terms, in CellPairSummation's canonical order
-    // (first, other, image), from buckets as wide as the reach of a pair.
-    std::vector<Term>                                  terms;
-    std::vector<std::pair<unsigned int, unsigned int>> singular;
-    for (const auto &[first, l] : CellPairSummation::canonical_pairs_within(
-           centres,
-           n_computed,
-           cutoff + largest,
-           [&](const unsigned int first, const unsigned int l) {
-             return centres[first].distance(centres[l]) -
-                      0.5 * (diameters[first] + diameters[l]) <
-                    cutoff;
-           }))
-      {
-        terms.push_back({first, l});
-        if (integrator.singular_pair(first, l))
-          singular.emplace_back(first, l);
-      }
     // The near field's memory before it is integrated: a strongly graded
     // mesh puts (cutoff / h)^2 cells into the reach of each cell of size h
     // below sigma.

@@ -634,6 +634,17 @@ namespace PlateOnHalfspace
   ResultsOutput::write_file(const std::string &name,
                             const std::string &text) const
   {
+    write_file_in_parts(name, [&text](std::string &part) {
+      part = text;
+      return false;
+    });
+  }
+
+  void
+  ResultsOutput::write_file_in_parts(
+    const std::string                        &name,
+    const std::function<bool(std::string &)> &next_part) const
+  {
     if (!writes_files())
       return;
     AssertThrow(directory_fd >= 0,
@@ -662,20 +673,34 @@ namespace PlateOnHalfspace
     if (fd < 0)
       fail("Output directory: cannot write <" + shown +
            ">: " + error_text(errno) + ".");
-    std::size_t written = 0;
-    int         e       = 0;
-    while (written < text.size())
+    int         e = 0;
+    std::string text;
+    try
       {
-        const ssize_t n =
-          ::write(fd, text.data() + written, text.size() - written);
-        if (n < 0 && errno == EINTR)
-          continue;
-        if (n <= 0)
+        for (bool more = true; more && e == 0;)
           {
-            e = n < 0 ? errno : EIO;
-            break;
+            more                = next_part(text);
+            std::size_t written = 0;
+            while (written < text.size())
+              {
+                const ssize_t n =
+                  ::write(fd, text.data() + written, text.size() - written);
+                if (n < 0 && errno == EINTR)
+                  continue;
+                if (n <= 0)
+                  {
+                    e = n < 0 ? errno : EIO;
+                    break;
+                  }
+                written += n;
+              }
           }
-        written += n;
+      }
+    catch (...)
+      {
+        ::close(fd);
+        ::unlinkat(directory_fd, temporary.c_str(), 0);
+        throw;
       }
     if (::close(fd) != 0 && e == 0)
       e = errno;

@@ -499,16 +499,26 @@ namespace PlateOnHalfspace
                                                const Point<2>       &end) const
   {
     const FoundationSpace &space = plate.get_foundation_space();
-    std::ostringstream     nodes;
-    nodes << "x,y,w,q,gap,contact\n" << std::setprecision(10);
     // The whole plate: the nodes of the computed part and, for a symmetric
-    // scene, their distinct mirror images.
-    for (unsigned int i = 0; i < space.n_nodes(); ++i)
-      for (const Point<2> &x : space.symmetry.images(space.node_locations[i]))
-        nodes << x[0] << ',' << x[1] << ',' << contact.w[i] << ','
-              << contact.q[i] << ',' << contact.gap[i] << ','
-              << (contact.in_contact[i] ? 1 : 0) << '\n';
-    write_file("nodes-" + two_digits(cycle) + ".csv", nodes.str());
+    // scene, their distinct mirror images; written in parts of 4096 nodes
+    // (at 10^5 nodes the whole text is 60 MB).
+    unsigned int next = 0;
+    write_file_in_parts(
+      "nodes-" + two_digits(cycle) + ".csv", [&](std::string &part) {
+        std::ostringstream rows;
+        rows << std::setprecision(10);
+        if (next == 0)
+          rows << "x,y,w,q,gap,contact\n";
+        const unsigned int end = std::min(space.n_nodes(), next + 4096);
+        for (; next < end; ++next)
+          for (const Point<2> &x :
+               space.symmetry.images(space.node_locations[next]))
+            rows << x[0] << ',' << x[1] << ',' << contact.w[next] << ','
+                 << contact.q[next] << ',' << contact.gap[next] << ','
+                 << (contact.in_contact[next] ? 1 : 0) << '\n';
+        part = rows.str();
+        return next < space.n_nodes();
+      });
 
     // Gauss points of the cells the line crosses or borders, keeping those
     // nearest to the line in each cell.

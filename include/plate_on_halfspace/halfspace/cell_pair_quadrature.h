@@ -61,13 +61,24 @@ namespace PlateOnHalfspace
   class CellPairIntegrator
   {
   public:
+    /**
+     * Prepares the cells marked in @p prepared, all of them where it is
+     * empty: their nodes, their shape functions' expansions and their
+     * tables. Only prepared cells may be passed to the other functions
+     * (singular_pair() takes any). A caller that meets few of the cells
+     * saves the rest's tables: the split kernel's near field meets only
+     * the mirror images next to the mirror planes.
+     */
     CellPairIntegrator(const std::vector<FoundationSpace::Cell> &cells,
-                       const unsigned int singular_order);
+                       const unsigned int                        singular_order,
+                       const std::vector<bool>                  &prepared = {});
 
     /** Foundation nodes of cell @p c (the rows of its node shape functions). */
     const std::vector<unsigned int> &
     nodes(const unsigned int c) const
     {
+      Assert(!cell_data[c].nodes.empty(),
+             ExcMessage("CellPairIntegrator: cell not prepared"));
       return cell_data[c].nodes;
     }
 

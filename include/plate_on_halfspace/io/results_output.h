@@ -15,6 +15,7 @@
 #include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -202,6 +203,16 @@ namespace PlateOnHalfspace
     /** Write @p text to @p name in the directory, atomically. */
     void
     write_file(const std::string &name, const std::string &text) const;
+
+    /**
+     * Write @p name as write_file() does, its text made part by part, so
+     * that a large file is never held whole: @p next_part sets its
+     * argument to the next part and returns whether more follow.
+     */
+    void
+    write_file_in_parts(
+      const std::string                        &name,
+      const std::function<bool(std::string &)> &next_part) const;
 
   private:
     /** On rank 0: creates, locks, checks and prepares the directory (the
