@@ -7,8 +7,10 @@ solver against the dense operator.
 Scenes: parameters/example2.prm made Galerkin + active set (tensionless,
 lifts off) and parameters/example2-bonded.prm (bonded), both solved on a
 quarter (symmetry xy) of a uniform mesh whose Subdivisions give about
-1e3, 3e3, 1e4, 2e4, 5e4 and 1e5 foundation DOFs (N x N serendipity cells on
-the quarter: n = 3 N^2 + 4 N + 1), up to MAX_N (default 100000). Paths:
+1e3, 3e3, 1e4, 2e4, 5e4, 1e5 and 1e6 foundation DOFs (N x N serendipity
+cells on the quarter: n = 3 N^2 + 4 N + 1; above 1000 subdivisions, the
+entry's limit, half as many refined once), up to MAX_N (default 100000).
+Paths:
   hierarchical     Storage = hierarchical, Solver = iterative (all sizes);
   dense            Storage = dense, Solver = direct (LAPACK on the condensed
                    coupled matrix), up to DIRECT_MAX_N (default 3500: its
@@ -69,7 +71,7 @@ PATHS = {
                          "end\n",
 }
 # Cells per side of the quarter: n = 3 N^2 + 4 N + 1 foundation DOFs.
-CELLS = [18, 32, 57, 81, 128, 182]
+CELLS = [18, 32, 57, 81, 128, 182, 578]
 
 
 def n_of(cells):
@@ -81,13 +83,17 @@ def run(executable, scene, path, cells, out):
     os.makedirs(directory, exist_ok=True)
     prm = os.path.join(directory, "scene.prm")
     base, extra = SCENES[scene]
+    # Subdivisions allows at most 1000: an even count above halves and
+    # refines once (the same mesh)
+    refinements = 1 if 2 * cells > 1000 else 0
+    subdivisions = 2 * cells // (2 ** refinements)
     with open(prm, "w") as f:
         f.write(f"include {os.path.join(ROOT, base)}\n"
                 f"set Output directory = {directory}\n{extra}{PATHS[path]}"
                 "subsection Discretization\n set Symmetry = xy\n"
-                " set Initial refinements = 0\n"
-                f" set Subdivisions x = {2 * cells}\n"
-                f" set Subdivisions y = {2 * cells}\nend\n"
+                f" set Initial refinements = {refinements}\n"
+                f" set Subdivisions x = {subdivisions}\n"
+                f" set Subdivisions y = {subdivisions}\nend\n"
                 "subsection Adaptivity\n set Cycles = 1\n"
                 " set Max cells = 10000000\nend\n"
                 "subsection Output\n set VTU = false\n set Verbosity = 1\n"

@@ -112,6 +112,28 @@ namespace PlateOnHalfspace
       std::iota(rows.begin(), rows.end(), types::global_dof_index(0));
       return rows;
     }
+    /**
+     * The orderings cholmod_analyze() tries for a matrix of order @p n.
+     * From 10^4 unknowns on it tries AMD and METIS and keeps the better:
+     * CHOLMOD's default tries METIS only where AMD fills badly, which the
+     * soil inverse's Laplacian at 10^5 nodes does not count as bad, yet
+     * METIS's factor is 18 % smaller there (the plate's, which the default
+     * does order by METIS, a fifth). Below, the default: METIS rarely
+     * wins there and takes longer (doc/performance.md, "The build's
+     * transient blocks").
+     */
+    void
+    choose_orderings(cholmod_common &common, const unsigned int n)
+    {
+      if (n < 10000)
+        common.nmethods = 0;
+      else
+        {
+          common.nmethods           = 2;
+          common.method[0].ordering = CHOLMOD_AMD;
+          common.method[1].ordering = CHOLMOD_METIS;
+        }
+    }
   } // namespace
 
   SparseCholesky::SparseCholesky(const std::string &what)
@@ -120,12 +142,6 @@ namespace PlateOnHalfspace
   {
     cholmod_start(&data->common);
     data->common.supernodal = CHOLMOD_SUPERNODAL;
-    // METIS's nested dissection alone: on the plate's and the foundation's
-    // 2D meshes it fills less than AMD from about 10^4 unknowns on (a sixth
-    // less at 3*10^5), and CHOLMOD's default would try AMD first
-    // (doc/performance.md, "Where the resident memory goes").
-    data->common.nmethods           = 1;
-    data->common.method[0].ordering = CHOLMOD_METIS;
   }
 
   SparseCholesky::~SparseCholesky()
@@ -183,6 +199,7 @@ namespace PlateOnHalfspace
       return;
     cholmod_sparse *a = upper_triangle(matrix, rows, false, data->common);
     AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
+    choose_orderings(data->common, n);
     data->factor = cholmod_analyze(a, &data->common);
     factorize_numerically(a);
   }
@@ -201,6 +218,7 @@ namespace PlateOnHalfspace
     const int *indices = static_cast<const int *>(a->i);
     data->analysed_starts.assign(starts, starts + n + 1);
     data->analysed_rows.assign(indices, indices + starts[n]);
+    choose_orderings(data->common, n);
     data->factor = cholmod_analyze(a, &data->common);
     cholmod_free_sparse(&a, &data->common);
     AssertThrow(data->factor != nullptr, ExcMessage(does_not_fit(what, n)));

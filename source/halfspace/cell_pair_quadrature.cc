@@ -121,6 +121,8 @@ namespace PlateOnHalfspace
     , cell_data(cells.size())
     , duffy(singular_order, 1.0)
   {
+    AssertThrow(prepared.empty() || prepared.size() == cells.size(),
+                ExcDimensionMismatch(prepared.size(), cells.size()));
     const Quadrature<2> &outer_rule = rules.back();
     for (const Point<2> &p : outer_rule.get_points())
       coincident_rules.emplace_back(p, duffy);
@@ -142,18 +144,31 @@ namespace PlateOnHalfspace
                 data.nodes.begin();
               data.node_from_q2(a, i) += t.second;
             }
-
-        // The rules of most pairs are kept; the 5- and 6-point rules
-        // (pairs within 2.6 diameters) and the graded one (singular pairs,
-        // integrated once per configuration) are tabulated when needed:
-        // the graded one alone held 8 in 9 of the points, 0.9 GB at 77441
-        // nodes.
-        data.tables.reserve(n_stored_rules);
-        for (unsigned int r = 0; r < n_stored_rules; ++r)
-          data.tables.push_back(make_table(c, rules[r]));
       }
     for (const Point<2> &p : outer_rule.get_points())
       graded_phi.push_back(q2_shape_values(p));
+  }
+
+  const std::vector<CellPairIntegrator::Table> &
+  CellPairIntegrator::stored_tables(const unsigned int c) const
+  {
+    // The rules of most pairs are kept; the 5- and 6-point rules (pairs
+    // within 2.6 diameters) and the graded one (singular pairs, integrated
+    // once per configuration) are tabulated when needed: the graded one
+    // alone held 8 in 9 of the points, 0.9 GB at 77441 nodes. A cell's
+    // tables are made when a pair first needs them: the split kernel's
+    // near field takes most blocks from translated pairs and integrates
+    // few cells (doc/performance.md, "The build's transient blocks").
+    const CellData &data = cell_data[c];
+    std::call_once(data.tables_made, [&]() {
+      // made aside: a throw leaves the flag unset and the tables empty
+      std::vector<Table> tables;
+      tables.reserve(n_stored_rules);
+      for (unsigned int r = 0; r < n_stored_rules; ++r)
+        tables.push_back(make_table(c, rules[r]));
+      data.tables = std::move(tables);
+    });
+    return data.tables;
   }
 
   CellPairIntegrator::Table
@@ -598,8 +613,12 @@ namespace PlateOnHalfspace
     const double       rounded = std::round(separation * 1e6) * 1e-6;
     const unsigned int rule    = kernel.separated_points(rounded, accuracy) - 2;
     if (rule < n_stored_rules)
-      integrate_regular(
-        dk.tables[rule], dl.tables[rule], block, rows, columns, kernel);
+      integrate_regular(stored_tables(k)[rule],
+                        stored_tables(l)[rule],
+                        block,
+                        rows,
+                        columns,
+                        kernel);
     else
       integrate_regular(make_table(k, rules[rule]),
                         make_table(l, rules[rule]),

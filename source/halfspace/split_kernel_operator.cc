@@ -247,73 +247,121 @@ namespace PlateOnHalfspace
      * symmetric; symmetric_near_product() multiplies by it): row i holds
      * the nodes j >= i of every cell paired (a term, either way round)
      * with a cell that has node i, which are the entries the terms' blocks
-     * add. Built row by row in parallel.
+     * add.
      */
-    void
-    near_field_pattern(const CellPairIntegrator &integrator,
-                       const unsigned int        n_cells,
-                       const std::vector<Term>  &terms,
-                       const unsigned int        n_nodes,
-                       SparsityPattern          &sparsity)
+    class NearFieldGraph
     {
-      std::vector<std::vector<unsigned int>> partners(n_cells),
-        node_cells(n_nodes);
-      for (const Term &t : terms)
-        {
-          partners[t.first].push_back(t.cell);
-          if (t.cell != t.first)
-            partners[t.cell].push_back(t.first);
-        }
-      for (unsigned int c = 0; c < n_cells; ++c)
-        for (const unsigned int i : integrator.nodes(c))
-          node_cells[i].push_back(c);
-      // Rows in blocks, each block's columns in one list (a vector per row
-      // held half again as much, in many small blocks that stayed resident).
-      const unsigned int grain =
-        n_nodes / (4 * MultithreadInfo::n_threads()) + 1;
-      const unsigned int n_blocks = (n_nodes + grain - 1) / grain;
-      std::vector<std::vector<unsigned int>> block_columns(n_blocks);
-      std::vector<std::size_t>               row_end(n_nodes);
-      parallel::apply_to_subranges(
-        0u,
-        n_blocks,
-        [&](const unsigned int block_from, const unsigned int block_to) {
-          // the row that last took each column
-          std::vector<unsigned int> taken_by(n_nodes,
-                                             numbers::invalid_unsigned_int);
-          for (unsigned int b = block_from; b < block_to; ++b)
-            {
-              std::vector<unsigned int> &columns = block_columns[b];
-              for (unsigned int i = b * grain;
-                   i < std::min(n_nodes, (b + 1) * grain);
-                   ++i)
+    public:
+      NearFieldGraph(const CellPairIntegrator &integrator,
+                     const unsigned int        n_cells,
+                     const std::vector<Term>  &terms,
+                     const unsigned int        n_nodes)
+        : integrator(integrator)
+        , partners(n_cells)
+        , node_cells(n_nodes)
+      {
+        for (const Term &t : terms)
+          {
+            partners[t.first].push_back(t.cell);
+            if (t.cell != t.first)
+              partners[t.cell].push_back(t.first);
+          }
+        for (unsigned int c = 0; c < n_cells; ++c)
+          if (!partners[c].empty())
+            for (const unsigned int i : integrator.nodes(c))
+              node_cells[i].push_back(c);
+      }
+
+      /**
+       * The upper triangle's entries, counted on every k-th row (k such
+       * that about 4096 rows are counted) and scaled: the blocks the terms
+       * add overlap (neighbouring cells share nodes), so counting the
+       * blocks' entries overestimated the matrix several times over
+       * (7 times on a uniform mesh).
+       */
+      std::size_t
+      estimated_entries() const
+      {
+        const unsigned int        n    = node_cells.size();
+        const unsigned int        step = std::max(1u, n / 4096);
+        std::vector<unsigned int> taken_by(n, numbers::invalid_unsigned_int);
+        std::vector<unsigned int> columns;
+        std::size_t               counted = 0, rows = 0;
+        for (unsigned int i = 0; i < n; i += step, ++rows)
+          {
+            columns.clear();
+            add_row(i, taken_by, columns);
+            counted += columns.size();
+          }
+        return rows == 0 ? 0 : counted * n / rows;
+      }
+
+      /** Builds the pattern in blocks of rows, in parallel. */
+      void
+      make_pattern(SparsityPattern &sparsity) const
+      {
+        // Each block's columns in one list: a vector per row held half
+        // again as much, in many small blocks that stayed resident.
+        const unsigned int n_nodes = node_cells.size();
+        const unsigned int grain =
+          n_nodes / (4 * MultithreadInfo::n_threads()) + 1;
+        const unsigned int n_blocks = (n_nodes + grain - 1) / grain;
+        std::vector<std::vector<unsigned int>> block_columns(n_blocks);
+        std::vector<std::size_t>               row_end(n_nodes);
+        parallel::apply_to_subranges(
+          0u,
+          n_blocks,
+          [&](const unsigned int block_from, const unsigned int block_to) {
+            std::vector<unsigned int> taken_by(n_nodes,
+                                               numbers::invalid_unsigned_int);
+            for (unsigned int b = block_from; b < block_to; ++b)
+              {
+                std::vector<unsigned int> &columns = block_columns[b];
+                for (unsigned int i = b * grain;
+                     i < std::min(n_nodes, (b + 1) * grain);
+                     ++i)
+                  {
+                    const std::size_t row_start = columns.size();
+                    add_row(i, taken_by, columns);
+                    std::sort(columns.begin() + row_start, columns.end());
+                    row_end[i] = columns.size();
+                  }
+                columns.shrink_to_fit();
+              }
+          },
+          1);
+        std::vector<ArrayView<const unsigned int>> rows(n_nodes);
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          {
+            const std::vector<unsigned int> &columns = block_columns[i / grain];
+            const std::size_t start = i % grain == 0 ? 0 : row_end[i - 1];
+            rows[i]                 = make_array_view(columns.data() + start,
+                                      columns.data() + row_end[i]);
+          }
+        sparsity.copy_from(n_nodes, n_nodes, rows.begin(), rows.end());
+      }
+
+    private:
+      /** Appends row @p i's columns, unsorted; @p taken_by marks the row
+       *  that last took each column. */
+      void
+      add_row(const unsigned int         i,
+              std::vector<unsigned int> &taken_by,
+              std::vector<unsigned int> &columns) const
+      {
+        for (const unsigned int c : node_cells[i])
+          for (const unsigned int d : partners[c])
+            for (const unsigned int j : integrator.nodes(d))
+              if (j >= i && taken_by[j] != i)
                 {
-                  const std::size_t row_start = columns.size();
-                  for (const unsigned int c : node_cells[i])
-                    for (const unsigned int d : partners[c])
-                      for (const unsigned int j : integrator.nodes(d))
-                        if (j >= i && taken_by[j] != i)
-                          {
-                            taken_by[j] = i;
-                            columns.push_back(j);
-                          }
-                  std::sort(columns.begin() + row_start, columns.end());
-                  row_end[i] = columns.size();
+                  taken_by[j] = i;
+                  columns.push_back(j);
                 }
-              columns.shrink_to_fit();
-            }
-        },
-        1);
-      std::vector<ArrayView<const unsigned int>> rows(n_nodes);
-      for (unsigned int i = 0; i < n_nodes; ++i)
-        {
-          const std::vector<unsigned int> &columns = block_columns[i / grain];
-          const std::size_t start = i % grain == 0 ? 0 : row_end[i - 1];
-          rows[i]                 = make_array_view(columns.data() + start,
-                                    columns.data() + row_end[i]);
-        }
-      sparsity.copy_from(n_nodes, n_nodes, rows.begin(), rows.end());
-    }
+      }
+
+      const CellPairIntegrator              &integrator;
+      std::vector<std::vector<unsigned int>> partners, node_cells;
+    };
 
     using NearRowBlocks = std::array<unsigned int, 9>;
 
@@ -602,19 +650,19 @@ namespace PlateOnHalfspace
       settings.spline_order,
       [a = alpha, sigma](const double r) { return far_kernel(a, sigma, r); });
 
-    // The near field's memory before it is integrated: a strongly graded
-    // mesh puts (cutoff / h)^2 cells into the reach of each cell of size h
-    // below sigma.
+    // The near field's memory before its pattern is made: a strongly
+    // graded mesh puts (cutoff / h)^2 cells into the reach of each cell of
+    // size h below sigma.
     {
-      std::size_t entries = 0;
-      for (const Term &t : terms)
-        entries += (t.first == t.cell ? 1 : 2) *
-                   integrator.nodes(t.first).size() *
-                   integrator.nodes(t.cell).size();
+      const NearFieldGraph near_graph(integrator,
+                                      n_cells,
+                                      terms,
+                                      space.n_nodes());
+      const std::size_t    entries = near_graph.estimated_entries();
       // the upper triangle (diagonal included): a value and a column
-      // index in the matrix, and the pattern's copy
+      // index, and the column lists the pattern is copied from
       const std::size_t near_bytes =
-        (entries + space.n_nodes()) / 2 * (sizeof(double) + 8);
+        entries * (sizeof(double) + 2 * sizeof(unsigned int));
       // The soil inverse: one factor per node of its rule and M's, and
       // the shifted Laplacian.
       const std::size_t inverse_bytes =
@@ -656,13 +704,12 @@ namespace PlateOnHalfspace
             "node count (Discretization/Subdivisions x and y, "
             "Discretization/Initial refinements, Adaptivity/Max cells).");
         }
+      near_graph.make_pattern(near_sparsity);
     }
     const auto near_remainder = std::make_shared<MinusFarField>(alpha, sigma);
     const SurfaceKernel near_kernel(alpha, near_remainder);
     integrator.integrate_singular_pairs(singular, near_remainder.get());
 
-    near_field_pattern(
-      integrator, n_cells, terms, space.n_nodes(), near_sparsity);
     near_field.reinit(near_sparsity);
     near_row_blocks = PlateOnHalfspace::near_row_blocks(near_sparsity);
 

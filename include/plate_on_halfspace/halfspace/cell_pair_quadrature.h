@@ -63,11 +63,12 @@ namespace PlateOnHalfspace
   public:
     /**
      * Prepares the cells marked in @p prepared, all of them where it is
-     * empty: their nodes, their shape functions' expansions and their
-     * tables. Only prepared cells may be passed to the other functions
-     * (singular_pair() takes any). A caller that meets few of the cells
-     * saves the rest's tables: the split kernel's near field meets only
-     * the mirror images next to the mirror planes.
+     * empty: their nodes and their shape functions' expansions (a cell's
+     * Gauss tables are made when a pair first needs them). Only prepared
+     * cells may be passed to the other functions (singular_pair() takes
+     * any). A caller that meets few of the cells saves the rest: the
+     * split kernel's near field meets only the mirror images next to the
+     * mirror planes.
      */
     CellPairIntegrator(const std::vector<FoundationSpace::Cell> &cells,
                        const unsigned int                        singular_order,
@@ -199,10 +200,18 @@ namespace PlateOnHalfspace
     {
       std::vector<unsigned int> nodes;
       FullMatrix<double>        node_from_q2; ///< T, n_nodes x 9
-      std::vector<Table>        tables; ///< the first n_stored_rules rules
       Point<2>                  centre;
       double                    diameter;
+      /** The first n_stored_rules rules' tables, made at their first use
+       *  (stored_tables()). */
+      mutable std::vector<Table> tables;
+      mutable std::once_flag     tables_made;
     };
+
+    /** Cell @p c's tables on the first n_stored_rules rules; made by the
+     *  first caller, whichever thread it runs on. */
+    const std::vector<Table> &
+    stored_tables(const unsigned int c) const;
 
     /** The node shape functions of cell @p c on @p rule. */
     Table

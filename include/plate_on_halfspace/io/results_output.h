@@ -17,6 +17,7 @@
 
 #include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -215,6 +216,13 @@ namespace PlateOnHalfspace
       const std::function<bool(std::string &)> &next_part) const;
 
   private:
+    /** write_file()'s work: @p next_part points its argument at the next
+     *  part, which stays valid until the next call, and returns whether
+     *  more follow. */
+    void
+    write_parts(const std::string                             &name,
+                const std::function<bool(std::string_view &)> &next_part) const;
+
     /** On rank 0: creates, locks, checks and prepares the directory (the
      *  constructor's work). */
     void
