@@ -634,7 +634,7 @@ namespace PlateOnHalfspace
   ResultsOutput::write_file(const std::string &name,
                             const std::string &text) const
   {
-    write_file_in_parts(name, [&text](std::string &part) {
+    write_parts(name, [&text](std::string_view &part) {
       part = text;
       return false;
     });
@@ -644,6 +644,19 @@ namespace PlateOnHalfspace
   ResultsOutput::write_file_in_parts(
     const std::string                        &name,
     const std::function<bool(std::string &)> &next_part) const
+  {
+    std::string buffer;
+    write_parts(name, [&](std::string_view &part) {
+      const bool more = next_part(buffer);
+      part            = buffer;
+      return more;
+    });
+  }
+
+  void
+  ResultsOutput::write_parts(
+    const std::string                             &name,
+    const std::function<bool(std::string_view &)> &next_part) const
   {
     if (!writes_files())
       return;
@@ -673,8 +686,8 @@ namespace PlateOnHalfspace
     if (fd < 0)
       fail("Output directory: cannot write <" + shown +
            ">: " + error_text(errno) + ".");
-    int         e = 0;
-    std::string text;
+    int              e = 0;
+    std::string_view text;
     try
       {
         for (bool more = true; more && e == 0;)
