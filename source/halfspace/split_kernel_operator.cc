@@ -587,7 +587,7 @@ namespace PlateOnHalfspace
            }))
       terms.push_back({first, l});
     // Only the computed cells and the images that the terms meet (next to
-    // the mirror planes) need the integrator's tables.
+    // the mirror planes) need the integrator's nodes and expansions.
     std::vector<bool> met(n_cells, false);
     std::fill(met.begin(), met.begin() + n_computed, true);
     for (const Term &t : terms)

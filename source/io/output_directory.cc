@@ -634,7 +634,7 @@ namespace PlateOnHalfspace
   ResultsOutput::write_file(const std::string &name,
                             const std::string &text) const
   {
-    write_parts(name, [&text](std::string_view &part) {
+    write_file_in_parts(name, [&text](std::string_view &part) {
       part = text;
       return false;
     });
@@ -642,19 +642,6 @@ namespace PlateOnHalfspace
 
   void
   ResultsOutput::write_file_in_parts(
-    const std::string                        &name,
-    const std::function<bool(std::string &)> &next_part) const
-  {
-    std::string buffer;
-    write_parts(name, [&](std::string_view &part) {
-      const bool more = next_part(buffer);
-      part            = buffer;
-      return more;
-    });
-  }
-
-  void
-  ResultsOutput::write_parts(
     const std::string                             &name,
     const std::function<bool(std::string_view &)> &next_part) const
   {

@@ -503,8 +503,9 @@ namespace PlateOnHalfspace
     // scene, their distinct mirror images; written in parts of 4096 nodes
     // (at 10^5 nodes the whole text is 60 MB).
     unsigned int next = 0;
+    std::string  text;
     write_file_in_parts(
-      "nodes-" + two_digits(cycle) + ".csv", [&](std::string &part) {
+      "nodes-" + two_digits(cycle) + ".csv", [&](std::string_view &part) {
         std::ostringstream rows;
         rows << std::setprecision(10);
         if (next == 0)
@@ -516,7 +517,8 @@ namespace PlateOnHalfspace
             rows << x[0] << ',' << x[1] << ',' << contact.w[next] << ','
                  << contact.q[next] << ',' << contact.gap[next] << ','
                  << (contact.in_contact[next] ? 1 : 0) << '\n';
-        part = rows.str();
+        text = rows.str();
+        part = text;
         return next < space.n_nodes();
       });
 

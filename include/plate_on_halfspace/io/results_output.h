@@ -207,22 +207,16 @@ namespace PlateOnHalfspace
 
     /**
      * Write @p name as write_file() does, its text made part by part, so
-     * that a large file is never held whole: @p next_part sets its
-     * argument to the next part and returns whether more follow.
+     * that a large file is never held whole: @p next_part points its
+     * argument at the next part, which stays valid until the next call,
+     * and returns whether more follow.
      */
     void
     write_file_in_parts(
-      const std::string                        &name,
-      const std::function<bool(std::string &)> &next_part) const;
+      const std::string                             &name,
+      const std::function<bool(std::string_view &)> &next_part) const;
 
   private:
-    /** write_file()'s work: @p next_part points its argument at the next
-     *  part, which stays valid until the next call, and returns whether
-     *  more follow. */
-    void
-    write_parts(const std::string                             &name,
-                const std::function<bool(std::string_view &)> &next_part) const;
-
     /** On rank 0: creates, locks, checks and prepares the directory (the
      *  constructor's work). */
     void
