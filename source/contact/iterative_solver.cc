@@ -1,10 +1,13 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/thread_management.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
 #include <plate_on_halfspace/base/interruption.h>
+#include <plate_on_halfspace/base/single_threaded_blas.h>
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/iterative_solver.h>
 #include <plate_on_halfspace/contact/pressure_preconditioner.h>
@@ -14,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -22,6 +26,22 @@ namespace PlateOnHalfspace
 {
   namespace
   {
+    /**
+     * Whether the half-space's product is BLAS work that OpenBLAS's threads
+     * speed up: the dense storage's matrix-vector product over the whole
+     * matrix. The other storages' products are deal.II's tasks and FFTW
+     * (fft), sparse products (the dense liquid) or hmat-oss, which runs its
+     * BLAS on one thread anyway; the solve's other BLAS calls are the
+     * sparse factors' triangular solves, which a second BLAS thread slows
+     * down (base/single_threaded_blas.h; doc/performance.md, "BLAS threads
+     * in the contact solve").
+     */
+    bool
+    product_uses_blas_threads(const FoundationOperator &foundation)
+    {
+      return std::string(foundation.storage_name()) == "dense";
+    }
+
     /**
      * The reduced problem of one contact set C (see the header): H, d, G,
      * the projector onto ker G^T and the equilibrium start, all as vectors
@@ -211,10 +231,55 @@ namespace PlateOnHalfspace
       const Vector<double> q = extend_by_zero(x);
       Vector<double> forces(q.size()), plate_w, plate_settlement(q.size());
       soil.reinit(q.size());
-      foundation.apply(q, soil);
-      force_coupling.vmult(forces, q);
-      plate.foundation_flexibility(forces, plate_w);
-      test_coupling.vmult(plate_settlement, plate_w);
+      const auto plate_part = [&]() {
+        force_coupling.vmult(forces, q);
+        plate.foundation_flexibility(forces, plate_w);
+        test_coupling.vmult(plate_settlement, plate_w);
+      };
+      // The soil's product and the plate's triangular solves are
+      // independent: on one process they run side by side, each on its
+      // own data, so the sum is the same bits either way
+      // (doc/performance.md, "BLAS threads in the contact solve"). Only
+      // with OpenBLAS on one thread: a BLAS guard inside the product
+      // (hmat-oss's) then changes nothing while the plate's solves are in
+      // the BLAS. Not where the product wants the BLAS threads, and not on
+      // several processes, where each half may be collective.
+      if (n_ranks(MPI_COMM_WORLD) == 1 &&
+          !product_uses_blas_threads(foundation) &&
+          SingleThreadedBlas::in_effect())
+        {
+          // deal.II's Task<void>::join() does not rethrow the task's
+          // exception, so the task keeps it for this thread
+          std::exception_ptr  soil_failure;
+          Threads::Task<void> soil_product = Threads::new_task([&]() {
+            try
+              {
+                foundation.apply(q, soil);
+              }
+            catch (...)
+              {
+                soil_failure = std::current_exception();
+              }
+          });
+          try
+            {
+              plate_part();
+            }
+          catch (...)
+            {
+              // the task uses this frame's vectors: let it end first
+              soil_product.join();
+              throw;
+            }
+          soil_product.join();
+          if (soil_failure)
+            std::rethrow_exception(soil_failure);
+        }
+      else
+        {
+          foundation.apply(q, soil);
+          plate_part();
+        }
       y = soil;
       y += plate_settlement;
     }
@@ -528,6 +593,14 @@ namespace PlateOnHalfspace
       motion_loads[j] = motions[j] * load;
   }
 
+  std::unique_ptr<SingleThreadedBlas>
+  IterativeContactSolver::blas_on_one_thread() const
+  {
+    if (product_uses_blas_threads(*foundation))
+      return nullptr;
+    return std::make_unique<SingleThreadedBlas>();
+  }
+
   std::vector<bool>
   IterativeContactSolver::predict_contact_set(const ContactSeed &seed,
                                               ContactState      &state)
@@ -560,6 +633,9 @@ namespace PlateOnHalfspace
     preconditioner->use_contact_set(contact_set);
     state.factorization_time_s = preconditioner->factorization_time();
     state.factor_memory_bytes  = preconditioner->memory_consumption();
+    // after the preconditioner's factorisation, which gains from the
+    // BLAS threads
+    const auto single_threaded_blas            = blas_on_one_thread();
     std::unique_ptr<ContactSetProblem> problem = make_problem(contact_set);
     Vector<double>                     q(problem->size()), y_all, soil_all;
     if (seed.pressure.size() == n)
@@ -693,9 +769,11 @@ namespace PlateOnHalfspace
                                        ContactState            &state)
   {
     const unsigned int n = foundation->n_nodes();
+    // the guard after a factorisation that the set may need
     preconditioner->use_contact_set(contact_set);
-    state.factorization_time_s = preconditioner->factorization_time();
-    state.factor_memory_bytes  = preconditioner->memory_consumption();
+    const auto single_threaded_blas = blas_on_one_thread();
+    state.factorization_time_s      = preconditioner->factorization_time();
+    state.factor_memory_bytes       = preconditioner->memory_consumption();
     const ContactSetProblem  problem(contact_set,
                                     foundation->test_coupling(),
                                     foundation->force_coupling(),

@@ -273,8 +273,8 @@ namespace PlateOnHalfspace
         // u = G q in hmat-oss's numbering, back to the points'
         std::vector<double> y(row_order.size(), 0.);
         {
-          const HmatGlue::SingleThreadedBlas single_threaded_blas;
-          const double                       one = 1., zero = 0.;
+          const SingleThreadedBlas single_threaded_blas;
+          const double             one = 1., zero = 0.;
           check_hmat(
             hmat().gemm_dense(
               'N', 'N', 'L', &one, held.matrix, x.data(), &zero, y.data(), 1),

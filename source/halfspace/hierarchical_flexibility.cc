@@ -23,7 +23,6 @@ namespace PlateOnHalfspace
   using HmatGlue::CapturedStandardError;
   using HmatGlue::check_hmat;
   using HmatGlue::hmat;
-  using HmatGlue::SingleThreadedBlas;
   using HmatGlue::tolerance_advice;
 
   namespace

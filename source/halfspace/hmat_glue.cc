@@ -5,7 +5,6 @@
 
 #include <plate_on_halfspace/base/progress.h>
 
-#include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -311,25 +310,6 @@ namespace PlateOnHalfspace
       check_hmat(hmat().get_info(matrix, &info),
                  "reading the H-matrix statistics");
       return info;
-    }
-
-    SingleThreadedBlas::SingleThreadedBlas()
-      : set_threads(reinterpret_cast<void (*)(int)>(
-          dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
-      , get_threads(reinterpret_cast<int (*)()>(
-          dlsym(RTLD_DEFAULT, "openblas_get_num_threads")))
-    {
-      if (set_threads != nullptr && get_threads != nullptr)
-        {
-          previous = get_threads();
-          set_threads(1);
-        }
-    }
-
-    SingleThreadedBlas::~SingleThreadedBlas()
-    {
-      if (set_threads != nullptr && get_threads != nullptr)
-        set_threads(previous);
     }
 
     CapturedStandardError::CapturedStandardError()

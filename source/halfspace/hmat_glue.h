@@ -3,13 +3,15 @@
  * hmat-oss C interface and the assembly of the flexibility's H-matrix from
  * the cell-pair sum. A private header, so that hmat-oss stays out of the
  * public ones.
- *  - hmat_glue.cc: the interface object, status checks, BLAS threads;
+ *  - hmat_glue.cc: the interface object and status checks (BLAS runs on
+ *    one thread inside hmat-oss calls: base/single_threaded_blas.h);
  *  - hierarchical_assembly.cc: the block callbacks of the assembly and the
  *    exactly integrated rows of the accuracy check.
  */
 #ifndef plate_on_halfspace_source_halfspace_hmat_glue_h
 #define plate_on_halfspace_source_halfspace_hmat_glue_h
 
+#include <plate_on_halfspace/base/single_threaded_blas.h>
 #include <plate_on_halfspace/plate/foundation_space.h>
 
 #include <hmat/hmat.h>
@@ -48,31 +50,6 @@ namespace PlateOnHalfspace
     /** Statistics of an H-matrix (leaf counts, stored entries). */
     hmat_info_t
     info_of(hmat_matrix_t *matrix);
-
-    /**
-     * One BLAS thread while it lives. hmat-oss calls BLAS on many small
-     * blocks; OpenBLAS's pthreads busy-wait between such calls, which on
-     * a 2-core machine made the H-Cholesky 5 times and the product 4 times
-     * slower (5373 nodes: 10.6 s against 1.9 s) whenever anything else
-     * ran. hmat-oss's own switch for this is compiled out of Debian's
-     * build, so OpenBLAS's is looked up at run time (absent with another
-     * BLAS: then nothing to do). The dense LAPACK paths keep their threads.
-     */
-    class SingleThreadedBlas
-    {
-    public:
-      SingleThreadedBlas();
-      ~SingleThreadedBlas();
-
-      SingleThreadedBlas(const SingleThreadedBlas &) = delete;
-      SingleThreadedBlas &
-      operator=(const SingleThreadedBlas &) = delete;
-
-    private:
-      void (*const set_threads)(int);
-      int (*const get_threads)();
-      int previous = 1;
-    };
 
     /**
      * What hmat-oss writes to the standard error while it lives, kept
