@@ -42,6 +42,16 @@ namespace PlateOnHalfspace
       return std::string(foundation.storage_name()) == "dense";
     }
 
+    /** OpenBLAS on one thread for a solve on @p foundation, except where
+     *  its product gains from the threads: nullptr then. */
+    std::unique_ptr<SingleThreadedBlas>
+    blas_on_one_thread(const FoundationOperator &foundation)
+    {
+      if (product_uses_blas_threads(foundation))
+        return nullptr;
+      return std::make_unique<SingleThreadedBlas>();
+    }
+
     /**
      * The reduced problem of one contact set C (see the header): H, d, G,
      * the projector onto ker G^T and the equilibrium start, all as vectors
@@ -593,14 +603,6 @@ namespace PlateOnHalfspace
       motion_loads[j] = motions[j] * load;
   }
 
-  std::unique_ptr<SingleThreadedBlas>
-  IterativeContactSolver::blas_on_one_thread() const
-  {
-    if (product_uses_blas_threads(*foundation))
-      return nullptr;
-    return std::make_unique<SingleThreadedBlas>();
-  }
-
   std::vector<bool>
   IterativeContactSolver::predict_contact_set(const ContactSeed &seed,
                                               ContactState      &state)
@@ -635,7 +637,7 @@ namespace PlateOnHalfspace
     state.factor_memory_bytes  = preconditioner->memory_consumption();
     // after the preconditioner's factorisation, which gains from the
     // BLAS threads
-    const auto single_threaded_blas            = blas_on_one_thread();
+    const auto single_threaded_blas = blas_on_one_thread(*foundation);
     std::unique_ptr<ContactSetProblem> problem = make_problem(contact_set);
     Vector<double>                     q(problem->size()), y_all, soil_all;
     if (seed.pressure.size() == n)
@@ -771,7 +773,7 @@ namespace PlateOnHalfspace
     const unsigned int n = foundation->n_nodes();
     // the guard after a factorisation that the set may need
     preconditioner->use_contact_set(contact_set);
-    const auto single_threaded_blas = blas_on_one_thread();
+    const auto single_threaded_blas = blas_on_one_thread(*foundation);
     state.factorization_time_s      = preconditioner->factorization_time();
     state.factor_memory_bytes       = preconditioner->memory_consumption();
     const ContactSetProblem  problem(contact_set,

@@ -73,7 +73,6 @@ namespace PlateOnHalfspace
 
   class PlateGeneralizedInverse;
   class PressurePreconditioner;
-  class SingleThreadedBlas;
 
   /** Settings of the conjugate gradient iteration of each contact set. */
   struct ConjugateGradientControl
@@ -176,12 +175,6 @@ namespace PlateOnHalfspace
     final_tolerance() const override;
 
   private:
-    /** OpenBLAS on one thread for the solves (base/
-     *  single_threaded_blas.h), except where the half-space's product
-     *  gains from its threads (the dense storage): nullptr then. */
-    std::unique_ptr<SingleThreadedBlas>
-    blas_on_one_thread() const;
-
     const ConjugateGradientControl           control;
     std::unique_ptr<PressurePreconditioner>  preconditioner;
     std::unique_ptr<PlateGeneralizedInverse> inverse;
