@@ -2,8 +2,11 @@
 # A tensionless scene on one and on several MPI processes (doc/parallel.md,
 # doc/performance.md "Distributed runs"): the paper's example 2 made
 # Galerkin + active set on the quarter plate of a uniform mesh with N x N
-# cells (n = 3 N^2 + 4 N + 1 foundation nodes; N = 182: n = 100101),
-# hierarchical storage and the iterative solver.
+# cells (n = 3 N^2 + 4 N + 1 foundation nodes; N = 182: n = 100101)
+# and the iterative solver, with the storage STORAGE from the environment:
+# hierarchical (the default; rows split, block-Jacobi) or fft (near
+# pairs and far-field charges split, the soil inverse whole on every
+# rank).
 #
 # Without PARTS, three runs:
 #   serial  the program alone, as one process with deal.II's threads on
@@ -20,13 +23,18 @@
 # processes sharing the cores (--oversubscribe): how the block-Jacobi
 # preconditioner's conjugate gradient iterations grow with the number of
 # METIS parts, and each rank's memory with it. Its wall times mean nothing.
-# usage: bash benchmarks/mpi_scaling.sh [build/plate-on-halfspace] [N] [PARTS...]
+# usage: [STORAGE=fft] bash benchmarks/mpi_scaling.sh [build/plate-on-halfspace] [N] [PARTS...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 program=$(realpath "${1:-build/plate-on-halfspace}")
 cells=${2:-182}
 shift $(($# < 2 ? $# : 2))
 runs=("$@")
+storage=${STORAGE:-hierarchical}
+case $storage in
+  hierarchical | fft) ;;
+  *) echo "STORAGE must be hierarchical or fft, not '$storage'" >&2; exit 2 ;;
+esac
 [ ${#runs[@]} = 0 ] && runs=(serial 1 2)
 if [ "$(id -u)" = 0 ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -49,7 +57,7 @@ subsection Contact
   set Solver = iterative
 end
 subsection Foundation operator
-  set Storage = hierarchical
+  set Storage = $storage
 end
 subsection Adaptivity
   set Cycles    = 1
@@ -103,7 +111,7 @@ if runs[0] != "serial":
               f"| {max(r['peaks']):.0f} |")
     sys.exit(0)
 print("| run | n | nodes per rank | wall [s] | integration [s] | compression [s] "
-      "| H-Cholesky [s] | contact solve [s] | active-set steps | CG its (last step) "
+      "| factorisation [s] | contact solve [s] | active-set steps | CG its (last step) "
       "| peak memory per rank [MB] |")
 print("|---|---|---|---|---|---|---|---|---|---|---|")
 for p, r in rows.items():

@@ -672,7 +672,7 @@ namespace PlateOnHalfspace
     using Storage      = Parameters::FoundationOperator::Storage;
     fft_unsuited_cycle = false;
     if (parameters.foundation_operator.storage == Storage::automatic &&
-        parameters.foundation_storage(n, n_ranks(communicator)) == Storage::fft)
+        parameters.foundation_storage(n) == Storage::fft)
       {
         const std::string obstacle =
           split_kernel_mesh_obstacle(mindlin_plate->get_foundation_space());
@@ -859,8 +859,7 @@ namespace PlateOnHalfspace
     using Storage = Parameters::FoundationOperator::Storage;
     if (direct_after_failed_iterations || direct_for_flexible_plate_cycle)
       return Storage::dense;
-    const Storage storage =
-      parameters.foundation_storage(n_foundation_nodes, n_ranks(communicator));
+    const Storage storage = parameters.foundation_storage(n_foundation_nodes);
     return storage == Storage::fft &&
                (hierarchical_after_fft_did_not_fit || fft_unsuited_cycle) ?
              Storage::hierarchical :
@@ -895,8 +894,7 @@ namespace PlateOnHalfspace
     if (parameters.contact.solver != Parameters::Contact::Solver::automatic ||
         parameters.foundation_operator.storage != Storage::automatic)
       return false;
-    const Storage storage =
-      parameters.foundation_storage(n_foundation_nodes, n_ranks(communicator));
+    const Storage storage = parameters.foundation_storage(n_foundation_nodes);
     if (!Parameters::FoundationOperator::compressed(storage))
       return false;
     // a tenth of the accepted floor: the estimate is good to a factor ten

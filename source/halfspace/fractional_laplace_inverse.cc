@@ -166,7 +166,8 @@ namespace PlateOnHalfspace
     const SparseMatrix<double> &laplace,
     const double                alpha,
     const double                area,
-    const SparseCholesky       &analysis)
+    const SparseCholesky       &analysis,
+    const MPI_Comm              communicator)
     : shifted(mass.get_sparsity_pattern())
     , mass_factor(std::make_unique<SparseCholesky>(
         "the mass matrix of the pressure nodes"))
@@ -213,17 +214,24 @@ namespace PlateOnHalfspace
     // The poles' factors are the preconditioner's memory: refuse before
     // allocating them rather than be stopped by the system halfway.
     {
-      const std::size_t needed    = rule.t.size() * analysis.factor_bytes();
-      const std::size_t available = available_memory_bytes();
-      if (available > 0 && needed > available)
+      const MemoryOnMachine memory =
+        memory_on_machine(rule.t.size() * analysis.factor_bytes(),
+                          communicator);
+      if (!memory.fits)
         {
           std::ostringstream text;
           text << std::setprecision(3)
                << "Contact/Preconditioner = soil inverse with Foundation "
                   "operator/Storage = fft: the fractional soil inverse's "
                << rule.t.size() << " sparse factors on " << n
-               << " pressure nodes need about " << needed / 1073741824.
-               << " GiB, but only " << available / 1073741824.
+               << " pressure nodes need about "
+               << rule.t.size() * analysis.factor_bytes() / 1073741824.
+               << " GiB";
+          if (memory.ranks > 1)
+            text << " on each process, " << memory.needed / 1073741824.
+                 << " GiB for the " << memory.ranks
+                 << " processes on its machine together";
+          text << ", but only " << memory.available / 1073741824.
                << " GiB are available. ";
           throw StorageDoesNotFit(
             text.str(),

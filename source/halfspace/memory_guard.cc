@@ -1,5 +1,7 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 
 #include <cstdlib>
@@ -66,6 +68,31 @@ namespace PlateOnHalfspace
           available = bytes;
       }
     return available;
+  }
+
+  MemoryOnMachine
+  memory_on_machine(const std::size_t needed, const MPI_Comm communicator)
+  {
+    MemoryOnMachine memory;
+    memory.needed    = needed;
+    memory.available = available_memory_bytes();
+    if (n_ranks(communicator) > 1)
+      {
+        MPI_Comm  machine;
+        const int error = MPI_Comm_split_type(
+          communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
+        AssertThrowMPI(error);
+        memory.needed = dealii::Utilities::MPI::sum(needed, machine);
+        memory.available =
+          dealii::Utilities::MPI::min(memory.available, machine);
+        memory.ranks = n_ranks(machine);
+        MPI_Comm_free(&machine);
+      }
+    const bool short_here =
+      memory.available > 0 && memory.needed > memory.available;
+    memory.fits =
+      dealii::Utilities::MPI::max(short_here ? 1u : 0u, communicator) == 0u;
+    return memory;
   }
 
   std::string

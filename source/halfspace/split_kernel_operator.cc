@@ -7,6 +7,7 @@
 #include <boost/container_hash/hash.hpp>
 
 #include <plate_on_halfspace/base/sparse_cholesky.h>
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
 #include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
@@ -540,6 +541,21 @@ namespace PlateOnHalfspace
       CellPairSummation::cells_with_images(space);
     n_computed                 = space.cells.size();
     const unsigned int n_cells = cells.size();
+    // On several processes a rank takes the cells whose first node it
+    // owns: their near pairs, far-field charges and tests (the header).
+    communicator     = space.communicator;
+    const bool split = n_ranks(communicator) > 1;
+    own_node.assign(space.n_nodes(), true);
+    if (split)
+      for (unsigned int j = 0; j < space.n_nodes(); ++j)
+        own_node[j] = space.owned_nodes.is_element(j);
+    own_cell.assign(n_computed, true);
+    if (split)
+      for (unsigned int c = 0; c < n_computed; ++c)
+        {
+          const std::vector<unsigned int> nodes = space.cells[c].nodes();
+          own_cell[c] = !nodes.empty() && own_node[nodes[0]];
+        }
 
     // The split length: the median cell size, so that most cells meet
     // their near field within a few neighbours; the grid no finer than 64
@@ -585,7 +601,8 @@ namespace PlateOnHalfspace
                       0.5 * (diameters[first] + diameters[l]) <
                     cutoff;
            }))
-      terms.push_back({first, l});
+      if (own_cell[first])
+        terms.push_back({first, l});
     // Only the computed cells and the images that the terms meet (next to
     // the mirror planes) need the integrator's nodes and expansions.
     std::vector<bool> met(n_cells, false);
@@ -601,7 +618,23 @@ namespace PlateOnHalfspace
         singular.emplace_back(t.first, t.cell);
 
     // The far field: Gauss points on every cell, more on cells larger
-    // than sigma (its quadrature error grows with size / sigma).
+    // than sigma (its quadrature error grows with size / sigma). On
+    // several processes only on the cells a rank spreads and tests, and
+    // on those that flexibility_diagonal() needs for its own nodes' basis
+    // functions.
+    std::vector<bool> tabulated(own_cell);
+    if (split)
+      {
+        std::vector<bool> near_own(own_node);
+        if (positive_basis)
+          for (unsigned int j = 0; j < transform.m(); ++j)
+            for (auto t = transform.begin(j); t != transform.end(j); ++t)
+              if (own_node[t->column()])
+                near_own[j] = true;
+        for (unsigned int c = 0; c < n_computed; ++c)
+          for (const unsigned int j : integrator.nodes(c))
+            tabulated[c] = tabulated[c] || near_own[j];
+      }
     far_points.assign(n_computed, CellPoints());
     std::vector<unsigned int>         points_1d(n_computed);
     std::map<unsigned int, QGauss<2>> rules;
@@ -620,19 +653,21 @@ namespace PlateOnHalfspace
       n_computed,
       [&](const unsigned int from, const unsigned int to) {
         for (unsigned int c = from; c < to; ++c)
-          {
-            CellPoints &cp = far_points[c];
-            cp.nodes       = integrator.nodes(c);
-            integrator.tabulate(c,
-                                rules.at(points_1d[c]),
-                                cp.points,
-                                cp.weighted_values);
-          }
+          if (tabulated[c])
+            {
+              CellPoints &cp = far_points[c];
+              cp.nodes       = integrator.nodes(c);
+              integrator.tabulate(c,
+                                  rules.at(points_1d[c]),
+                                  cp.points,
+                                  cp.weighted_values);
+            }
       },
       256);
     std::size_t n_points = 0;
-    for (const CellPoints &cp : far_points)
-      n_points += cp.points.size();
+    for (unsigned int c = 0; c < n_computed; ++c)
+      if (own_cell[c])
+        n_points += far_points[c].points.size();
     // The grid is symmetric about its centre: on the mirror planes, so
     // that the images' charges are the reflected grid charges.
     Point<2> centre = 0.5 * (low + high);
@@ -673,12 +708,14 @@ namespace PlateOnHalfspace
               inverse_analysis->factor_bytes() +
             laplace.memory_consumption() :
           0;
-      const std::size_t needed    = near_bytes + inverse_bytes;
-      const std::size_t available = available_memory_bytes();
-      double            finest    = std::numeric_limits<double>::max();
+      // On several processes the ranks on one machine share its memory,
+      // and all ranks decide alike (Storage = auto falls back on all).
+      const MemoryOnMachine memory =
+        memory_on_machine(near_bytes + inverse_bytes, communicator);
+      double finest = std::numeric_limits<double>::max();
       for (const auto &cell : space.cells)
         finest = std::min(finest, std::sqrt(cell.geometry.area()));
-      if (available > 0 && needed > available)
+      if (!memory.fits)
         {
           std::ostringstream text;
           text << std::setprecision(3)
@@ -691,8 +728,15 @@ namespace PlateOnHalfspace
                  << inverse_bytes / 1073741824.
                  << " GiB (none with Contact/Preconditioner = plate on "
                     "springs)";
-          text << ", but only " << available / 1073741824.
-               << " GiB are available. ";
+          if (memory.ranks > 1)
+            text << " on this process, " << memory.needed / 1073741824.
+                 << " GiB for the " << memory.ranks
+                 << " processes on its machine together";
+          text << ", but only " << memory.available / 1073741824.
+               << " GiB are available";
+          if (n_ranks(communicator) > 1)
+            text << " (on this or another of the run's machines)";
+          text << ". ";
           if (finest < 0.25 * sigma)
             text << "The kernel is split at sigma = " << sigma
                  << ", the median cell size, and the cells down to " << finest
@@ -864,15 +908,18 @@ namespace PlateOnHalfspace
           row_grain);
       }
 
-    chosen.sigma             = sigma;
-    chosen.spacing           = spacing;
-    chosen.cutoff            = cutoff;
-    chosen.spline_order      = settings.spline_order;
-    chosen.grid_nodes        = grid->n_grid_nodes();
-    chosen.near_entries      = near_sparsity.n_nonzero_elements();
-    chosen.near_pairs        = terms.size();
-    chosen.translated_pairs  = shared;
-    chosen.quadrature_points = n_points;
+    chosen.sigma        = sigma;
+    chosen.spacing      = spacing;
+    chosen.cutoff       = cutoff;
+    chosen.spline_order = settings.spline_order;
+    chosen.grid_nodes   = grid->n_grid_nodes();
+    // each rank holds its own pairs: the pairs and points summed over the
+    // ranks, the entries the most one rank holds (the report's)
+    chosen.near_entries =
+      Utilities::MPI::max(near_sparsity.n_nonzero_elements(), communicator);
+    chosen.near_pairs        = Utilities::MPI::sum(terms.size(), communicator);
+    chosen.translated_pairs  = Utilities::MPI::sum(shared, communicator);
+    chosen.quadrature_points = Utilities::MPI::sum(n_points, communicator);
   }
 
   void
@@ -897,18 +944,19 @@ namespace PlateOnHalfspace
             parts[part]       = grid->new_field();
             const auto [b, e] = part_range(part);
             for (std::size_t c = b; c < e; ++c)
-              {
-                const CellPoints  &cp = far_points[c];
-                const unsigned int n  = cp.nodes.size();
-                for (unsigned int q = 0; q < cp.points.size(); ++q)
-                  {
-                    double charge = 0;
-                    for (unsigned int a = 0; a < n; ++a)
-                      charge +=
-                        cp.weighted_values[q * n + a] * values[cp.nodes[a]];
-                    grid->spread(cp.points[q], charge, parts[part].data());
-                  }
-              }
+              if (own_cell[c])
+                {
+                  const CellPoints  &cp = far_points[c];
+                  const unsigned int n  = cp.nodes.size();
+                  for (unsigned int q = 0; q < cp.points.size(); ++q)
+                    {
+                      double charge = 0;
+                      for (unsigned int a = 0; a < n; ++a)
+                        charge +=
+                          cp.weighted_values[q * n + a] * values[cp.nodes[a]];
+                      grid->spread(cp.points[q], charge, parts[part].data());
+                    }
+                }
           }
       },
       1);
@@ -916,6 +964,8 @@ namespace PlateOnHalfspace
     for (unsigned int part = 1; part < n_parts; ++part)
       for (std::size_t k = 0; k < charges.size(); ++k)
         charges[k] += parts[part][k];
+    // the other ranks' cells' charges
+    sum_shared_entries_over_ranks(make_array_view(charges), communicator);
     // The mirror images carry the same pressure at the reflected points
     // (doc/formulation.md, "Symmetry").
     grid->add_reflections(charges, reflections);
@@ -928,24 +978,26 @@ namespace PlateOnHalfspace
       n_computed,
       [&](const unsigned int from, const unsigned int to) {
         for (unsigned int c = from; c < to; ++c)
-          {
-            const CellPoints &cp = far_points[c];
-            at_points[c].resize(cp.points.size());
-            for (unsigned int q = 0; q < cp.points.size(); ++q)
-              at_points[c][q] =
-                grid->interpolate(cp.points[q], potentials.data());
-          }
+          if (own_cell[c])
+            {
+              const CellPoints &cp = far_points[c];
+              at_points[c].resize(cp.points.size());
+              for (unsigned int q = 0; q < cp.points.size(); ++q)
+                at_points[c][q] =
+                  grid->interpolate(cp.points[q], potentials.data());
+            }
       },
       256);
     for (unsigned int c = 0; c < n_computed; ++c)
-      {
-        const CellPoints  &cp = far_points[c];
-        const unsigned int n  = cp.nodes.size();
-        for (unsigned int q = 0; q < cp.points.size(); ++q)
-          for (unsigned int a = 0; a < n; ++a)
-            settlement[cp.nodes[a]] +=
-              cp.weighted_values[q * n + a] * at_points[c][q];
-      }
+      if (own_cell[c])
+        {
+          const CellPoints  &cp = far_points[c];
+          const unsigned int n  = cp.nodes.size();
+          for (unsigned int q = 0; q < cp.points.size(); ++q)
+            for (unsigned int a = 0; a < n; ++a)
+              settlement[cp.nodes[a]] +=
+                cp.weighted_values[q * n + a] * at_points[c][q];
+        }
   }
 
   void
@@ -955,6 +1007,8 @@ namespace PlateOnHalfspace
     settlement.reinit(values.size());
     symmetric_near_product(near_field, near_row_blocks, values, settlement);
     apply_far_field(values, settlement);
+    // each rank's near pairs and far-field tests (the header)
+    sum_shared_entries_over_ranks(make_array_view(settlement), communicator);
   }
 
   void
@@ -996,6 +1050,8 @@ namespace PlateOnHalfspace
           {
             const CellPoints  &cp        = far_points[c];
             const unsigned int n_nodes_c = cp.nodes.size();
+            if (cp.points.empty())
+              continue; // not tabulated on this rank
             // QGauss<2> is the tensor rule, x fastest (point i + m j)
             const auto m = static_cast<unsigned int>(
               std::lround(std::sqrt(double(cp.points.size()))));
@@ -1063,6 +1119,13 @@ namespace PlateOnHalfspace
             for (const auto &[j, tj] : columns[i])
               for (const auto &[k, tk] : columns[i])
                 sum += tj * tk * near_field.el(std::min(j, k), std::max(j, k));
+            // the far part from the rank owning i (its cells are
+            // tabulated), the near part from each rank's pairs
+            if (!own_node[i])
+              {
+                diagonal[i] = sum;
+                continue;
+              }
             // the far part: basis function i's lumped weights per cell
             support.clear();
             for (const auto &column_entry : columns[i])
@@ -1120,6 +1183,7 @@ namespace PlateOnHalfspace
           }
       },
       256);
+    sum_shared_entries_over_ranks(make_array_view(diagonal), communicator);
     return diagonal;
   }
 
@@ -1173,7 +1237,7 @@ namespace PlateOnHalfspace
     if (!inverse_analysis)
       analyze_inverse_pattern();
     auto on_values = std::make_unique<FractionalLaplaceInverse>(
-      mass, laplace, alpha, plate_area, *inverse_analysis);
+      mass, laplace, alpha, plate_area, *inverse_analysis, communicator);
     if (!positive_basis)
       return on_values;
     return std::make_unique<InverseInPressureBasis>(
@@ -1210,6 +1274,10 @@ namespace PlateOnHalfspace
          << chosen.grid_nodes << " nodes (spacing " << chosen.spacing
          << ", B-splines of order " << chosen.spline_order << ", FFT "
          << grid->fft_sizes()[0] << " x " << grid->fft_sizes()[1] << ")";
+    if (n_ranks(communicator) > 1)
+      text << "; on " << n_ranks(communicator)
+           << " processes, each holding the near pairs and far-field "
+              "charges of its own cells (the entries: the most any holds)";
     return text.str();
   }
 

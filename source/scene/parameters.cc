@@ -562,9 +562,9 @@ namespace PlateOnHalfspace
                         "in the cycles with at least Hierarchical from "
                         "foundation nodes where the scene allows it (the "
                         "conditions above, Contact/Solver not direct) fft "
-                        "for the homogeneous half-space on one process on "
-                        "a mesh of cells of similar size, hierarchical "
-                        "for a layered soil, on several processes, on "
+                        "for the homogeneous half-space on a mesh of "
+                        "cells of similar size (on any number of "
+                        "processes), hierarchical for a layered soil, on "
                         "graded meshes or where fft does not fit the "
                         "memory; dense otherwise.");
       prm.declare_entry(

@@ -265,8 +265,8 @@ namespace PlateOnHalfspace
   }
 
   Parameters::FoundationOperator::Storage
-  SceneParameters::foundation_storage(const unsigned int n_foundation_nodes,
-                                      const unsigned int n_processes) const
+  SceneParameters::foundation_storage(
+    const unsigned int n_foundation_nodes) const
   {
     using Storage = Parameters::FoundationOperator::Storage;
     if (foundation.model == Parameters::Foundation::Model::dense_liquid)
@@ -277,11 +277,10 @@ namespace PlateOnHalfspace
     if (!allowed || n_foundation_nodes < foundation_operator.hierarchical_from)
       return Storage::dense;
     // doc/performance.md, "Which storage auto picks": the split kernel is
-    // the faster compressed operator on one process; it holds the
-    // homogeneous half-space only, and every process would hold and apply
-    // all of it, where the hierarchical rows are split between them.
-    return foundation.model == Parameters::Foundation::Model::half_space &&
-               n_processes == 1 ?
+    // the faster compressed operator, on one process and on several, where
+    // its preconditioner's iterations do not grow with the processes; it
+    // holds the homogeneous half-space only.
+    return foundation.model == Parameters::Foundation::Model::half_space ?
              Storage::fft :
              Storage::hierarchical;
   }
@@ -292,7 +291,7 @@ namespace PlateOnHalfspace
     using Solver = Parameters::Contact::Solver;
     if (contact.solver != Solver::automatic)
       return contact.solver;
-    return foundation_storage(n_foundation_nodes, 1) ==
+    return foundation_storage(n_foundation_nodes) ==
                Parameters::FoundationOperator::Storage::dense ?
              Solver::direct :
              Solver::iterative;

@@ -9,6 +9,9 @@
 #  - hierarchical: the same with the flexibility's rows split over the
 #    ranks as H-matrices (Tolerance 1e-11) and block-Jacobi, 1e-8: the
 #    difference is the compression's (1.2e-8 at 1e-10, 1.5e-9 at 1e-11).
+#  - fft: the same with the split-kernel storage, each rank's near pairs
+#    and far-field charges on that rank and the products summed over the
+#    ranks, 1e-8: the same operator in another order of summation.
 # The tensionless runs also write solution-00.vtu, the ranks' cells into
 # one file together: compare_vtu.py finds each cell of the one-process file
 # in it with the same values (Float32: 1e-6).
@@ -25,13 +28,14 @@ storage_of() {
   case $1 in
     tensionless) echo "set Storage = dense" ;;
     hierarchical) printf 'set Storage = hierarchical\n  set Tolerance = 1e-11' ;;
+    fft) echo "set Storage = fft" ;;
   esac
 }
 vtu_of() {
   [ "$1" = tensionless ] && echo true || echo false
 }
 status=0
-for scene in tensionless hierarchical; do
+for scene in tensionless hierarchical fft; do
   for p in 1 2 4; do
     cat >$scene-$p.prm <<PRM
 include $scenes/example2.prm

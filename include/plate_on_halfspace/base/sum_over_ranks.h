@@ -1,9 +1,11 @@
 /**
- * The one reduction of a run on several processes (doc/parallel.md): a
+ * The reductions of a run on several processes (doc/parallel.md): a
  * vector whose entries each rank filled for its own rows (zero elsewhere)
  * becomes the whole vector on every rank. Each entry is one rank's value
  * plus zeros, so every rank gets the same bits whatever the order of the
- * sum.
+ * sum. Where several ranks add to one entry (sum_shared_entries_over_ranks()),
+ * one rank sums and sends the result to all, for the same reason: every
+ * rank must take the same contact decisions from the same bits.
  */
 #ifndef plate_on_halfspace_base_sum_over_ranks_h
 #define plate_on_halfspace_base_sum_over_ranks_h
@@ -45,6 +47,35 @@ namespace PlateOnHalfspace
                                                                 view.size()),
                                 communicator,
                                 view);
+  }
+
+  /**
+   * @p v summed over the ranks of @p communicator, in place, where
+   * several ranks hold parts of one entry: summed on rank 0 and broadcast,
+   * so that every rank holds the same bits (an all-reduce promises that
+   * only for the sum_over_ranks() case).
+   */
+  inline void
+  sum_shared_entries_over_ranks(const dealii::ArrayView<double> &v,
+                                const MPI_Comm                   communicator)
+  {
+    if (n_ranks(communicator) == 1 || v.size() == 0)
+      return;
+    const int count = static_cast<int>(v.size());
+    AssertThrow(static_cast<std::size_t>(count) == v.size(),
+                dealii::ExcMessage("sum_shared_entries_over_ranks: more "
+                                   "entries than one MPI message holds"));
+    const bool root  = rank_in(communicator) == 0;
+    int        error = MPI_Reduce(root ? MPI_IN_PLACE : v.data(),
+                           v.data(),
+                           count,
+                           MPI_DOUBLE,
+                           MPI_SUM,
+                           0,
+                           communicator);
+    AssertThrowMPI(error);
+    error = MPI_Bcast(v.data(), count, MPI_DOUBLE, 0, communicator);
+    AssertThrowMPI(error);
   }
 } // namespace PlateOnHalfspace
 

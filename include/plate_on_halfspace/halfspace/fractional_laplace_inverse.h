@@ -47,13 +47,16 @@ namespace PlateOnHalfspace
      * (SparseCholesky::analyze()), which every factor shares. Throws
      * StorageDoesNotFit (halfspace/memory_guard.h) before the poles'
      * factors are allocated if they need more than
-     * available_memory_bytes().
+     * available_memory_bytes(); on several processes, each holding the
+     * whole inverse, the ranks of @p communicator decide that together
+     * (memory_on_machine()), and the constructor is collective.
      */
     FractionalLaplaceInverse(const SparseMatrix<double> &mass,
                              const SparseMatrix<double> &laplace,
                              const double                alpha,
                              const double                area,
-                             const SparseCholesky       &analysis);
+                             const SparseCholesky       &analysis,
+                             const MPI_Comm communicator = MPI_COMM_SELF);
     ~FractionalLaplaceInverse() override;
 
     void

@@ -9,6 +9,8 @@
 #ifndef plate_on_halfspace_halfspace_memory_guard_h
 #define plate_on_halfspace_halfspace_memory_guard_h
 
+#include <mpi.h>
+
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -54,6 +56,23 @@ namespace PlateOnHalfspace
    */
   std::size_t
   available_memory_bytes();
+
+  /**
+   * Whether each rank's @p needed bytes fit, decided by all ranks of
+   * @p communicator alike: the ranks that share a machine add their needs
+   * and compare them with the least available_memory_bytes() any of them
+   * reads; the answer is no if any machine is short. On one process:
+   * @p needed against available_memory_bytes(). Collective.
+   */
+  struct MemoryOnMachine
+  {
+    bool         fits      = true;
+    std::size_t  needed    = 0; ///< this machine's ranks together
+    std::size_t  available = 0; ///< on this machine (0: unknown)
+    unsigned int ranks     = 1; ///< ranks on this machine
+  };
+  MemoryOnMachine
+  memory_on_machine(const std::size_t needed, const MPI_Comm communicator);
 
   /**
    * "" if dense_foundation_bytes() fits available_memory_bytes(); otherwise

@@ -26,7 +26,13 @@
  * Like the hierarchical storage: no element exclusion, no direct solver
  * (no dense block), the homogeneous half-space only (a layered soil's
  * remainder would join the far field once its grid resolves the top
- * layer). On several processes every rank holds the whole operator.
+ * layer).
+ *
+ * On several processes each rank integrates and holds the near field of
+ * its own cells' pairs and spreads and tests the far field on its own
+ * cells; a product sums the ranks' grid charges and their settlements
+ * (doc/parallel.md, "The fft storage on several processes"). The grid's
+ * convolution and the approximate inverse are whole on every rank.
  */
 #ifndef plate_on_halfspace_halfspace_split_kernel_operator_h
 #define plate_on_halfspace_halfspace_split_kernel_operator_h
@@ -144,8 +150,17 @@ namespace PlateOnHalfspace
     const std::shared_ptr<const ElasticSoil> elastic;
     const double                             tolerance;
     const bool                               soil_inverse_used;
-    double                                   alpha      = 0;
-    unsigned int                             n_computed = 0;
+    /** The ranks sharing the mesh (FoundationSpace::communicator). */
+    MPI_Comm communicator = MPI_COMM_SELF;
+    /** Per computed cell: whether this rank spreads and tests its far
+     *  field and integrates its near pairs (the rank owning the cell's
+     *  first node; all on one process). */
+    std::vector<bool> own_cell;
+    /** Per foundation node: whether this rank owns it (all on one
+     *  process); its flexibility_diagonal() entry's far part. */
+    std::vector<bool> own_node;
+    double            alpha      = 0;
+    unsigned int      n_computed = 0;
     /** Per computed cell (the images' charges are the reflected grid's). */
     std::vector<CellPoints> far_points;
     /** The scene's reflections (MirrorSymmetry::reflections()). */

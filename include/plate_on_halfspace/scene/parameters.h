@@ -450,15 +450,14 @@ namespace PlateOnHalfspace
 
     /**
      * The storage of the foundation operator in a cycle with
-     * @p n_foundation_nodes nodes on @p n_processes MPI processes: dense,
-     * hierarchical or fft for an elastic soil (Foundation operator/Storage,
-     * with auto resolved: dense below Hierarchical from, above it fft for
-     * the homogeneous half-space on one process, hierarchical otherwise),
-     * sparse for the dense liquid.
+     * @p n_foundation_nodes nodes: dense, hierarchical or fft for an
+     * elastic soil (Foundation operator/Storage, with auto resolved: dense
+     * below Hierarchical from, above it fft for the homogeneous
+     * half-space, hierarchical otherwise), sparse for the dense liquid.
+     * The same on any number of MPI processes.
      */
     Parameters::FoundationOperator::Storage
-    foundation_storage(const unsigned int n_foundation_nodes,
-                       const unsigned int n_processes) const;
+    foundation_storage(const unsigned int n_foundation_nodes) const;
 
     /** The contact solver of such a cycle: direct or iterative
      *  (Contact/Solver, with auto resolved; iterative unless the
