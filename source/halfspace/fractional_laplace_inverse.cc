@@ -226,13 +226,7 @@ namespace PlateOnHalfspace
                << rule.t.size() << " sparse factors on " << n
                << " pressure nodes need about "
                << rule.t.size() * analysis.factor_bytes() / 1073741824.
-               << " GiB";
-          if (memory.ranks > 1)
-            text << " on each process, " << memory.needed / 1073741824.
-                 << " GiB for the " << memory.ranks
-                 << " processes on its machine together";
-          text << ", but only " << memory.available / 1073741824.
-               << " GiB are available. ";
+               << " GiB" << machine_shortfall_text(memory) << ' ';
           throw StorageDoesNotFit(
             text.str(),
             "Use Contact/Preconditioner = plate on springs, or reduce the "

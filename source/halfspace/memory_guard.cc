@@ -96,6 +96,23 @@ namespace PlateOnHalfspace
   }
 
   std::string
+  machine_shortfall_text(const MemoryOnMachine &memory)
+  {
+    std::ostringstream text;
+    text << std::setprecision(3);
+    if (memory.ranks > 1)
+      text << " on each process, " << memory.needed / 1073741824.
+           << " GiB for the " << memory.ranks
+           << " processes on its machine together";
+    text << ", but only " << memory.available / 1073741824.
+         << " GiB are available";
+    if (memory.ranks > 1)
+      text << " (on this or another of the run's machines)";
+    text << ".";
+    return text.str();
+  }
+
+  std::string
   dense_foundation_memory_shortfall(const std::size_t n_foundation_nodes,
                                     const bool        iterative,
                                     const bool        suggest_hierarchical)

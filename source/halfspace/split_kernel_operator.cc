@@ -728,15 +728,7 @@ namespace PlateOnHalfspace
                  << inverse_bytes / 1073741824.
                  << " GiB (none with Contact/Preconditioner = plate on "
                     "springs)";
-          if (memory.ranks > 1)
-            text << " on this process, " << memory.needed / 1073741824.
-                 << " GiB for the " << memory.ranks
-                 << " processes on its machine together";
-          text << ", but only " << memory.available / 1073741824.
-               << " GiB are available";
-          if (n_ranks(communicator) > 1)
-            text << " (on this or another of the run's machines)";
-          text << ". ";
+          text << machine_shortfall_text(memory) << ' ';
           if (finest < 0.25 * sigma)
             text << "The kernel is split at sigma = " << sigma
                  << ", the median cell size, and the cells down to " << finest

@@ -75,6 +75,14 @@ namespace PlateOnHalfspace
   memory_on_machine(const std::size_t needed, const MPI_Comm communicator);
 
   /**
+   * The end of a shortfall message after the bytes one process needs:
+   * the machine's processes together (if several), and the bytes
+   * available, e.g. ", but only 1.5 GiB are available.".
+   */
+  std::string
+  machine_shortfall_text(const MemoryOnMachine &memory);
+
+  /**
    * "" if dense_foundation_bytes() fits available_memory_bytes(); otherwise
    * the message naming the bytes needed, the bytes available and the
    * entries that reduce the node count; with @p suggest_hierarchical, also
