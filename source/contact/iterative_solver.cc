@@ -26,28 +26,12 @@ namespace PlateOnHalfspace
 {
   namespace
   {
-    /**
-     * Whether the half-space's product is BLAS work that OpenBLAS's threads
-     * speed up: the dense storage's matrix-vector product over the whole
-     * matrix. The other storages' products are deal.II's tasks and FFTW
-     * (fft), sparse products (the dense liquid) or hmat-oss, which runs its
-     * BLAS on one thread anyway; the solve's other BLAS calls are the
-     * sparse factors' triangular solves, which a second BLAS thread slows
-     * down (base/single_threaded_blas.h; doc/performance.md, "BLAS threads
-     * in the contact solve").
-     */
-    bool
-    product_uses_blas_threads(const FoundationOperator &foundation)
-    {
-      return std::string(foundation.storage_name()) == "dense";
-    }
-
     /** OpenBLAS on one thread for a solve on @p foundation, except where
      *  its product gains from the threads: nullptr then. */
     std::unique_ptr<SingleThreadedBlas>
     blas_on_one_thread(const FoundationOperator &foundation)
     {
-      if (product_uses_blas_threads(foundation))
+      if (foundation.product_uses_blas_threads())
         return nullptr;
       return std::make_unique<SingleThreadedBlas>();
     }
@@ -255,7 +239,7 @@ namespace PlateOnHalfspace
       // the BLAS. Not where the product wants the BLAS threads, and not on
       // several processes, where each half may be collective.
       if (n_ranks(MPI_COMM_WORLD) == 1 &&
-          !product_uses_blas_threads(foundation) &&
+          !foundation.product_uses_blas_threads() &&
           SingleThreadedBlas::in_effect())
         {
           // deal.II's Task<void>::join() does not rethrow the task's

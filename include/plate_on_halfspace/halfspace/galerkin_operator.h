@@ -59,6 +59,12 @@ namespace PlateOnHalfspace
     {
       return "dense";
     }
+    /** The product is the BLAS dgemv over the whole matrix. */
+    bool
+    product_uses_blas_threads() const override
+    {
+      return true;
+    }
     std::size_t
     memory_consumption() const override;
 

@@ -178,6 +178,21 @@ namespace PlateOnHalfspace
     virtual std::string
     storage_name() const = 0;
 
+    /**
+     * Whether apply() is BLAS work that OpenBLAS's threads speed up (a
+     * matrix-vector product over a whole dense matrix). The iterative
+     * contact solver keeps the threads for such a product and applies
+     * the soil's and the plate's halves in order; for any other it runs
+     * OpenBLAS on one thread, whose triangular solves a second thread
+     * slows down, and the halves side by side (doc/performance.md, "BLAS
+     * threads in the contact solve").
+     */
+    virtual bool
+    product_uses_blas_threads() const
+    {
+      return false;
+    }
+
     /** Bytes held by the operator's matrices. */
     virtual std::size_t
     memory_consumption() const = 0;
