@@ -875,8 +875,10 @@ namespace PlateOnHalfspace
     std::ostringstream w;
     w << "Contact/Solver = iterative: " << what
       << " the gap on the contact set is solved to " << std::setprecision(2)
-      << residual
-      << " of the soil's settlement, not to the tolerance 1e-10: the "
+      << residual << " of the soil's settlement, not to the tolerance "
+      << last_solve_tolerance(ConjugateGradientControl().tolerance,
+                              *foundation_operator)
+      << ": the "
          "plate's deflections exceed the settlement so far that rounding "
          "sets that floor (a plate far more flexible than the soil; "
          "doc/errors-and-limits.md, \"Stiffness ratio\").";

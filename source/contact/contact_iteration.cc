@@ -246,8 +246,10 @@ namespace PlateOnHalfspace
             // boundary whose signs a loose solve could not tell are
             // settled by solves of intermediate accuracy, so that the
             // costly solves to the final accuracy meet few changes. A
-            // stage within a factor 10 of the final accuracy is that one.
-            tolerance = 1e-3 * tolerance < 10 * final_tolerance() ?
+            // stage within a factor 5 of the final accuracy is that one
+            // (1e-4, 1e-7, then 1e-10 or 1e-8: a factor 10 would sit on
+            // the rounding of 1e-3 * 1e-4).
+            tolerance = 1e-3 * tolerance < 5 * final_tolerance() ?
                           final_tolerance() :
                           1e-3 * tolerance;
             active_set.forget_visited_sets();

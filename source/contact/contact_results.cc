@@ -36,7 +36,11 @@ namespace PlateOnHalfspace
         "\\|q̃ gap\\| / (max \\|q̃\\| max \\|B w\\|), q̃ the pressure "
         "coefficients of the contact basis "
         "([formulation.md](formulation.md#tensionless-contact)); rounding "
-        "(≈ 1e-16) for the active set"},
+        "(≈ 1e-16) for the active set with the direct solver; the "
+        "iterative solver's last solve's accuracy with it (about 1e-9 with "
+        "the dense storage, up to about 1e-7 with the hierarchical and fft "
+        "storages at the default `Tolerance`: "
+        "[performance.md](performance.md#the-last-solves-accuracy))"},
        {{"tensile_nodes"},
         "–",
         "nodes of the whole plate with a tensile pressure coefficient "

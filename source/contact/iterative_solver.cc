@@ -881,6 +881,13 @@ namespace PlateOnHalfspace
   double
   IterativeContactSolver::final_tolerance() const
   {
-    return control.tolerance;
+    return last_solve_tolerance(control.tolerance, *foundation);
+  }
+
+  double
+  last_solve_tolerance(const double              tolerance,
+                       const FoundationOperator &foundation)
+  {
+    return std::max(tolerance, 1e-2 * foundation.relative_accuracy());
   }
 } // namespace PlateOnHalfspace

@@ -1,11 +1,16 @@
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/thread_management.h>
+
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
 
+#include <plate_on_halfspace/base/single_threaded_blas.h>
 #include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 
 #include <cmath>
+#include <exception>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -256,21 +261,56 @@ namespace PlateOnHalfspace
   {
     // (M^{-1}A)^{1/2} M^{-1} s = (2/pi) [ identity_weight M^{-1} s
     //   - sum w_j t_j^2 (A + t_j^2 M)^{-1} s + top_weight M^{-1} A M^{-1} s ]
-    // One solve after the other: CHOLMOD's triangular solves call BLAS,
-    // whose own threads made concurrent solves 2.6 times slower than these
-    // (doc/performance.md, "With the fractional soil inverse").
-    Vector<double> inverse_mass, top, solution;
-    solve_with(*mass_factor, s, inverse_mass);
-    Vector<double> a_times(s.size());
-    shifted.vmult(a_times, inverse_mass);
-    solve_with(*mass_factor, a_times, top);
+    // The mass chain and the poles' solves are independent. With the BLAS
+    // on one thread (the contact solve's guard) they run as tasks side by
+    // side, each with its own factor and CHOLMOD workspace; with the BLAS's
+    // own threads, concurrent solves were 2.6 times slower than these one
+    // after the other (doc/performance.md, "With the fractional soil
+    // inverse"). Either way the parts are added in one fixed order, so the
+    // result has the same bits.
+    Vector<double>              inverse_mass, top;
+    std::vector<Vector<double>> pole_solutions(poles.size());
+    const auto                  solve_part = [&](const unsigned int part) {
+      if (part < poles.size())
+        solve_with(*poles[part].factor, s, pole_solutions[part]);
+      else
+        {
+          solve_with(*mass_factor, s, inverse_mass);
+          Vector<double> a_times(s.size());
+          shifted.vmult(a_times, inverse_mass);
+          solve_with(*mass_factor, a_times, top);
+        }
+    };
+    const unsigned int n_parts = poles.size() + 1;
+    if (MultithreadInfo::n_threads() > 1 && SingleThreadedBlas::in_effect())
+      {
+        // deal.II's Task<void>::join() does not rethrow a task's
+        // exception: each task keeps its own for this thread
+        std::vector<std::exception_ptr> failures(n_parts);
+        Threads::TaskGroup<void>        tasks;
+        for (unsigned int part = 0; part < n_parts; ++part)
+          tasks += Threads::new_task([&, part]() {
+            try
+              {
+                solve_part(part);
+              }
+            catch (...)
+              {
+                failures[part] = std::current_exception();
+              }
+          });
+        tasks.join_all();
+        for (const std::exception_ptr &failure : failures)
+          if (failure)
+            std::rethrow_exception(failure);
+      }
+    else
+      for (unsigned int part = 0; part < n_parts; ++part)
+        solve_part(part);
     q.reinit(s.size());
     q.add(identity_weight, inverse_mass, top_weight, top);
-    for (const Pole &pole : poles)
-      {
-        solve_with(*pole.factor, s, solution);
-        q.add(-pole.weight * pole.t * pole.t, solution);
-      }
+    for (unsigned int j = 0; j < poles.size(); ++j)
+      q.add(-poles[j].weight * poles[j].t * poles[j].t, pole_solutions[j]);
     q *= scale;
   }
 

@@ -577,7 +577,9 @@ namespace PlateOnHalfspace
         "compressed settlement on large meshes (any "
         "storage); the H-Cholesky factor, which only "
         "preconditions, is recompressed at the larger of "
-        "this and 1e-3.");
+        "this and 1e-3. With those storages the iterative "
+        "contact solver's last solve stops at a hundredth "
+        "of it (at 1e-10 if that is larger).");
       prm.declare_entry("Hierarchical from",
                         "3000",
                         Patterns::Integer(0),

@@ -88,7 +88,9 @@ namespace PlateOnHalfspace
 
     /**
      * Solve in place for @p n_columns right-hand sides stored column by
-     * column in @p block (size() * n_columns values).
+     * column in @p block (size() * n_columns values). Solves with
+     * different factors may run concurrently; with one factor they may
+     * not (each factor has one CHOLMOD workspace).
      */
     void
     solve(std::vector<double> &block, const unsigned int n_columns) const;

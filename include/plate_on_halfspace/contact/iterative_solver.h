@@ -87,7 +87,8 @@ namespace PlateOnHalfspace
     double tolerance = 1e-10;
     /**
      * The same target while the active set is still changing (the solves
-     * before the last); the last set is always solved to tolerance.
+     * before the last); the last set is always solved to
+     * last_solve_tolerance().
      */
     double changing_set_tolerance = 1e-4;
     /**
@@ -100,6 +101,18 @@ namespace PlateOnHalfspace
     Parameters::Contact::Preconditioner preconditioner =
       Parameters::Contact::Preconditioner::automatic;
   };
+
+  /**
+   * The accuracy of the iterative solver's last solve on a contact set
+   * with @p foundation: @p tolerance (ConjugateGradientControl::tolerance),
+   * or a hundredth of the operator's relative_accuracy() where that is
+   * larger. Residuals far below the product's own error change the
+   * pressures by less than that error (doc/performance.md, "The last
+   * solve's accuracy").
+   */
+  double
+  last_solve_tolerance(const double              tolerance,
+                       const FoundationOperator &foundation);
 
   /**
    * The conjugate gradients of a contact set did not reach their tolerance

@@ -77,6 +77,13 @@ namespace PlateOnHalfspace
     {
       return "hierarchical";
     }
+    /** Foundation operator/Tolerance. */
+    double
+    relative_accuracy() const override
+    {
+      return tolerance;
+    }
+
     std::size_t
     memory_consumption() const override;
 

@@ -193,6 +193,19 @@ namespace PlateOnHalfspace
       return false;
     }
 
+    /**
+     * Relative accuracy of apply() against the exact Galerkin flexibility
+     * of its soil: 0 where the product is exact to rounding, Foundation
+     * operator/Tolerance for a compressed storage. The iterative contact
+     * solver's last solve resolves the pressures to a hundredth of it, not
+     * below (doc/performance.md, "The last solve's accuracy").
+     */
+    virtual double
+    relative_accuracy() const
+    {
+      return 0;
+    }
+
     /** Bytes held by the operator's matrices. */
     virtual std::size_t
     memory_consumption() const = 0;

@@ -111,6 +111,13 @@ namespace PlateOnHalfspace
     /** sigma, the cutoff, the near field's size and the grid. */
     std::string
     build_report() const override;
+    /** Foundation operator/Tolerance. */
+    double
+    relative_accuracy() const override
+    {
+      return tolerance;
+    }
+
     std::size_t
     memory_consumption() const override;
 
