@@ -299,8 +299,9 @@ namespace PlateOnHalfspace
 
     /**
      * cholmod_analyze() of @p a, the upper triangle of @p pattern's
-     * unknowns @p rows (nullptr where memory ran out). From 10^4 unknowns on it tries AMD and
-     * nested_dissection() and keeps the smaller factor: CHOLMOD's default
+     * unknowns @p rows (nullptr where memory ran out). From 10^4 unknowns
+     * on it tries AMD and nested_dissection() and keeps the smaller
+     * factor: CHOLMOD's default
      * tries METIS only where AMD fills badly, which the soil inverse's
      * Laplacian at 10^5 nodes does not count as bad, yet METIS's factor
      * is 18 % smaller there (the plate's a fifth). Below, the default:
