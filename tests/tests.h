@@ -122,6 +122,26 @@ check_below(const std::string &name, const double computed, const double bound)
   AssertThrow(ok, ExcMessage("check '" + name + "' failed"));
 }
 
+/** The norm of relative_difference(). */
+enum class Norm
+{
+  l2,
+  max
+};
+
+/** |@p a - @p b| / |@p b| in @p norm (deal.II vectors). */
+template <typename VectorType>
+inline double
+relative_difference(const VectorType &a,
+                    const VectorType &b,
+                    const Norm        norm = Norm::l2)
+{
+  VectorType d(a);
+  d -= b;
+  return norm == Norm::l2 ? d.l2_norm() / b.l2_norm() :
+                            d.linfty_norm() / b.linfty_norm();
+}
+
 /**
  * A condition on numbers that depend on rounding (pivots, round-off-sized
  * errors): print "name: ok" or "name: FAILED" and fail the test unless

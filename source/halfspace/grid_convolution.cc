@@ -334,57 +334,14 @@ namespace PlateOnHalfspace
   }
 
   void
-  GridConvolution::spread(const Stencil &s,
-                          const double   charge,
-                          double        *charges) const
-  {
-    for (unsigned int j = 0; j < spline_order; ++j)
-      {
-        double *row = charges + std::size_t(s.first_y + j) * n[0] + s.first_x;
-        const double c = charge * s.y[j];
-        for (unsigned int i = 0; i < spline_order; ++i)
-          row[i] += c * s.x[i];
-      }
-  }
-
-  void
-  GridConvolution::spread(const Point<2> &x,
-                          const double    charge,
-                          double         *charges) const
-  {
-    spread(stencil(x), charge, charges);
-  }
-
-  double
-  GridConvolution::interpolate(const Point<2> &x, const double *values) const
-  {
-    return interpolate(stencil(x), values);
-  }
-
-  double
-  GridConvolution::interpolate(const Stencil &s, const double *values) const
-  {
-    double sum = 0;
-    for (unsigned int j = 0; j < spline_order; ++j)
-      {
-        const double *row =
-          values + std::size_t(s.first_y + j) * n[0] + s.first_x;
-        double line = 0;
-        for (unsigned int i = 0; i < spline_order; ++i)
-          line += row[i] * s.x[i];
-        sum += s.y[j] * line;
-      }
-    return sum;
-  }
-
-  void
   GridConvolution::add_reflections(
-    std::vector<double>                      &field,
+    Vector<double>                           &field,
     const std::vector<std::array<double, 2>> &reflections) const
   {
+    AssertDimension(field.size(), n_grid_nodes());
     if (reflections.empty())
       return;
-    const std::vector<double> original = field;
+    const Vector<double> original = field;
     for (const auto &sign : reflections)
       for (unsigned int j = 0; j < n[1]; ++j)
         {
@@ -399,8 +356,8 @@ namespace PlateOnHalfspace
   }
 
   void
-  GridConvolution::convolve(const std::vector<double> &charges,
-                            std::vector<double>       &potentials) const
+  GridConvolution::convolve(const Vector<double> &charges,
+                            Vector<double>       &potentials) const
   {
     AssertDimension(charges.size(), n_grid_nodes());
     const std::lock_guard<std::mutex> lock(plans->mutex);
@@ -427,7 +384,8 @@ namespace PlateOnHalfspace
       }
     fftw_execute(plans->columns_backward);
     fftw_execute(plans->rows_backward);
-    potentials.resize(n_grid_nodes());
+    if (potentials.size() != n_grid_nodes())
+      potentials.reinit(n_grid_nodes(), true);
     for (unsigned int j = 0; j < n[1]; ++j)
       std::copy(plans->real + std::size_t(j) * px,
                 plans->real + std::size_t(j) * px + n[0],

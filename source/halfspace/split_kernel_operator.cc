@@ -441,14 +441,6 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
-  struct SplitKernelFftOperator::CellPoints
-  {
-    std::vector<unsigned int> nodes;
-    std::vector<Point<2>>     points;
-    /** JxW psi_a at point q: [q * nodes.size() + a]. */
-    std::vector<double> weighted_values;
-  };
-
   SplitKernelSettings
   split_kernel_settings(const double tolerance)
   {
@@ -508,6 +500,70 @@ namespace PlateOnHalfspace
     return text.str();
   }
 
+  /**
+   * The far field's Gauss points of a cell merged into g x g groups
+   * (their weights summed, at their mean point) for flexibility_diagonal():
+   * g from 2 on cells up to sigma wide to 8 on cells many sigma wide,
+   * where erf(r / sigma) / r varies across the cell. The springs need the
+   * local flexibility to a factor of a few (contact/
+   * pressure_preconditioner.h); all points would cost m^4 kernel values
+   * per pair of cells, and holding them all would double the far field's
+   * memory beside its GridProjection.
+   */
+  struct SplitKernelFftOperator::LumpedCell
+  {
+    std::vector<unsigned int> nodes;
+    std::vector<Point<2>>     points;
+    /** summed JxW psi_a of group g at [g * nodes + a] */
+    std::vector<double> weights;
+    Point<2>            centre;
+    double              radius = 0;
+
+    LumpedCell() = default;
+    LumpedCell(const CellPoints &cp, const double sigma);
+  };
+
+  SplitKernelFftOperator::LumpedCell::LumpedCell(const CellPoints &cp,
+                                                 const double      sigma)
+    : nodes(cp.nodes)
+  {
+    const unsigned int n_nodes_c = cp.nodes.size();
+    if (cp.points.empty())
+      return; // not tabulated on this rank
+    // QGauss<2> is the tensor rule, x fastest (point i + m j)
+    const auto m = static_cast<unsigned int>(
+      std::lround(std::sqrt(double(cp.points.size()))));
+    double extent = 0;
+    for (const Point<2> &p : cp.points)
+      extent = std::max(extent, p.distance(cp.points[0]));
+    const unsigned int g =
+      std::min({m,
+                8u,
+                std::max(2u,
+                         static_cast<unsigned int>(
+                           std::ceil(2. * extent / (std::sqrt(2.) * sigma))))});
+    points.assign(g * g, Point<2>());
+    weights.assign(g * g * n_nodes_c, 0.);
+    std::vector<unsigned int> count(g * g, 0);
+    for (unsigned int j = 0; j < m; ++j)
+      for (unsigned int i = 0; i < m; ++i)
+        {
+          const unsigned int q = i + m * j, group = i * g / m + g * (j * g / m);
+          points[group] += cp.points[q];
+          ++count[group];
+          for (unsigned int a = 0; a < n_nodes_c; ++a)
+            weights[group * n_nodes_c + a] +=
+              cp.weighted_values[q * n_nodes_c + a];
+        }
+    for (unsigned int group = 0; group < g * g; ++group)
+      {
+        points[group] /= count[group];
+        centre += points[group] / (g * g);
+      }
+    for (const Point<2> &p : cp.points)
+      radius = std::max(radius, p.distance(centre));
+  }
+
   SplitKernelFftOperator::~SplitKernelFftOperator() = default;
 
   void
@@ -520,6 +576,8 @@ namespace PlateOnHalfspace
                 ExcMessage("Foundation operator/Storage = fft does not "
                            "support Contact/Method = element exclusion "
                            "(use active set)."));
+    // a previous cycle's gridding, freed before this one's memory check
+    projection.reset();
     build_mass_matrix(space, cell_in_foundation);
     set_pressure_basis(space, true);
     space.assemble_laplace_matrix(mass_sparsity, laplace);
@@ -635,7 +693,6 @@ namespace PlateOnHalfspace
           for (const unsigned int j : integrator.nodes(c))
             tabulated[c] = tabulated[c] || near_own[j];
       }
-    far_points.assign(n_computed, CellPoints());
     std::vector<unsigned int>         points_1d(n_computed);
     std::map<unsigned int, QGauss<2>> rules;
     for (unsigned int c = 0; c < n_computed; ++c)
@@ -648,26 +705,34 @@ namespace PlateOnHalfspace
                               settings.gauss_points * ratio - 1e-9))));
         rules.try_emplace(points_1d[c], points_1d[c]);
       }
+    const auto tabulate = [&](const unsigned int c, CellPoints &cp) {
+      cp.nodes = integrator.nodes(c);
+      integrator.tabulate(c,
+                          rules.at(points_1d[c]),
+                          cp.points,
+                          cp.weighted_values);
+    };
+    std::size_t n_points = 0;
+    for (unsigned int c = 0; c < n_computed; ++c)
+      if (own_cell[c])
+        n_points += points_1d[c] * points_1d[c];
+    // flexibility_diagonal()'s lumped points
+    lumped_cells.assign(n_computed, LumpedCell());
     parallel::apply_to_subranges(
       0u,
       n_computed,
       [&](const unsigned int from, const unsigned int to) {
+        CellPoints cp;
         for (unsigned int c = from; c < to; ++c)
           if (tabulated[c])
             {
-              CellPoints &cp = far_points[c];
-              cp.nodes       = integrator.nodes(c);
-              integrator.tabulate(c,
-                                  rules.at(points_1d[c]),
-                                  cp.points,
-                                  cp.weighted_values);
+              tabulate(c, cp);
+              lumped_cells[c] = LumpedCell(cp, sigma);
             }
+          else
+            lumped_cells[c].nodes = integrator.nodes(c);
       },
       256);
-    std::size_t n_points = 0;
-    for (unsigned int c = 0; c < n_computed; ++c)
-      if (own_cell[c])
-        n_points += far_points[c].points.size();
     // The grid is symmetric about its centre: on the mirror planes, so
     // that the images' charges are the reflected grid charges.
     Point<2> centre = 0.5 * (low + high);
@@ -684,6 +749,16 @@ namespace PlateOnHalfspace
                 std::max(high[1] - centre[1], centre[1] - low[1]) + spacing}},
       settings.spline_order,
       [a = alpha, sigma](const double r) { return far_kernel(a, sigma, r); });
+    // made in place only once whole: it calls back into this function's
+    // integrator until assemble()
+    auto gridding = std::make_unique<GridProjection>(
+      *grid,
+      own_cell,
+      space.n_nodes(),
+      [&](const unsigned int c) -> const std::vector<unsigned int> & {
+        return integrator.nodes(c);
+      },
+      tabulate);
 
     // The near field's memory before its pattern is made: a strongly
     // graded mesh puts (cutoff / h)^2 cells into the reach of each cell of
@@ -710,8 +785,9 @@ namespace PlateOnHalfspace
           0;
       // On several processes the ranks on one machine share its memory,
       // and all ranks decide alike (Storage = auto falls back on all).
+      const std::size_t     far_bytes = gridding->memory_needed();
       const MemoryOnMachine memory =
-        memory_on_machine(near_bytes + inverse_bytes, communicator);
+        memory_on_machine(near_bytes + far_bytes + inverse_bytes, communicator);
       double finest = std::numeric_limits<double>::max();
       for (const auto &cell : space.cells)
         finest = std::min(finest, std::sqrt(cell.geometry.area()));
@@ -722,7 +798,9 @@ namespace PlateOnHalfspace
                << "Foundation operator/Storage = fft: the near field needs "
                   "about "
                << near_bytes / 1073741824. << " GiB (" << terms.size()
-               << " cell pairs within " << cutoff << " of each other)";
+               << " cell pairs within " << cutoff
+               << " of each other), the far field's gridding "
+               << far_bytes / 1073741824. << " GiB";
           if (inverse_bytes > 0)
             text << " and the soil inverse's sparse factors "
                  << inverse_bytes / 1073741824.
@@ -742,6 +820,8 @@ namespace PlateOnHalfspace
         }
       near_graph.make_pattern(near_sparsity);
     }
+    gridding->assemble();
+    projection                = std::move(gridding);
     const auto near_remainder = std::make_shared<MinusFarField>(alpha, sigma);
     const SurfaceKernel near_kernel(alpha, near_remainder);
     integrator.integrate_singular_pairs(singular, near_remainder.get());
@@ -918,78 +998,15 @@ namespace PlateOnHalfspace
   SplitKernelFftOperator::apply_far_field(const Vector<double> &values,
                                           Vector<double> &settlement) const
   {
-    // Spread the computed cells' charges in a fixed number of parts, each
-    // onto its own grid, summed in order: the same sum with any number of
-    // threads.
-    constexpr unsigned int           n_parts = 4;
-    std::vector<std::vector<double>> parts(n_parts);
-    const auto                       part_range = [&](const unsigned int part) {
-      return std::make_pair(std::size_t(n_computed) * part / n_parts,
-                            std::size_t(n_computed) * (part + 1) / n_parts);
-    };
-    parallel::apply_to_subranges(
-      0u,
-      n_parts,
-      [&](const unsigned int from, const unsigned int to) {
-        for (unsigned int part = from; part < to; ++part)
-          {
-            parts[part]       = grid->new_field();
-            const auto [b, e] = part_range(part);
-            for (std::size_t c = b; c < e; ++c)
-              if (own_cell[c])
-                {
-                  const CellPoints  &cp = far_points[c];
-                  const unsigned int n  = cp.nodes.size();
-                  for (unsigned int q = 0; q < cp.points.size(); ++q)
-                    {
-                      double charge = 0;
-                      for (unsigned int a = 0; a < n; ++a)
-                        charge +=
-                          cp.weighted_values[q * n + a] * values[cp.nodes[a]];
-                      grid->spread(cp.points[q], charge, parts[part].data());
-                    }
-                }
-          }
-      },
-      1);
-    std::vector<double> charges = std::move(parts[0]), potentials;
-    for (unsigned int part = 1; part < n_parts; ++part)
-      for (std::size_t k = 0; k < charges.size(); ++k)
-        charges[k] += parts[part][k];
+    Vector<double> charges(grid->n_grid_nodes()), potentials;
+    projection->spread(values, charges);
     // the other ranks' cells' charges
     sum_shared_entries_over_ranks(make_array_view(charges), communicator);
     // The mirror images carry the same pressure at the reflected points
     // (doc/formulation.md, "Symmetry").
     grid->add_reflections(charges, reflections);
     grid->convolve(charges, potentials);
-    // Potentials at each point in parallel, then added to the nodes in
-    // order.
-    std::vector<std::vector<double>> at_points(n_computed);
-    parallel::apply_to_subranges(
-      0u,
-      n_computed,
-      [&](const unsigned int from, const unsigned int to) {
-        for (unsigned int c = from; c < to; ++c)
-          if (own_cell[c])
-            {
-              const CellPoints &cp = far_points[c];
-              at_points[c].resize(cp.points.size());
-              for (unsigned int q = 0; q < cp.points.size(); ++q)
-                at_points[c][q] =
-                  grid->interpolate(cp.points[q], potentials.data());
-            }
-      },
-      256);
-    for (unsigned int c = 0; c < n_computed; ++c)
-      if (own_cell[c])
-        {
-          const CellPoints  &cp = far_points[c];
-          const unsigned int n  = cp.nodes.size();
-          for (unsigned int q = 0; q < cp.points.size(); ++q)
-            for (unsigned int a = 0; a < n; ++a)
-              settlement[cp.nodes[a]] +=
-                cp.weighted_values[q * n + a] * at_points[c][q];
-        }
+    projection->add_tests(potentials, settlement);
   }
 
   void
@@ -1018,69 +1035,7 @@ namespace PlateOnHalfspace
   {
     const unsigned int n     = n_nodes();
     const double       sigma = chosen.sigma;
-    // The far field's A_jj on lumped rules: each cell's m x m Gauss points
-    // merged into g x g groups (their weights summed, at their mean
-    // point), g from 2 on cells up to sigma wide to 8 on cells many sigma
-    // wide, where erf(r / sigma) / r varies across the cell. The springs
-    // need the local flexibility to a factor of a few
-    // (contact/pressure_preconditioner.h); all points would cost m^4
-    // kernel values per pair of cells.
-    struct Lumped
-    {
-      std::vector<Point<2>> points;
-      /** summed JxW psi_a of group g at [g * nodes + a] */
-      std::vector<double> weights;
-      Point<2>            centre;
-      double              radius = 0;
-    };
-    std::vector<Lumped> lumped(far_points.size());
-    parallel::apply_to_subranges(
-      0u,
-      static_cast<unsigned int>(far_points.size()),
-      [&](const unsigned int from, const unsigned int to) {
-        for (unsigned int c = from; c < to; ++c)
-          {
-            const CellPoints  &cp        = far_points[c];
-            const unsigned int n_nodes_c = cp.nodes.size();
-            if (cp.points.empty())
-              continue; // not tabulated on this rank
-            // QGauss<2> is the tensor rule, x fastest (point i + m j)
-            const auto m = static_cast<unsigned int>(
-              std::lround(std::sqrt(double(cp.points.size()))));
-            double extent = 0;
-            for (const Point<2> &p : cp.points)
-              extent = std::max(extent, p.distance(cp.points[0]));
-            const unsigned int g =
-              std::min({m,
-                        8u,
-                        std::max(2u,
-                                 static_cast<unsigned int>(std::ceil(
-                                   2. * extent / (std::sqrt(2.) * sigma))))});
-            Lumped &l = lumped[c];
-            l.points.assign(g * g, Point<2>());
-            l.weights.assign(g * g * n_nodes_c, 0.);
-            std::vector<unsigned int> count(g * g, 0);
-            for (unsigned int j = 0; j < m; ++j)
-              for (unsigned int i = 0; i < m; ++i)
-                {
-                  const unsigned int q     = i + m * j,
-                                     group = i * g / m + g * (j * g / m);
-                  l.points[group] += cp.points[q];
-                  ++count[group];
-                  for (unsigned int a = 0; a < n_nodes_c; ++a)
-                    l.weights[group * n_nodes_c + a] +=
-                      cp.weighted_values[q * n_nodes_c + a];
-                }
-            for (unsigned int group = 0; group < g * g; ++group)
-              {
-                l.points[group] /= count[group];
-                l.centre += l.points[group] / (g * g);
-              }
-            for (const Point<2> &p : cp.points)
-              l.radius = std::max(l.radius, p.distance(l.centre));
-          }
-      },
-      256);
+    // the far field's A_jj on the lumped rules (LumpedCell)
     // Basis function i as node values: T's column i, or node i itself.
     std::vector<std::vector<std::pair<unsigned int, double>>> columns(n);
     if (positive_basis)
@@ -1091,8 +1046,8 @@ namespace PlateOnHalfspace
       for (unsigned int i = 0; i < n; ++i)
         columns[i] = {{i, 1.}};
     std::vector<std::vector<unsigned int>> cells_of(n);
-    for (unsigned int c = 0; c < far_points.size(); ++c)
-      for (const unsigned int j : far_points[c].nodes)
+    for (unsigned int c = 0; c < lumped_cells.size(); ++c)
+      for (const unsigned int j : lumped_cells[c].nodes)
         cells_of[j].push_back(c);
     std::vector<std::array<double, 2>> signs = {{{1., 1.}}};
     signs.insert(signs.end(), reflections.begin(), reflections.end());
@@ -1130,15 +1085,13 @@ namespace PlateOnHalfspace
             totals.assign(support.size(), 0.);
             for (unsigned int s = 0; s < support.size(); ++s)
               {
-                const CellPoints &cp = far_points[support[s]];
-                const Lumped     &l  = lumped[support[s]];
+                const LumpedCell &l = lumped_cells[support[s]];
                 weights[s].assign(l.points.size(), 0.);
-                for (unsigned int a = 0; a < cp.nodes.size(); ++a)
+                for (unsigned int a = 0; a < l.nodes.size(); ++a)
                   for (const auto &[j, tj] : columns[i])
-                    if (j == cp.nodes[a])
+                    if (j == l.nodes[a])
                       for (unsigned int g = 0; g < l.points.size(); ++g)
-                        weights[s][g] +=
-                          tj * l.weights[g * cp.nodes.size() + a];
+                        weights[s][g] += tj * l.weights[g * l.nodes.size() + a];
                 totals[s] =
                   std::accumulate(weights[s].begin(), weights[s].end(), 0.);
               }
@@ -1146,8 +1099,8 @@ namespace PlateOnHalfspace
               for (unsigned int t = 0; t < support.size(); ++t)
                 for (const auto &sign : signs)
                   {
-                    const Lumped &lk = lumped[support[s]],
-                                 &ll = lumped[support[t]];
+                    const LumpedCell &lk = lumped_cells[support[s]],
+                                     &ll = lumped_cells[support[t]];
                     // an image beyond the near field's reach as the
                     // cells' total weights at their centres
                     const Point<2> image(sign[0] * ll.centre[0],
@@ -1280,11 +1233,12 @@ namespace PlateOnHalfspace
       coupling_memory_consumption() + near_field.memory_consumption() +
       near_sparsity.memory_consumption() + laplace.memory_consumption() +
       (inverse_analysis ? inverse_analysis->memory_consumption() : 0) +
-      (grid ? grid->memory_consumption() : 0);
-    for (const CellPoints &cp : far_points)
-      bytes += cp.nodes.size() * sizeof(unsigned int) +
-               cp.points.size() * sizeof(Point<2>) +
-               cp.weighted_values.size() * sizeof(double);
+      (grid ? grid->memory_consumption() : 0) +
+      (projection ? projection->memory_consumption() : 0);
+    for (const LumpedCell &l : lumped_cells)
+      bytes += l.nodes.size() * sizeof(unsigned int) +
+               l.points.size() * sizeof(Point<2>) +
+               l.weights.size() * sizeof(double);
     return bytes;
   }
 } // namespace PlateOnHalfspace

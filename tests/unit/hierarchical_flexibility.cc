@@ -45,14 +45,6 @@ namespace
     return x;
   }
 
-  double
-  relative_difference(const Vector<double> &a, const Vector<double> &b)
-  {
-    Vector<double> d(a);
-    d -= b;
-    return d.l2_norm() / b.l2_norm();
-  }
-
   /** The dense A of the scene (BoussinesqGalerkinOperator's build). */
   LAPACKFullMatrix<double>
   dense_flexibility(const Scene &scene)

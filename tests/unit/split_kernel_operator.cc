@@ -71,14 +71,6 @@ namespace
     return x;
   }
 
-  double
-  relative_difference(const Vector<double> &a, const Vector<double> &b)
-  {
-    Vector<double> d(a);
-    d -= b;
-    return d.l2_norm() / b.l2_norm();
-  }
-
   /** A x with the operator's apply on nodal values. */
   class ValuesOperator
   {

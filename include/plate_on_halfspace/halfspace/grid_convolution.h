@@ -21,6 +21,8 @@
 
 #include <deal.II/base/point.h>
 
+#include <deal.II/lac/vector.h>
+
 #include <array>
 #include <complex>
 #include <functional>
@@ -74,6 +76,13 @@ namespace PlateOnHalfspace
       return spline_order;
     }
 
+    /** Grid nodes in x and y; node (i, j) is number i + j * sizes[0]. */
+    std::array<unsigned int, 2>
+    grid_sizes() const
+    {
+      return n;
+    }
+
     /** Number of grid nodes (not the padded FFT size). */
     std::size_t
     n_grid_nodes() const
@@ -88,33 +97,6 @@ namespace PlateOnHalfspace
       return padded;
     }
 
-    /** Add @p charge at the stencil @p s to the grid @p charges. */
-    void
-    spread(const Stencil &s, const double charge, double *charges) const;
-
-    /** Add @p charge at point @p x to the grid @p charges: spread() at
-     *  stencil(@p x), with the stencil made on the fly. */
-    void
-    spread(const Point<2> &x, const double charge, double *charges) const;
-
-    /** The spline value at the stencil @p s of the grid field @p values. */
-    double
-    interpolate(const Stencil &s, const double *values) const;
-
-    /** The spline value at point @p x of the grid field @p values. */
-    double
-    interpolate(const Point<2> &x, const double *values) const;
-
-    /**
-     * A zeroed grid field (n_grid_nodes() values, x fastest) for spread()
-     * and interpolate().
-     */
-    std::vector<double>
-    new_field() const
-    {
-      return std::vector<double>(n_grid_nodes(), 0.);
-    }
-
     /**
      * Add to @p field its mirror images: for each sign pair (s_x, s_y) of
      * @p reflections the field reflected in the grid's centre lines where
@@ -122,13 +104,12 @@ namespace PlateOnHalfspace
      */
     void
     add_reflections(
-      std::vector<double>                      &field,
+      Vector<double>                           &field,
       const std::vector<std::array<double, 2>> &reflections) const;
 
     /** @p potentials = G * @p charges on the grid (in place allowed). */
     void
-    convolve(const std::vector<double> &charges,
-             std::vector<double>       &potentials) const;
+    convolve(const Vector<double> &charges, Vector<double> &potentials) const;
 
     /** Bytes held (grids, transform of the kernel). */
     std::size_t

@@ -12,9 +12,10 @@
  * sigma and are stored sparse. The second part is smooth everywhere, also
  * at r = 0: it is integrated by Gauss rules on the cells, whose point
  * charges go through GridConvolution (B-spline gridding, FFT convolution,
- * B-spline interpolation). No correction of the near field is needed, so
- * the operator handles graded and Gmsh meshes alike; the grid is uniform
- * over the plate and its mirror images.
+ * B-spline interpolation), the gridding and interpolation of all points
+ * made once into the sparse GridProjection. No correction of the near field is
+ * needed, so the operator handles graded and Gmsh meshes alike; the grid is
+ * uniform over the plate and its mirror images.
  *
  * Products cost about n log n, memory grows like n. The accuracy follows
  * Foundation operator/Tolerance through the cutoff (erfc), the spline
@@ -37,6 +38,7 @@
 #ifndef plate_on_halfspace_halfspace_split_kernel_operator_h
 #define plate_on_halfspace_halfspace_split_kernel_operator_h
 
+#include <plate_on_halfspace/halfspace/grid_projection.h>
 #include <plate_on_halfspace/halfspace/interface.h>
 
 #include <array>
@@ -143,8 +145,9 @@ namespace PlateOnHalfspace
     }
 
   private:
-    /** The far field's Gauss points of one computed cell. */
-    struct CellPoints;
+    using CellPoints = GridProjection::CellPoints;
+    /** A cell's Gauss points merged for flexibility_diagonal(). */
+    struct LumpedCell;
 
     void
     apply_far_field(const Vector<double> &values,
@@ -168,8 +171,11 @@ namespace PlateOnHalfspace
     std::vector<bool> own_node;
     double            alpha      = 0;
     unsigned int      n_computed = 0;
-    /** Per computed cell (the images' charges are the reflected grid's). */
-    std::vector<CellPoints> far_points;
+    /** The far field's gridding of this rank's cells (the images'
+     *  charges are the reflected grid's). */
+    std::unique_ptr<GridProjection> projection;
+    /** Per computed cell; its points where tabulated on this rank. */
+    std::vector<LumpedCell> lumped_cells;
     /** The scene's reflections (MirrorSymmetry::reflections()). */
     std::vector<std::array<double, 2>> reflections;
     std::unique_ptr<GridConvolution>   grid;
