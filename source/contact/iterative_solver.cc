@@ -1,5 +1,4 @@
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/thread_management.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -8,6 +7,7 @@
 #include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/base/single_threaded_blas.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
+#include <plate_on_halfspace/base/tasks.h>
 #include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/iterative_solver.h>
 #include <plate_on_halfspace/contact/pressure_preconditioner.h>
@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -242,32 +241,12 @@ namespace PlateOnHalfspace
           !foundation.product_uses_blas_threads() &&
           SingleThreadedBlas::in_effect())
         {
-          // deal.II's Task<void>::join() does not rethrow the task's
-          // exception, so the task keeps it for this thread
-          std::exception_ptr  soil_failure;
-          Threads::Task<void> soil_product = Threads::new_task([&]() {
-            try
-              {
-                foundation.apply(q, soil);
-              }
-            catch (...)
-              {
-                soil_failure = std::current_exception();
-              }
-          });
-          try
-            {
+          run_tasks(2, [&](const unsigned int part) {
+            if (part == 0)
+              foundation.apply(q, soil);
+            else
               plate_part();
-            }
-          catch (...)
-            {
-              // the task uses this frame's vectors: let it end first
-              soil_product.join();
-              throw;
-            }
-          soil_product.join();
-          if (soil_failure)
-            std::rethrow_exception(soil_failure);
+          });
         }
       else
         {

@@ -4,6 +4,7 @@
 
 #include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/base/progress.h>
+#include <plate_on_halfspace/base/tasks.h>
 #include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
 
@@ -453,34 +454,12 @@ namespace PlateOnHalfspace
     // order, only the entries are shared out.
     const std::unique_ptr<double[]> buffers(new double[n_runs * n_entries]);
     const unsigned int n_threads = std::max(1u, MultithreadInfo::n_threads());
-    const auto         in_tasks  = [n_threads](const std::size_t n_parts,
+    // pieces of work in at most two tasks per thread
+    const auto in_tasks = [n_threads](const std::size_t n_parts,
                                       const auto       &work) {
       const unsigned int n_tasks =
         std::min<std::size_t>(n_parts, 2 * n_threads);
-      if (n_tasks == 1)
-        {
-          work(0, 1);
-          return;
-        }
-      std::vector<std::exception_ptr> errors(n_tasks);
-      Threads::TaskGroup<void>        tasks;
-      for (unsigned int t = 0; t < n_tasks; ++t)
-        tasks += Threads::new_task([&, t]() {
-          // Every task ends normally, so that none still uses this frame
-          // when an error unwinds it.
-          try
-            {
-              work(t, n_tasks);
-            }
-          catch (...)
-            {
-              errors[t] = std::current_exception();
-            }
-        });
-      tasks.join_all();
-      for (const std::exception_ptr &error : errors)
-        if (error)
-          std::rethrow_exception(error);
+      run_tasks(n_tasks, [&](const unsigned int t) { work(t, n_tasks); });
     };
     in_tasks(n_runs, [&](const unsigned int t, const unsigned int n_tasks) {
       Workspace work;

@@ -1,16 +1,15 @@
 #include <deal.II/base/multithread_info.h>
-#include <deal.II/base/thread_management.h>
 
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
 
 #include <plate_on_halfspace/base/single_threaded_blas.h>
 #include <plate_on_halfspace/base/sparse_cholesky.h>
+#include <plate_on_halfspace/base/tasks.h>
 #include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 
 #include <cmath>
-#include <exception>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -284,25 +283,7 @@ namespace PlateOnHalfspace
     const unsigned int n_parts = poles.size() + 1;
     if (MultithreadInfo::n_threads() > 1 && SingleThreadedBlas::in_effect())
       {
-        // deal.II's Task<void>::join() does not rethrow a task's
-        // exception: each task keeps its own for this thread
-        std::vector<std::exception_ptr> failures(n_parts);
-        Threads::TaskGroup<void>        tasks;
-        for (unsigned int part = 0; part < n_parts; ++part)
-          tasks += Threads::new_task([&, part]() {
-            try
-              {
-                solve_part(part);
-              }
-            catch (...)
-              {
-                failures[part] = std::current_exception();
-              }
-          });
-        tasks.join_all();
-        for (const std::exception_ptr &failure : failures)
-          if (failure)
-            std::rethrow_exception(failure);
+        run_tasks(n_parts, solve_part);
       }
     else
       for (unsigned int part = 0; part < n_parts; ++part)

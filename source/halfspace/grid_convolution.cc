@@ -93,9 +93,10 @@ namespace PlateOnHalfspace
 
   /**
    * The transforms of convolve(), pruned to the rows that hold data: the
-   * rows' real transforms over the grid's n[1] rows only (the padding
-   * rows are zero going in and not wanted coming out), the columns'
-   * complex ones over all padded rows.
+   * rows' transforms over the grid's rows only (the padding rows are zero
+   * going in and not wanted coming out), the columns' over all padded
+   * rows. The whole grid's are real-to-complex ones (real rows, complex
+   * columns); the quarter's are cosine transforms in place on @p real.
    */
   struct GridConvolution::Plans
   {
@@ -122,9 +123,12 @@ namespace PlateOnHalfspace
                                    const double                 spacing,
                                    const std::array<double, 2> &half_widths,
                                    const unsigned int           order,
-                                   const std::function<double(double)> &kernel)
+                                   const std::function<double(double)> &kernel,
+                                   const std::array<bool, 2> &mirror_images)
     : spline_order(order)
     , h(spacing)
+    , mirrored(mirror_images)
+    , cosine(mirror_images[0] && mirror_images[1])
     , plans(std::make_unique<Plans>())
   {
     AssertThrow(order >= 4 && order <= max_order && order % 2 == 0,
@@ -149,13 +153,27 @@ namespace PlateOnHalfspace
         const double cells = 2. * half_widths[d] / h + order + 2;
         AssertThrow(cells < 1e8,
                     ExcMessage("GridConvolution: the grid is too large."));
-        n[d]      = static_cast<unsigned int>(std::ceil(cells)) + 1;
+        n[d] = static_cast<unsigned int>(std::ceil(cells)) + 1;
+        // the cosine transforms' even sequences about the point between
+        // the two middle nodes (REDFT10)
+        if (cosine && n[d] % 2 == 1)
+          ++n[d];
         origin[d] = centre[d] - 0.5 * (n[d] - 1) * h;
         // Hockney: offsets up to n - 1 either way without wrapping, and a
-        // margin where the filter's tail wraps.
-        padded[d] = fast_fft_size(2 * n[d] + 4 * order + 16);
+        // margin where the filter's tail wraps. The cosine transforms'
+        // period is twice their length.
+        padded[d] = cosine ? fast_fft_size(n[d] + 2 * order + 8) :
+                             fast_fft_size(2 * n[d] + 4 * order + 16);
       }
+    if (cosine)
+      make_quarter_plans(kernel);
+    else
+      make_whole_plans(kernel);
+  }
 
+  void
+  GridConvolution::make_whole_plans(const std::function<double(double)> &kernel)
+  {
     // FFTW's row-major 2D layout: y the slow index, x the fast one.
     const unsigned int px = padded[0], py = padded[1], sx = px / 2 + 1;
     plans->n_real     = std::size_t(px) * py;
@@ -239,27 +257,9 @@ namespace PlateOnHalfspace
       const std::lock_guard<std::mutex> lock(planner_mutex());
       fftw_destroy_plan(whole);
     }
-
-    // The B-splines' symbol B(w) = sum_m M(m) e^{-i w m} (real, positive
-    // for an even order), from the samples at the integers.
-    // M_n(k), k < n: the pieces' constant terms (stored as weights
-    // order - 1 - k)
-    std::array<double, max_order> samples;
-    for (unsigned int k = 0; k < order; ++k)
-      samples[k] = weight_polynomials[order - 1 - k];
-    const auto symbol = [&](const double w) {
-      // centred: offsets k - n/2
-      double sum = 0;
-      for (unsigned int k = 1; k < order; ++k)
-        sum += samples[k] * std::cos(w * (double(k) - 0.5 * order));
-      return sum;
-    };
-    std::vector<double> bx(sx), by(py);
-    for (unsigned int i = 0; i < sx; ++i)
-      bx[i] = symbol(2 * M_PI * i / px);
-    for (unsigned int j = 0; j < py; ++j)
-      by[j] = symbol(2 * M_PI * j / py);
     kernel_transform.resize(plans->n_spectrum);
+    const std::vector<double> bx = spline_symbols(sx, px),
+                              by = spline_symbols(py, py);
     const double scale = 1. / (double(px) * py); // FFTW's unnormalised pair
     for (unsigned int j = 0; j < py; ++j)
       for (unsigned int i = 0; i < sx; ++i)
@@ -268,6 +268,115 @@ namespace PlateOnHalfspace
           const double      b = bx[i] * by[j];
           kernel_transform[k] = scale * plans->spectrum[k][0] / (b * b);
         }
+  }
+
+  void
+  GridConvolution::make_quarter_plans(
+    const std::function<double(double)> &kernel)
+  {
+    // The quarter of nodes nx/2 + a, ny/2 + b, padded to the transforms'
+    // lengths; y the slow index, x the fast one.
+    const unsigned int mx = padded[0], my = padded[1];
+    plans->n_real = std::size_t(mx) * my;
+    plans->real   = fftw_alloc_real(plans->n_real);
+    AssertThrow(plans->real,
+                ExcMessage("GridConvolution: out of memory for the FFT."));
+    {
+      const std::lock_guard<std::mutex> lock(planner_mutex());
+      plan_with_deal_ii_threads();
+      const fftw_r2r_kind even = FFTW_REDFT10, inverse = FFTW_REDFT01;
+      // @p count transforms of @p length in place on the quarter, the
+      // entries @p stride apart, the transforms @p distance apart
+      const auto in_place = [&](int                  length,
+                                const int            count,
+                                const int            stride,
+                                const int            distance,
+                                const fftw_r2r_kind &kind) {
+        return fftw_plan_many_r2r(1,
+                                  &length,
+                                  count,
+                                  plans->real,
+                                  nullptr,
+                                  stride,
+                                  distance,
+                                  plans->real,
+                                  nullptr,
+                                  stride,
+                                  distance,
+                                  &kind,
+                                  FFTW_ESTIMATE);
+      };
+      // the rows that hold the quarter's nodes; all columns
+      const int rows          = n[1] / 2;
+      plans->rows_forward     = in_place(mx, rows, 1, mx, even);
+      plans->columns_forward  = in_place(my, mx, mx, 1, even);
+      plans->columns_backward = in_place(my, mx, mx, 1, inverse);
+      plans->rows_backward    = in_place(mx, rows, 1, mx, inverse);
+      AssertThrow(plans->rows_forward && plans->columns_forward &&
+                    plans->columns_backward && plans->rows_backward,
+                  ExcMessage("GridConvolution: FFTW made no plan."));
+    }
+
+    // The DFT of the kernel's samples over the period 2 m is, the samples
+    // being even, the type-I cosine transform (REDFT00) of offsets 0 … m.
+    std::vector<double> samples(std::size_t(mx + 1) * (my + 1));
+    for (unsigned int j = 0; j <= my; ++j)
+      for (unsigned int i = 0; i <= mx; ++i)
+        samples[std::size_t(j) * (mx + 1) + i] =
+          kernel(h * std::hypot(double(i), double(j)));
+    {
+      fftw_plan whole;
+      {
+        const std::lock_guard<std::mutex> lock(planner_mutex());
+        plan_with_deal_ii_threads();
+        whole = fftw_plan_r2r_2d(my + 1,
+                                 mx + 1,
+                                 samples.data(),
+                                 samples.data(),
+                                 FFTW_REDFT00,
+                                 FFTW_REDFT00,
+                                 FFTW_ESTIMATE);
+      }
+      AssertThrow(whole, ExcMessage("GridConvolution: FFTW made no plan."));
+      fftw_execute(whole);
+      const std::lock_guard<std::mutex> lock(planner_mutex());
+      fftw_destroy_plan(whole);
+    }
+    kernel_transform.resize(plans->n_real);
+    const std::vector<double> bx = spline_symbols(mx, 2 * mx),
+                              by = spline_symbols(my, 2 * my);
+    // REDFT10 then REDFT01 multiply by twice the length each way
+    const double scale = 1. / (4. * double(mx) * my);
+    for (unsigned int j = 0; j < my; ++j)
+      for (unsigned int i = 0; i < mx; ++i)
+        {
+          const double b = bx[i] * by[j];
+          kernel_transform[std::size_t(j) * mx + i] =
+            scale * samples[std::size_t(j) * (mx + 1) + i] / (b * b);
+        }
+  }
+
+  std::vector<double>
+  GridConvolution::spline_symbols(const unsigned int count,
+                                  const unsigned int period) const
+  {
+    // The B-splines' symbol B(w) = sum_m M(m) e^{-i w m} (real, positive
+    // for an even order), from the samples at the integers M_n(k), k < n:
+    // the pieces' constant terms (stored as weights order - 1 - k).
+    std::array<double, max_order> samples;
+    for (unsigned int k = 0; k < spline_order; ++k)
+      samples[k] = weight_polynomials[spline_order - 1 - k];
+    std::vector<double> symbols(count);
+    for (unsigned int i = 0; i < count; ++i)
+      {
+        const double w = 2 * M_PI * i / period;
+        // centred: offsets k - n/2
+        double sum = 0;
+        for (unsigned int k = 1; k < spline_order; ++k)
+          sum += samples[k] * std::cos(w * (double(k) - 0.5 * spline_order));
+        symbols[i] = sum;
+      }
+    return symbols;
   }
 
   GridConvolution::~GridConvolution() = default;
@@ -334,41 +443,35 @@ namespace PlateOnHalfspace
   }
 
   void
-  GridConvolution::add_reflections(
-    Vector<double>                           &field,
-    const std::vector<std::array<double, 2>> &reflections) const
-  {
-    AssertDimension(field.size(), n_grid_nodes());
-    if (reflections.empty())
-      return;
-    const Vector<double> original = field;
-    for (const auto &sign : reflections)
-      for (unsigned int j = 0; j < n[1]; ++j)
-        {
-          const unsigned int from_j = sign[1] < 0 ? n[1] - 1 - j : j;
-          for (unsigned int i = 0; i < n[0]; ++i)
-            {
-              const unsigned int from_i = sign[0] < 0 ? n[0] - 1 - i : i;
-              field[std::size_t(j) * n[0] + i] +=
-                original[std::size_t(from_j) * n[0] + from_i];
-            }
-        }
-  }
-
-  void
   GridConvolution::convolve(const Vector<double> &charges,
                             Vector<double>       &potentials) const
   {
     AssertDimension(charges.size(), n_grid_nodes());
+    if (cosine)
+      convolve_quarter(charges, potentials);
+    else
+      convolve_whole(charges, potentials);
+  }
+
+  void
+  GridConvolution::convolve_whole(const Vector<double> &charges,
+                                  Vector<double>       &potentials) const
+  {
+    Assert(!(mirrored[0] && mirrored[1]), ExcInternalError());
     const std::lock_guard<std::mutex> lock(plans->mutex);
     const unsigned int                px = padded[0], sx = px / 2 + 1;
-    // The grid's rows, zero-padded in x; the padding rows are not read.
+    const auto charge = [&](const unsigned int i, const unsigned int j) {
+      return charges[std::size_t(j) * n[0] + i];
+    };
+    // The grid's rows with the images in one centre line (the grid is
+    // symmetric about its centre), zero-padded in x; the padding rows are
+    // not read.
     for (unsigned int j = 0; j < n[1]; ++j)
       {
         double *row = plans->real + std::size_t(j) * px;
-        std::copy(charges.begin() + std::size_t(j) * n[0],
-                  charges.begin() + std::size_t(j + 1) * n[0],
-                  row);
+        for (unsigned int i = 0; i < n[0]; ++i)
+          row[i] = charge(i, j) + (mirrored[0] ? charge(n[0] - 1 - i, j) : 0.) +
+                   (mirrored[1] ? charge(i, n[1] - 1 - j) : 0.);
         std::fill(row + n[0], row + px, 0.);
       }
     fftw_execute(plans->rows_forward);
@@ -390,6 +493,54 @@ namespace PlateOnHalfspace
       std::copy(plans->real + std::size_t(j) * px,
                 plans->real + std::size_t(j) * px + n[0],
                 potentials.begin() + std::size_t(j) * n[0]);
+  }
+
+  void
+  GridConvolution::convolve_quarter(const Vector<double> &charges,
+                                    Vector<double>       &potentials) const
+  {
+    const std::lock_guard<std::mutex> lock(plans->mutex);
+    const unsigned int mx = padded[0], hx = n[0] / 2, hy = n[1] / 2;
+    // quarter index a of grid index i, and the image's i
+    const auto up = [](const unsigned int half, const unsigned int a) {
+      return half + a;
+    };
+    const auto down = [](const unsigned int half, const unsigned int a) {
+      return half - 1 - a;
+    };
+    const auto charge = [&](const unsigned int i, const unsigned int j) {
+      return charges[std::size_t(j) * n[0] + i];
+    };
+    // The charges with their three images, folded onto the quarter.
+    for (unsigned int b = 0; b < hy; ++b)
+      {
+        double *row = plans->real + std::size_t(b) * mx;
+        for (unsigned int a = 0; a < hx; ++a)
+          row[a] =
+            charge(up(hx, a), up(hy, b)) + charge(down(hx, a), up(hy, b)) +
+            charge(up(hx, a), down(hy, b)) + charge(down(hx, a), down(hy, b));
+        std::fill(row + hx, row + mx, 0.);
+      }
+    fftw_execute(plans->rows_forward);
+    std::fill(plans->real + std::size_t(hy) * mx,
+              plans->real + plans->n_real,
+              0.);
+    fftw_execute(plans->columns_forward);
+    for (std::size_t k = 0; k < plans->n_real; ++k)
+      plans->real[k] *= kernel_transform[k];
+    fftw_execute(plans->columns_backward);
+    fftw_execute(plans->rows_backward);
+    if (potentials.size() != n_grid_nodes())
+      potentials.reinit(n_grid_nodes(), true);
+    // the quarter's potentials in all four quarters
+    for (unsigned int j = 0; j < n[1]; ++j)
+      {
+        const unsigned int b   = j >= hy ? j - hy : hy - 1 - j;
+        const double      *row = plans->real + std::size_t(b) * mx;
+        for (unsigned int i = 0; i < n[0]; ++i)
+          potentials[std::size_t(j) * n[0] + i] =
+            row[i >= hx ? i - hx : hx - 1 - i];
+      }
   }
 
   std::size_t

@@ -14,7 +14,15 @@
  *
  * The grid is symmetric about its centre, so a mirror-symmetric set of
  * points sees a mirror-symmetric interpolation (the operator stays
- * symmetric on a symmetric scene).
+ * symmetric on a symmetric scene). The charges' mirror images in the
+ * grid's centre lines are convolved with them where the grid is told so.
+ * With images in both lines the grid has an even number of nodes each
+ * way, so the charges with their images are even about the centre
+ * between two nodes, and the convolution is made on the quarter with
+ * cosine transforms (FFTW's REDFT10 and REDFT01, the DFT of the whole
+ * padded grid restricted to even sequences; doc/formulation.md,
+ * "Split-kernel FFT storage"): a quarter of the points and no complex
+ * arithmetic.
  */
 #ifndef plate_on_halfspace_halfspace_grid_convolution_h
 #define plate_on_halfspace_halfspace_grid_convolution_h
@@ -55,12 +63,17 @@ namespace PlateOnHalfspace
      * @param half_widths the points lie within centre +- half_widths.
      * @param order the B-splines' order p (even, 4 to max_order).
      * @param kernel k(r), smooth (also at r = 0).
+     * @param mirror_images whether convolve() adds the charges' mirror
+     *   images in the grid's centre line x = centre[0] (first) and
+     *   y = centre[1] (second).
      */
     GridConvolution(const Point<2>                      &centre,
                     const double                         spacing,
                     const std::array<double, 2>         &half_widths,
                     const unsigned int                   order,
-                    const std::function<double(double)> &kernel);
+                    const std::function<double(double)> &kernel,
+                    const std::array<bool, 2>           &mirror_images = {
+                                {false, false}});
     ~GridConvolution();
     GridConvolution(const GridConvolution &) = delete;
     GridConvolution &
@@ -90,24 +103,27 @@ namespace PlateOnHalfspace
       return std::size_t(n[0]) * n[1];
     }
 
-    /** The padded FFT sizes. */
+    /** The transforms' lengths: the padded grid's, or with cosine
+     *  transforms half of it (the quarter's). */
     std::array<unsigned int, 2>
     fft_sizes() const
     {
       return padded;
     }
 
-    /**
-     * Add to @p field its mirror images: for each sign pair (s_x, s_y) of
-     * @p reflections the field reflected in the grid's centre lines where
-     * the sign is negative (the grid is symmetric about its centre).
-     */
-    void
-    add_reflections(
-      Vector<double>                           &field,
-      const std::vector<std::array<double, 2>> &reflections) const;
+    /** Whether the convolution runs on the quarter with cosine transforms
+     *  (mirror images in both centre lines). */
+    bool
+    uses_cosine_transforms() const
+    {
+      return cosine;
+    }
 
-    /** @p potentials = G * @p charges on the grid (in place allowed). */
+    /**
+     * @p potentials = G * (@p charges and their mirror images) on the
+     * grid (in place allowed); the potentials are mirror symmetric where
+     * the images are.
+     */
     void
     convolve(const Vector<double> &charges, Vector<double> &potentials) const;
 
@@ -121,11 +137,35 @@ namespace PlateOnHalfspace
     int
     stencil_1d(const double x, const unsigned int d, double *weights) const;
 
+    /** The plans and the kernel's transform of the whole padded grid
+     *  (real-to-complex) and of the quarter (cosine transforms). */
+    void
+    make_whole_plans(const std::function<double(double)> &kernel);
+    void
+    make_quarter_plans(const std::function<double(double)> &kernel);
+
+    /** The B-splines' Fourier symbol at the frequencies 2 pi k / @p period,
+     *  k < @p count. */
+    std::vector<double>
+    spline_symbols(const unsigned int count, const unsigned int period) const;
+
+    /** convolve() with the whole padded grid's real FFT. */
+    void
+    convolve_whole(const Vector<double> &charges,
+                   Vector<double>       &potentials) const;
+
+    /** convolve() on the quarter with cosine transforms. */
+    void
+    convolve_quarter(const Vector<double> &charges,
+                     Vector<double>       &potentials) const;
+
     unsigned int                spline_order;
     double                      h;
-    Point<2>                    origin; ///< node (0, 0)
-    std::array<unsigned int, 2> n;      ///< grid nodes per direction
-    std::array<unsigned int, 2> padded; ///< FFT sizes
+    Point<2>                    origin;   ///< node (0, 0)
+    std::array<unsigned int, 2> n;        ///< grid nodes per direction
+    std::array<unsigned int, 2> padded;   ///< transform lengths
+    std::array<bool, 2>         mirrored; ///< images in the centre lines
+    bool                        cosine;   ///< mirrored both ways
     /**
      * The stencil's weights as polynomials in the point's offset u in
      * [0, 1) from its grid cell: weight k is the sum over m of
@@ -133,7 +173,8 @@ namespace PlateOnHalfspace
      * cardinal B-spline.
      */
     std::array<double, max_order * max_order> weight_polynomials{};
-    /** The filtered kernel's transform, padded[0] x (padded[1]/2 + 1). */
+    /** The filtered kernel's transform: (padded[0]/2 + 1) x padded[1],
+     *  or padded[0] x padded[1] with cosine transforms. */
     std::vector<double> kernel_transform;
     struct Plans;
     std::unique_ptr<Plans> plans;
