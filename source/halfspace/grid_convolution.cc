@@ -75,6 +75,37 @@ namespace PlateOnHalfspace
       fftw_plan_with_nthreads(static_cast<int>(MultithreadInfo::n_threads()));
     }
 
+    /**
+     * A plan made by @p make_plan under the planner's lock, executed once
+     * and destroyed: the kernel's transforms.
+     */
+    template <typename MakePlan>
+    void
+    execute_once(const MakePlan &make_plan)
+    {
+      fftw_plan plan;
+      {
+        const std::lock_guard<std::mutex> lock(planner_mutex());
+        plan_with_deal_ii_threads();
+        plan = make_plan();
+      }
+      AssertThrow(plan, ExcMessage("GridConvolution: FFTW made no plan."));
+      fftw_execute(plan);
+      const std::lock_guard<std::mutex> lock(planner_mutex());
+      fftw_destroy_plan(plan);
+    }
+
+    /**
+     * The index on the half of a direction of 2 @p half nodes mirrored
+     * about its centre: the nodes half + a and half - 1 - a (a charge and
+     * its image) share the index a.
+     */
+    unsigned int
+    half_index(const unsigned int i, const unsigned int half)
+    {
+      return i >= half ? i - half : half - 1 - i;
+    }
+
     /** The smallest m >= @p n with no prime factor above 7 (fast FFTs). */
     unsigned int
     fast_fft_size(const unsigned int n)
@@ -95,8 +126,12 @@ namespace PlateOnHalfspace
    * The transforms of convolve(), pruned to the rows that hold data: the
    * rows' transforms over the grid's rows only (the padding rows are zero
    * going in and not wanted coming out), the columns' over all padded
-   * rows. The whole grid's are real-to-complex ones (real rows, complex
-   * columns); the quarter's are cosine transforms in place on @p real.
+   * rows. @p real holds the folded charges, x the fast index, padded[0]
+   * to a row. The whole grid's are real-to-complex ones (real rows,
+   * complex columns); the quarter's cosine transforms in place on
+   * @p real; the half's a real FFT in the free direction and cosine
+   * transforms in the mirrored one (on the spectrum's real and imaginary
+   * parts alike when x is the free direction).
    */
   struct GridConvolution::Plans
   {
@@ -106,6 +141,53 @@ namespace PlateOnHalfspace
               columns_backward = nullptr, rows_backward = nullptr;
     std::size_t n_real = 0, n_spectrum = 0;
     std::mutex  mutex; ///< the buffers serve one convolution at a time
+
+    /** The buffers: @p reals doubles and @p complexes complex numbers
+     *  (none: no spectrum). */
+    void
+    allocate(const std::size_t reals, const std::size_t complexes)
+    {
+      n_real     = reals;
+      n_spectrum = complexes;
+      real       = fftw_alloc_real(n_real);
+      if (n_spectrum > 0)
+        spectrum = fftw_alloc_complex(n_spectrum);
+      AssertThrow(real && (spectrum || n_spectrum == 0),
+                  ExcMessage("GridConvolution: out of memory for the FFT."));
+    }
+
+    /** The real FFTs of @p rows contiguous rows of @p length, forward
+     *  from @p real and back to it (the spectrum's rows length / 2 + 1
+     *  apart); under the planner's lock. */
+    void
+    make_row_ffts(int length, const int rows)
+    {
+      const int s   = length / 2 + 1;
+      rows_forward  = fftw_plan_many_dft_r2c(1,
+                                            &length,
+                                            rows,
+                                            real,
+                                            nullptr,
+                                            1,
+                                            length,
+                                            spectrum,
+                                            nullptr,
+                                            1,
+                                            s,
+                                            FFTW_ESTIMATE);
+      rows_backward = fftw_plan_many_dft_c2r(1,
+                                             &length,
+                                             rows,
+                                             spectrum,
+                                             nullptr,
+                                             1,
+                                             s,
+                                             real,
+                                             nullptr,
+                                             1,
+                                             length,
+                                             FFTW_ESTIMATE);
+    }
 
     ~Plans()
     {
@@ -128,7 +210,6 @@ namespace PlateOnHalfspace
     : spline_order(order)
     , h(spacing)
     , mirrored(mirror_images)
-    , cosine(mirror_images[0] && mirror_images[1])
     , plans(std::make_unique<Plans>())
   {
     AssertThrow(order >= 4 && order <= max_order && order % 2 == 0,
@@ -156,17 +237,19 @@ namespace PlateOnHalfspace
         n[d] = static_cast<unsigned int>(std::ceil(cells)) + 1;
         // the cosine transforms' even sequences about the point between
         // the two middle nodes (REDFT10)
-        if (cosine && n[d] % 2 == 1)
+        if (mirrored[d] && n[d] % 2 == 1)
           ++n[d];
         origin[d] = centre[d] - 0.5 * (n[d] - 1) * h;
         // Hockney: offsets up to n - 1 either way without wrapping, and a
         // margin where the filter's tail wraps. The cosine transforms'
         // period is twice their length.
-        padded[d] = cosine ? fast_fft_size(n[d] + 2 * order + 8) :
-                             fast_fft_size(2 * n[d] + 4 * order + 16);
+        padded[d] = mirrored[d] ? fast_fft_size(n[d] + 2 * order + 8) :
+                                  fast_fft_size(2 * n[d] + 4 * order + 16);
       }
-    if (cosine)
+    if (mirrored[0] && mirrored[1])
       make_quarter_plans(kernel);
+    else if (mirrored[0] || mirrored[1])
+      make_half_plans(kernel);
     else
       make_whole_plans(kernel);
   }
@@ -176,31 +259,15 @@ namespace PlateOnHalfspace
   {
     // FFTW's row-major 2D layout: y the slow index, x the fast one.
     const unsigned int px = padded[0], py = padded[1], sx = px / 2 + 1;
-    plans->n_real     = std::size_t(px) * py;
-    plans->n_spectrum = std::size_t(sx) * py;
-    plans->real       = fftw_alloc_real(plans->n_real);
-    plans->spectrum   = fftw_alloc_complex(plans->n_spectrum);
-    AssertThrow(plans->real && plans->spectrum,
-                ExcMessage("GridConvolution: out of memory for the FFT."));
+    plans->allocate(std::size_t(px) * py, std::size_t(sx) * py);
     // FFTW_ESTIMATE: the same plans, so the same rounding, on every run
     // with the same number of threads.
     {
       const std::lock_guard<std::mutex> lock(planner_mutex());
       plan_with_deal_ii_threads();
-      int       length_x = px, length_y = py;
-      const int rows = n[1], columns = sx;
-      plans->rows_forward     = fftw_plan_many_dft_r2c(1,
-                                                   &length_x,
-                                                   rows,
-                                                   plans->real,
-                                                   nullptr,
-                                                   1,
-                                                   px,
-                                                   plans->spectrum,
-                                                   nullptr,
-                                                   1,
-                                                   sx,
-                                                   FFTW_ESTIMATE);
+      int       length_y = py;
+      const int columns  = sx;
+      plans->make_row_ffts(px, n[1]);
       const auto columns_plan = [&](const int direction) {
         return fftw_plan_many_dft(1,
                                   &length_y,
@@ -218,18 +285,6 @@ namespace PlateOnHalfspace
       };
       plans->columns_forward  = columns_plan(FFTW_FORWARD);
       plans->columns_backward = columns_plan(FFTW_BACKWARD);
-      plans->rows_backward    = fftw_plan_many_dft_c2r(1,
-                                                    &length_x,
-                                                    rows,
-                                                    plans->spectrum,
-                                                    nullptr,
-                                                    1,
-                                                    sx,
-                                                    plans->real,
-                                                    nullptr,
-                                                    1,
-                                                    px,
-                                                    FFTW_ESTIMATE);
       AssertThrow(plans->rows_forward && plans->columns_forward &&
                     plans->columns_backward && plans->rows_backward,
                   ExcMessage("GridConvolution: FFTW made no plan."));
@@ -244,19 +299,10 @@ namespace PlateOnHalfspace
           const double dy = (j <= py / 2) ? double(j) : double(j) - py;
           plans->real[std::size_t(j) * px + i] = kernel(h * std::hypot(dx, dy));
         }
-    {
-      fftw_plan whole;
-      {
-        const std::lock_guard<std::mutex> lock(planner_mutex());
-        plan_with_deal_ii_threads();
-        whole = fftw_plan_dft_r2c_2d(
-          py, px, plans->real, plans->spectrum, FFTW_ESTIMATE);
-      }
-      AssertThrow(whole, ExcMessage("GridConvolution: FFTW made no plan."));
-      fftw_execute(whole);
-      const std::lock_guard<std::mutex> lock(planner_mutex());
-      fftw_destroy_plan(whole);
-    }
+    execute_once([&]() {
+      return fftw_plan_dft_r2c_2d(
+        py, px, plans->real, plans->spectrum, FFTW_ESTIMATE);
+    });
     kernel_transform.resize(plans->n_spectrum);
     const std::vector<double> bx = spline_symbols(sx, px),
                               by = spline_symbols(py, py);
@@ -277,10 +323,7 @@ namespace PlateOnHalfspace
     // The quarter of nodes nx/2 + a, ny/2 + b, padded to the transforms'
     // lengths; y the slow index, x the fast one.
     const unsigned int mx = padded[0], my = padded[1];
-    plans->n_real = std::size_t(mx) * my;
-    plans->real   = fftw_alloc_real(plans->n_real);
-    AssertThrow(plans->real,
-                ExcMessage("GridConvolution: out of memory for the FFT."));
+    plans->allocate(std::size_t(mx) * my, 0);
     {
       const std::lock_guard<std::mutex> lock(planner_mutex());
       plan_with_deal_ii_threads();
@@ -324,24 +367,15 @@ namespace PlateOnHalfspace
       for (unsigned int i = 0; i <= mx; ++i)
         samples[std::size_t(j) * (mx + 1) + i] =
           kernel(h * std::hypot(double(i), double(j)));
-    {
-      fftw_plan whole;
-      {
-        const std::lock_guard<std::mutex> lock(planner_mutex());
-        plan_with_deal_ii_threads();
-        whole = fftw_plan_r2r_2d(my + 1,
-                                 mx + 1,
-                                 samples.data(),
-                                 samples.data(),
-                                 FFTW_REDFT00,
-                                 FFTW_REDFT00,
-                                 FFTW_ESTIMATE);
-      }
-      AssertThrow(whole, ExcMessage("GridConvolution: FFTW made no plan."));
-      fftw_execute(whole);
-      const std::lock_guard<std::mutex> lock(planner_mutex());
-      fftw_destroy_plan(whole);
-    }
+    execute_once([&]() {
+      return fftw_plan_r2r_2d(my + 1,
+                              mx + 1,
+                              samples.data(),
+                              samples.data(),
+                              FFTW_REDFT00,
+                              FFTW_REDFT00,
+                              FFTW_ESTIMATE);
+    });
     kernel_transform.resize(plans->n_real);
     const std::vector<double> bx = spline_symbols(mx, 2 * mx),
                               by = spline_symbols(my, 2 * my);
@@ -354,6 +388,108 @@ namespace PlateOnHalfspace
           kernel_transform[std::size_t(j) * mx + i] =
             scale * samples[std::size_t(j) * (mx + 1) + i] / (b * b);
         }
+  }
+
+  void
+  GridConvolution::make_half_plans(const std::function<double(double)> &kernel)
+  {
+    // e the mirrored direction (cosine transforms of length m on its
+    // half), f the free one (real FFT of length p, s complex entries).
+    // The buffers' rows run along f whichever it is, so that the real
+    // FFTs are contiguous: real rows x p, the spectrum m x s.
+    const unsigned int e = mirrored[0] ? 0 : 1, f = 1 - e;
+    const unsigned int m = padded[e], p = padded[f], s = p / 2 + 1;
+    const int          rows = n[e] / 2;
+    plans->allocate(std::size_t(rows) * p, std::size_t(m) * s);
+    {
+      const std::lock_guard<std::mutex> lock(planner_mutex());
+      plan_with_deal_ii_threads();
+      int           length_m = m;
+      double *const parts    = &plans->spectrum[0][0];
+      // rows: real FFTs of the half's rows; columns: cosine transforms of
+      // the spectrum's real and imaginary parts (2 s sequences)
+      plans->make_row_ffts(p, rows);
+      const auto columns_plan = [&](const fftw_r2r_kind &kind) {
+        return fftw_plan_many_r2r(1,
+                                  &length_m,
+                                  2 * s,
+                                  parts,
+                                  nullptr,
+                                  2 * s,
+                                  1,
+                                  parts,
+                                  nullptr,
+                                  2 * s,
+                                  1,
+                                  &kind,
+                                  FFTW_ESTIMATE);
+      };
+      plans->columns_forward  = columns_plan(FFTW_REDFT10);
+      plans->columns_backward = columns_plan(FFTW_REDFT01);
+      AssertThrow(plans->rows_forward && plans->columns_forward &&
+                    plans->columns_backward && plans->rows_backward,
+                  ExcMessage("GridConvolution: FFTW made no plan."));
+    }
+
+    // The kernel's samples at offsets 0 … m along e (their DFT over the
+    // period 2 m is the type-I cosine transform) and at the circular
+    // offsets along f (an even sequence: its DFT is real), rows along f.
+    std::vector<double> samples(std::size_t(m + 1) * p);
+    for (unsigned int a = 0; a <= m; ++a)
+      for (unsigned int k = 0; k < p; ++k)
+        {
+          const double offset = (k <= p / 2) ? double(k) : double(k) - p;
+          samples[std::size_t(a) * p + k] =
+            kernel(h * std::hypot(double(a), offset));
+        }
+    execute_once([&]() {
+      int                 length = m + 1;
+      const fftw_r2r_kind kind   = FFTW_REDFT00;
+      return fftw_plan_many_r2r(1,
+                                &length,
+                                p,
+                                samples.data(),
+                                nullptr,
+                                p,
+                                1,
+                                samples.data(),
+                                nullptr,
+                                p,
+                                1,
+                                &kind,
+                                FFTW_ESTIMATE);
+    });
+    fftw_complex *const spectrum = fftw_alloc_complex(std::size_t(m + 1) * s);
+    AssertThrow(spectrum,
+                ExcMessage("GridConvolution: out of memory for the FFT."));
+    execute_once([&]() {
+      int length = p;
+      return fftw_plan_many_dft_r2c(1,
+                                    &length,
+                                    m + 1,
+                                    samples.data(),
+                                    nullptr,
+                                    1,
+                                    p,
+                                    spectrum,
+                                    nullptr,
+                                    1,
+                                    s,
+                                    FFTW_ESTIMATE);
+    });
+    kernel_transform.resize(plans->n_spectrum);
+    const std::vector<double> b_e = spline_symbols(m, 2 * m),
+                              b_f = spline_symbols(s, p);
+    // REDFT10 then REDFT01 multiply by 2 m, the real FFT's pair by p
+    const double scale = 1. / (2. * double(m) * p);
+    for (unsigned int a = 0; a < m; ++a)
+      for (unsigned int k = 0; k < s; ++k)
+        {
+          const std::size_t entry = std::size_t(a) * s + k;
+          const double      b     = b_e[a] * b_f[k];
+          kernel_transform[entry] = scale * spectrum[entry][0] / (b * b);
+        }
+    fftw_free(spectrum);
   }
 
   std::vector<double>
@@ -447,100 +583,52 @@ namespace PlateOnHalfspace
                             Vector<double>       &potentials) const
   {
     AssertDimension(charges.size(), n_grid_nodes());
-    if (cosine)
-      convolve_quarter(charges, potentials);
+    const std::lock_guard<std::mutex> lock(plans->mutex);
+    const unsigned int                hx = n[0] / 2, hy = n[1] / 2;
+    // The buffer's rows run along x, except on the half mirrored in x
+    // (make_half_plans()): there along y. A grid node's place in it lies
+    // on the half in a mirrored direction, where a charge meets its image.
+    const bool         along_y    = mirrored[0] && !mirrored[1];
+    const unsigned int row_length = padded[along_y ? 1 : 0];
+    const unsigned int rows       = along_y ? hx : (mirrored[1] ? hy : n[1]);
+    const auto         place = [&](const unsigned int i, const unsigned int j) {
+      const unsigned int a = mirrored[0] ? half_index(i, hx) : i,
+                         b = mirrored[1] ? half_index(j, hy) : j;
+      return along_y ? std::size_t(a) * row_length + b :
+                               std::size_t(b) * row_length + a;
+    };
+    std::fill(plans->real, plans->real + std::size_t(rows) * row_length, 0.);
+    for (unsigned int j = 0; j < n[1]; ++j)
+      for (unsigned int i = 0; i < n[0]; ++i)
+        plans->real[place(i, j)] += charges[std::size_t(j) * n[0] + i];
+    fftw_execute(plans->rows_forward);
+    // The padding rows going into the columns' transforms are zero: the
+    // spectrum's rows, or on the quarter the real rows.
+    if (plans->spectrum)
+      std::fill(&plans->spectrum[std::size_t(rows) * (row_length / 2 + 1)][0],
+                &plans->spectrum[0][0] + 2 * plans->n_spectrum,
+                0.);
     else
-      convolve_whole(charges, potentials);
-  }
-
-  void
-  GridConvolution::convolve_whole(const Vector<double> &charges,
-                                  Vector<double>       &potentials) const
-  {
-    Assert(!(mirrored[0] && mirrored[1]), ExcInternalError());
-    const std::lock_guard<std::mutex> lock(plans->mutex);
-    const unsigned int                px = padded[0], sx = px / 2 + 1;
-    const auto charge = [&](const unsigned int i, const unsigned int j) {
-      return charges[std::size_t(j) * n[0] + i];
-    };
-    // The grid's rows with the images in one centre line (the grid is
-    // symmetric about its centre), zero-padded in x; the padding rows are
-    // not read.
-    for (unsigned int j = 0; j < n[1]; ++j)
-      {
-        double *row = plans->real + std::size_t(j) * px;
-        for (unsigned int i = 0; i < n[0]; ++i)
-          row[i] = charge(i, j) + (mirrored[0] ? charge(n[0] - 1 - i, j) : 0.) +
-                   (mirrored[1] ? charge(i, n[1] - 1 - j) : 0.);
-        std::fill(row + n[0], row + px, 0.);
-      }
-    fftw_execute(plans->rows_forward);
-    // The padding rows' spectra are those of zero rows.
-    std::fill(plans->spectrum[std::size_t(n[1]) * sx],
-              plans->spectrum[0] + 2 * plans->n_spectrum,
-              0.);
+      std::fill(plans->real + std::size_t(rows) * row_length,
+                plans->real + plans->n_real,
+                0.);
     fftw_execute(plans->columns_forward);
-    for (std::size_t k = 0; k < plans->n_spectrum; ++k)
-      {
-        plans->spectrum[k][0] *= kernel_transform[k];
-        plans->spectrum[k][1] *= kernel_transform[k];
-      }
+    if (plans->spectrum)
+      for (std::size_t k = 0; k < plans->n_spectrum; ++k)
+        {
+          plans->spectrum[k][0] *= kernel_transform[k];
+          plans->spectrum[k][1] *= kernel_transform[k];
+        }
+    else
+      for (std::size_t k = 0; k < plans->n_real; ++k)
+        plans->real[k] *= kernel_transform[k];
     fftw_execute(plans->columns_backward);
     fftw_execute(plans->rows_backward);
     if (potentials.size() != n_grid_nodes())
       potentials.reinit(n_grid_nodes(), true);
     for (unsigned int j = 0; j < n[1]; ++j)
-      std::copy(plans->real + std::size_t(j) * px,
-                plans->real + std::size_t(j) * px + n[0],
-                potentials.begin() + std::size_t(j) * n[0]);
-  }
-
-  void
-  GridConvolution::convolve_quarter(const Vector<double> &charges,
-                                    Vector<double>       &potentials) const
-  {
-    const std::lock_guard<std::mutex> lock(plans->mutex);
-    const unsigned int mx = padded[0], hx = n[0] / 2, hy = n[1] / 2;
-    // quarter index a of grid index i, and the image's i
-    const auto up = [](const unsigned int half, const unsigned int a) {
-      return half + a;
-    };
-    const auto down = [](const unsigned int half, const unsigned int a) {
-      return half - 1 - a;
-    };
-    const auto charge = [&](const unsigned int i, const unsigned int j) {
-      return charges[std::size_t(j) * n[0] + i];
-    };
-    // The charges with their three images, folded onto the quarter.
-    for (unsigned int b = 0; b < hy; ++b)
-      {
-        double *row = plans->real + std::size_t(b) * mx;
-        for (unsigned int a = 0; a < hx; ++a)
-          row[a] =
-            charge(up(hx, a), up(hy, b)) + charge(down(hx, a), up(hy, b)) +
-            charge(up(hx, a), down(hy, b)) + charge(down(hx, a), down(hy, b));
-        std::fill(row + hx, row + mx, 0.);
-      }
-    fftw_execute(plans->rows_forward);
-    std::fill(plans->real + std::size_t(hy) * mx,
-              plans->real + plans->n_real,
-              0.);
-    fftw_execute(plans->columns_forward);
-    for (std::size_t k = 0; k < plans->n_real; ++k)
-      plans->real[k] *= kernel_transform[k];
-    fftw_execute(plans->columns_backward);
-    fftw_execute(plans->rows_backward);
-    if (potentials.size() != n_grid_nodes())
-      potentials.reinit(n_grid_nodes(), true);
-    // the quarter's potentials in all four quarters
-    for (unsigned int j = 0; j < n[1]; ++j)
-      {
-        const unsigned int b   = j >= hy ? j - hy : hy - 1 - j;
-        const double      *row = plans->real + std::size_t(b) * mx;
-        for (unsigned int i = 0; i < n[0]; ++i)
-          potentials[std::size_t(j) * n[0] + i] =
-            row[i >= hx ? i - hx : hx - 1 - i];
-      }
+      for (unsigned int i = 0; i < n[0]; ++i)
+        potentials[std::size_t(j) * n[0] + i] = plans->real[place(i, j)];
   }
 
   std::size_t

@@ -1223,11 +1223,16 @@ namespace PlateOnHalfspace
          << " entries in the upper triangle), far field on "
          << chosen.quadrature_points << " Gauss points and a grid of "
          << chosen.grid_nodes << " nodes (spacing " << chosen.spacing
-         << ", B-splines of order " << chosen.spline_order << ", "
-         << (grid->uses_cosine_transforms() ? "cosine transforms of the "
-                                              "quarter " :
-                                              "FFT ")
-         << grid->fft_sizes()[0] << " x " << grid->fft_sizes()[1] << ")";
+         << ", B-splines of order " << chosen.spline_order << ", ";
+    const std::array<bool, 2> cosine = grid->cosine_transform_directions();
+    if (cosine[0] && cosine[1])
+      text << "cosine transforms of the quarter ";
+    else if (cosine[0] || cosine[1])
+      text << "cosine transforms in " << (cosine[0] ? "x" : "y")
+           << " and FFT in " << (cosine[0] ? "y" : "x") << " of the half ";
+    else
+      text << "FFT ";
+    text << grid->fft_sizes()[0] << " x " << grid->fft_sizes()[1] << ")";
     if (n_ranks(communicator) > 1)
       text << "; on " << n_ranks(communicator)
            << " processes, each holding the near pairs and far-field "

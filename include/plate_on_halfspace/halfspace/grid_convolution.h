@@ -16,13 +16,14 @@
  * points sees a mirror-symmetric interpolation (the operator stays
  * symmetric on a symmetric scene). The charges' mirror images in the
  * grid's centre lines are convolved with them where the grid is told so.
- * With images in both lines the grid has an even number of nodes each
- * way, so the charges with their images are even about the centre
- * between two nodes, and the convolution is made on the quarter with
- * cosine transforms (FFTW's REDFT10 and REDFT01, the DFT of the whole
- * padded grid restricted to even sequences; doc/formulation.md,
- * "Split-kernel FFT storage"): a quarter of the points and no complex
- * arithmetic.
+ * In a direction with images the grid has an even number of nodes, so the
+ * charges with their images are even about the centre between two nodes,
+ * and that direction is transformed on its half with cosine transforms
+ * (FFTW's REDFT10 and REDFT01, the DFT of the padded grid restricted to
+ * even sequences; doc/formulation.md, "Split-kernel FFT storage"): with
+ * images in both lines the quarter of the points and no complex
+ * arithmetic, with images in one line half of the points, the other
+ * direction by the real FFT.
  */
 #ifndef plate_on_halfspace_halfspace_grid_convolution_h
 #define plate_on_halfspace_halfspace_grid_convolution_h
@@ -103,20 +104,20 @@ namespace PlateOnHalfspace
       return std::size_t(n[0]) * n[1];
     }
 
-    /** The transforms' lengths: the padded grid's, or with cosine
-     *  transforms half of it (the quarter's). */
+    /** The transforms' lengths: the padded grid's, or in a direction
+     *  with cosine transforms half of it. */
     std::array<unsigned int, 2>
     fft_sizes() const
     {
       return padded;
     }
 
-    /** Whether the convolution runs on the quarter with cosine transforms
-     *  (mirror images in both centre lines). */
-    bool
-    uses_cosine_transforms() const
+    /** The directions transformed by cosine transforms on their half:
+     *  those with mirror images. */
+    std::array<bool, 2>
+    cosine_transform_directions() const
     {
-      return cosine;
+      return mirrored;
     }
 
     /**
@@ -137,27 +138,20 @@ namespace PlateOnHalfspace
     int
     stencil_1d(const double x, const unsigned int d, double *weights) const;
 
-    /** The plans and the kernel's transform of the whole padded grid
-     *  (real-to-complex) and of the quarter (cosine transforms). */
+    /** The plans and the kernel's transform: real-to-complex both ways
+     *  (no images), cosine transforms both ways (the quarter), or one of
+     *  each (the half). */
     void
     make_whole_plans(const std::function<double(double)> &kernel);
     void
     make_quarter_plans(const std::function<double(double)> &kernel);
+    void
+    make_half_plans(const std::function<double(double)> &kernel);
 
     /** The B-splines' Fourier symbol at the frequencies 2 pi k / @p period,
      *  k < @p count. */
     std::vector<double>
     spline_symbols(const unsigned int count, const unsigned int period) const;
-
-    /** convolve() with the whole padded grid's real FFT. */
-    void
-    convolve_whole(const Vector<double> &charges,
-                   Vector<double>       &potentials) const;
-
-    /** convolve() on the quarter with cosine transforms. */
-    void
-    convolve_quarter(const Vector<double> &charges,
-                     Vector<double>       &potentials) const;
 
     unsigned int                spline_order;
     double                      h;
@@ -165,7 +159,6 @@ namespace PlateOnHalfspace
     std::array<unsigned int, 2> n;        ///< grid nodes per direction
     std::array<unsigned int, 2> padded;   ///< transform lengths
     std::array<bool, 2>         mirrored; ///< images in the centre lines
-    bool                        cosine;   ///< mirrored both ways
     /**
      * The stencil's weights as polynomials in the point's offset u in
      * [0, 1) from its grid cell: weight k is the sum over m of
@@ -173,8 +166,9 @@ namespace PlateOnHalfspace
      * cardinal B-spline.
      */
     std::array<double, max_order * max_order> weight_polynomials{};
-    /** The filtered kernel's transform: (padded[0]/2 + 1) x padded[1],
-     *  or padded[0] x padded[1] with cosine transforms. */
+    /** The filtered kernel's transform, real, laid out as the transformed
+     *  grid: x the fast index, padded[d] / 2 + 1 entries in a direction
+     *  of the real FFT, padded[d] in one of cosine transforms. */
     std::vector<double> kernel_transform;
     struct Plans;
     std::unique_ptr<Plans> plans;
