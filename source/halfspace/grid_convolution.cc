@@ -126,12 +126,13 @@ namespace PlateOnHalfspace
    * The transforms of convolve(), pruned to the rows that hold data: the
    * rows' transforms over the grid's rows only (the padding rows are zero
    * going in and not wanted coming out), the columns' over all padded
-   * rows. @p real holds the folded charges, x the fast index, padded[0]
-   * to a row. The whole grid's are real-to-complex ones (real rows,
-   * complex columns); the quarter's cosine transforms in place on
-   * @p real; the half's a real FFT in the free direction and cosine
-   * transforms in the mirrored one (on the spectrum's real and imaginary
-   * parts alike when x is the free direction).
+   * rows. @p real holds the folded charges in rows along x (padded[0] to
+   * a row), except on the half mirrored in x: there along y. The whole
+   * grid's are real-to-complex ones (real rows, complex columns); the
+   * quarter's cosine transforms in place on @p real; the half's a real
+   * FFT along its rows (the free direction) and cosine transforms along
+   * the columns (the mirrored one) on the spectrum's real and imaginary
+   * parts alike.
    */
   struct GridConvolution::Plans
   {

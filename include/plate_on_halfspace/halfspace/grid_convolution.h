@@ -167,8 +167,9 @@ namespace PlateOnHalfspace
      */
     std::array<double, max_order * max_order> weight_polynomials{};
     /** The filtered kernel's transform, real, laid out as the transformed
-     *  grid: x the fast index, padded[d] / 2 + 1 entries in a direction
-     *  of the real FFT, padded[d] in one of cosine transforms. */
+     *  grid: rows along x (along y on the half mirrored in x),
+     *  padded[d] / 2 + 1 entries in a direction of the real FFT,
+     *  padded[d] in one of cosine transforms. */
     std::vector<double> kernel_transform;
     struct Plans;
     std::unique_ptr<Plans> plans;
