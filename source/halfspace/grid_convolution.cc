@@ -460,19 +460,18 @@ namespace PlateOnHalfspace
                                 &kind,
                                 FFTW_ESTIMATE);
     });
-    fftw_complex *const spectrum = fftw_alloc_complex(std::size_t(m + 1) * s);
-    AssertThrow(spectrum,
-                ExcMessage("GridConvolution: out of memory for the FFT."));
+    // The real FFTs of the m rows used, into the plans' spectrum, which
+    // the convolutions overwrite.
     execute_once([&]() {
       int length = p;
       return fftw_plan_many_dft_r2c(1,
                                     &length,
-                                    m + 1,
+                                    m,
                                     samples.data(),
                                     nullptr,
                                     1,
                                     p,
-                                    spectrum,
+                                    plans->spectrum,
                                     nullptr,
                                     1,
                                     s,
@@ -488,9 +487,8 @@ namespace PlateOnHalfspace
         {
           const std::size_t entry = std::size_t(a) * s + k;
           const double      b     = b_e[a] * b_f[k];
-          kernel_transform[entry] = scale * spectrum[entry][0] / (b * b);
+          kernel_transform[entry] = scale * plans->spectrum[entry][0] / (b * b);
         }
-    fftw_free(spectrum);
   }
 
   std::vector<double>
