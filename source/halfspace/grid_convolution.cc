@@ -120,6 +120,21 @@ namespace PlateOnHalfspace
             return m;
         }
     }
+
+    /**
+     * Nodes past the largest offset the convolution needs before the
+     * padded period wraps. The filter 1 / B(w)^2 has coefficients that
+     * fall geometrically (its double poles at the B-spline's roots:
+     * about 0.27^k, 0.43^k and 0.54^k for orders 4, 6 and 8); past these
+     * margins they are below 1e-12 of the centre one, so the wrapped
+     * tail stays below every tolerance the order serves
+     * (doc/formulation.md, "Split-kernel FFT storage").
+     */
+    unsigned int
+    filter_margin(const unsigned int order)
+    {
+      return order <= 4 ? 24 : order <= 6 ? 37 : 50;
+    }
   } // namespace
 
   /**
@@ -242,10 +257,11 @@ namespace PlateOnHalfspace
           ++n[d];
         origin[d] = centre[d] - 0.5 * (n[d] - 1) * h;
         // Hockney: offsets up to n - 1 either way without wrapping, and a
-        // margin where the filter's tail wraps. The cosine transforms'
-        // period is twice their length.
-        padded[d] = mirrored[d] ? fast_fft_size(n[d] + 2 * order + 8) :
-                                  fast_fft_size(2 * n[d] + 4 * order + 16);
+        // margin where the filter's tail would wrap. The cosine
+        // transforms' period is twice their length.
+        const unsigned int margin = filter_margin(order);
+        padded[d]                 = mirrored[d] ? fast_fft_size(n[d] + margin) :
+                                                  fast_fft_size(2 * (n[d] + margin));
       }
     if (mirrored[0] && mirrored[1])
       make_quarter_plans(kernel);
