@@ -1,3 +1,4 @@
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -9,11 +10,15 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <deal.II/numerics/rtree.h>
+
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate/generalized_inverse.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace PlateOnHalfspace
 {
@@ -26,6 +31,14 @@ namespace PlateOnHalfspace
         {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}});
     }
   } // namespace
+
+  struct MindlinPlate::CellBoxes
+  {
+    /** Each active cell's bounding box with its active_cell_index(). */
+    RTree<std::pair<BoundingBox<2>, unsigned int>> tree;
+    /** The active cells by active_cell_index(). */
+    std::vector<typename DoFHandler<2>::active_cell_iterator> cells;
+  };
 
   MindlinPlate::MindlinPlate(const Parameters::Plate          &plate,
                              const Parameters::Discretization &discretization)
@@ -71,6 +84,18 @@ namespace PlateOnHalfspace
     constraints.close();
 
     build_foundation_space();
+    {
+      auto boxes = std::make_shared<CellBoxes>();
+      std::vector<std::pair<BoundingBox<2>, unsigned int>> leaves;
+      boxes->cells.resize(triangulation.n_active_cells());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          boxes->cells[cell->active_cell_index()] = cell;
+          leaves.emplace_back(cell->bounding_box(), cell->active_cell_index());
+        }
+      boxes->tree = pack_rtree(leaves);
+      cell_boxes  = std::move(boxes);
+    }
 
     DynamicSparsityPattern dsp(dof_handler.n_dofs());
     DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
@@ -570,11 +595,29 @@ namespace PlateOnHalfspace
   std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
   MindlinPlate::locate(const Point<2> &x) const
   {
+    // The cells whose bounding boxes come within the tolerance below of x,
+    // in the order of the active cells: the first cell that holds x
+    // wins, as on a search through all of them, and a cell further than
+    // the tolerance could not be taken.
+    AssertThrow(cell_boxes, ExcMessage("MindlinPlate::locate before setup()."));
+    const double tolerance = 1e-10 * (1. + x.norm());
+    std::vector<std::pair<BoundingBox<2>, unsigned int>> near;
+    if (std::isfinite(tolerance))
+      {
+        const Tensor<1, 2> margin({tolerance, tolerance});
+        cell_boxes->tree.query(boost::geometry::index::intersects(
+                                 BoundingBox<2>({x - margin, x + margin})),
+                               std::back_inserter(near));
+      }
+    std::sort(near.begin(), near.end(), [](const auto &a, const auto &b) {
+      return a.second < b.second;
+    });
     typename DoFHandler<2>::active_cell_iterator best;
     double   best_distance = std::numeric_limits<double>::max();
     Point<2> best_point;
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const auto &[box, index] : near)
       {
+        const auto                 &cell     = cell_boxes->cells[index];
         const BilinearQuadrilateral geometry = cell_geometry(cell);
         Point<2>                    p        = geometry.inverse_map(x);
         for (unsigned int d = 0; d < 2; ++d)
@@ -592,7 +635,7 @@ namespace PlateOnHalfspace
     // a point so far away that its distances overflow is off the plate
     // too (no cell was nearest)
     AssertThrow(best_distance < std::numeric_limits<double>::max() &&
-                  best_distance <= 1e-10 * (1. + x.norm()),
+                  best_distance <= tolerance,
                 ExcMessage("The point is not on the plate."));
     return {best, best_point};
   }

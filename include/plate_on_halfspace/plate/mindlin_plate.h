@@ -36,6 +36,7 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -433,6 +434,11 @@ namespace PlateOnHalfspace
      *  Cholesky factor of K_rr. */
     std::vector<types::global_dof_index> rest_dofs;
     SparseCholesky rest_factor{"the plate's rotation block"};
+
+    /** The active cells' bounding boxes in an R-tree (locate()), made by
+     *  setup(); defined in the source, so that the header stays lean. */
+    struct CellBoxes;
+    std::shared_ptr<const CellBoxes> cell_boxes;
   };
 } // namespace PlateOnHalfspace
 
