@@ -78,14 +78,16 @@ def n_of(cells):
     return 3 * cells * cells + 4 * cells + 1
 
 
-def run(executable, scene, path, cells, out):
+def run(executable, scene, path, cells, out, refinements=None):
     directory = os.path.join(out, "runs", f"{scene}-{path}-{cells}")
     os.makedirs(directory, exist_ok=True)
     prm = os.path.join(directory, "scene.prm")
     base, extra = SCENES[scene]
     # Subdivisions allows at most 1000: an even count above halves and
-    # refines once (the same mesh)
-    refinements = 1 if 2 * cells > 1000 else 0
+    # refines once (the same mesh); REFINEMENTS gives the same mesh as
+    # 2 cells / 2^REFINEMENTS subdivisions refined that often
+    if refinements is None:
+        refinements = 1 if 2 * cells > 1000 else 0
     subdivisions = 2 * cells // (2 ** refinements)
     with open(prm, "w") as f:
         f.write(f"include {os.path.join(ROOT, base)}\n"

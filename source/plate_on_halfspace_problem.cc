@@ -24,6 +24,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 namespace PlateOnHalfspace
 {
@@ -89,7 +90,14 @@ namespace PlateOnHalfspace
     const bool declared_timing = declare_results(
       "cycles",
       50,
-      {{{"wall_time_s"}, "s", "wall time of the cycle (plate setup included)"},
+      {{{"wall_time_s"},
+        "s",
+        "wall time of the cycle (plate setup and nested start included)"},
+       {{"nested_start_time_s"},
+        "s",
+        "the first cycle's nested start: the scene solved on the mesh one "
+        "refinement coarser, and the refinement back "
+        "([formulation.md](formulation.md#nested-start)); 0 without it"},
        {{"assembly_time_s"},
         "s",
         "plate setup (DoFs, constraints, stiffness) and loads"},
@@ -221,6 +229,7 @@ namespace PlateOnHalfspace
             Interruption::check();
             if (cycle > 0 && !refine_mesh())
               break;
+            nested_start_time_s = cycle == 0 ? solve_on_coarser_mesh() : 0.;
             assemble_loads(cycle);
             build_foundation_operator();
             Interruption::check();
@@ -422,6 +431,8 @@ namespace PlateOnHalfspace
   void
   PlateOnHalfspaceProblem::warn(const std::string &text)
   {
+    if (warnings_held_back)
+      return;
     run_warnings.push_back(text);
     if (rank_in(communicator) == 0)
       std::cerr << "Warning: " << text << std::endl;
@@ -555,6 +566,23 @@ namespace PlateOnHalfspace
   bool
   PlateOnHalfspaceProblem::refine_mesh()
   {
+    const bool refined = refine_and_carry_seed([this]() {
+      if (!create_refinement_strategy(parameters)
+             ->mark(*mindlin_plate, contact, goal_estimate, triangulation))
+        return false;
+      // the faces of each joint keep facing each other
+      slab_grid->match_refinement(triangulation);
+      return true;
+    });
+    if (!refined)
+      log << "Adaptivity/Max cells reached: no further cycles." << std::endl;
+    return refined;
+  }
+
+  bool
+  PlateOnHalfspaceProblem::refine_and_carry_seed(
+    const std::function<bool()> &mark)
+  {
     // the active set (not the wider set where q > 0) seeds the next cycle,
     // and the nodal pressure starts the next constrained start
     // (IterativeContactSolver::predict_contact_set())
@@ -564,15 +592,8 @@ namespace PlateOnHalfspace
     const std::vector<Vector<double>> old_fields = {
       mindlin_plate->foundation_field_to_solution(indicator),
       mindlin_plate->foundation_field_to_solution(contact.q)};
-
-    if (!create_refinement_strategy(parameters)
-           ->mark(*mindlin_plate, contact, goal_estimate, triangulation))
-      {
-        log << "Adaptivity/Max cells reached: no further cycles." << std::endl;
-        return false;
-      }
-    // the faces of each joint keep facing each other
-    slab_grid->match_refinement(triangulation);
+    if (!mark())
+      return false;
     SolutionTransfer<2> transfer(mindlin_plate->get_dof_handler());
     triangulation.prepare_coarsening_and_refinement();
     transfer.prepare_for_coarsening_and_refinement(old_fields);
@@ -589,6 +610,126 @@ namespace PlateOnHalfspace
       seed.contact_set[i] = nodal[i] > 0.5;
     seed.pressure = mindlin_plate->restrict_to_foundation(new_fields[1]);
     return true;
+  }
+
+  double
+  PlateOnHalfspaceProblem::solve_on_coarser_mesh(const bool within_nested)
+  {
+    using NestedStart         = Parameters::Contact::NestedStart;
+    const NestedStart  choice = parameters.contact.nested_start;
+    const unsigned int n      = mindlin_plate->get_foundation_dofs().size();
+    if (!parameters.foundation.tensionless || choice == NestedStart::off ||
+        parameters.contact.method != Parameters::Contact::Method::active_set ||
+        (choice == NestedStart::automatic &&
+         n < Parameters::Contact::nested_start_nodes))
+      return 0;
+    // The coarser mesh is the initial refinements' last but one: every
+    // cell one level up. The mesh and plate are replicated on several
+    // processes, but the coarse solve is not worth their collectives.
+    const int  level     = static_cast<int>(triangulation.n_levels()) - 1;
+    const auto on_levels = [this](const int finest) {
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->level() != finest)
+          return false;
+      return true;
+    };
+    // Adaptivity/Refinement = goal keeps every cell's siblings as a patch
+    // (make_mesh()): deal.II then coarsens no cell to the coarse mesh's
+    // level.
+    const bool patches =
+      triangulation.get_mesh_smoothing() & Triangulation<2>::patch_level_1;
+    const auto not_applied = [&](const std::string &reason) {
+      if (choice == NestedStart::on && !within_nested)
+        warn("Contact/Nested start = true: " + reason +
+             "; the first cycle starts without it.");
+      return 0.;
+    };
+    if (n_ranks(communicator) > 1)
+      return not_applied("the run has several processes");
+    if (level < 1 || !on_levels(level))
+      return not_applied("the first mesh has no coarser level (it needs "
+                         "Discretization/Initial refinements of at least 1)");
+    if (patches && level < 2)
+      return not_applied("Adaptivity/Refinement = goal keeps the cells in "
+                         "patches that the coarse mesh's cells cannot form");
+    Timer timer;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      cell->set_coarsen_flag();
+    triangulation.execute_coarsening_and_refinement();
+    if (!on_levels(level - 1))
+      {
+        // not every cell coarsened (the mesh smoothing refused some): the
+        // cells that were are refined back, which restores the mesh
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->level() < level)
+            cell->set_refine_flag();
+        triangulation.execute_coarsening_and_refinement();
+        AssertThrow(on_levels(level),
+                    ExcInternalError("Contact/Nested start: the mesh was not "
+                                     "restored after a refused coarsening."));
+        return not_applied("deal.II's mesh smoothing kept cells from "
+                           "being coarsened");
+      }
+    setup_plate();
+    // the coarser mesh's own solve seeded from one coarser still, where
+    // that applies in turn
+    solve_on_coarser_mesh(true);
+    // The coarse solve writes nothing: its log lines and warnings would
+    // describe a mesh the run does not solve, and the first cycle checks
+    // its own. What it decides for later cycles (a storage or solver
+    // after a failure, a warning given once) is the first cycle's to
+    // decide again.
+    std::streambuf *const log_buffer = log.rdbuf(nullptr);
+    warnings_held_back               = true;
+    const auto decided               = std::make_tuple(integration_error_warned,
+                                         coarse_cell_warned,
+                                         last_kernel_report,
+                                         direct_after_failed_iterations,
+                                         hierarchical_after_fft_did_not_fit);
+    const auto restore               = [&]() {
+      log.rdbuf(log_buffer);
+      warnings_held_back                           = false;
+      std::tie(integration_error_warned,
+               coarse_cell_warned,
+               last_kernel_report,
+               direct_after_failed_iterations,
+               hierarchical_after_fft_did_not_fit) = decided;
+    };
+    try
+      {
+        assemble_loads(0);
+        build_foundation_operator();
+        solve_contact();
+      }
+    catch (...)
+      {
+        restore();
+        throw;
+      }
+    restore();
+    const unsigned int coarse_nodes     = contact.q.size();
+    const bool         used_seed        = !seed.contact_set.empty();
+    const unsigned int coarse_steps     = contact.iterations;
+    const bool         coarse_converged = contact.converged;
+    refine_and_carry_seed([this]() {
+      for (const auto &cell : triangulation.active_cell_iterators())
+        cell->set_refine_flag();
+      return true;
+    });
+    // an unsettled coarse set would seed the cycle with a guess no better
+    // than its default
+    if (!coarse_converged)
+      seed = ContactSeed();
+    if (parameters.output.verbosity > 0)
+      log << "Contact/Nested start: " << coarse_nodes
+          << " foundation nodes one refinement coarser"
+          << (used_seed ? " (seeded in turn)" : "") << ", " << coarse_steps
+          << " active-set steps; "
+          << (coarse_converged ? "its contact set and pressure seed the " :
+                                 "not settled, so it seeds nothing on the ")
+          << mindlin_plate->get_foundation_dofs().size() << " nodes"
+          << std::endl;
+    return timer.wall_time();
   }
 
   void
@@ -642,6 +783,7 @@ namespace PlateOnHalfspace
                 ResultRecord::Counts(nodes_per_rank.begin(),
                                      nodes_per_rank.end()));
     summary.set("assembly_time_s", setup_time_s + phase.wall_time());
+    summary.set("nested_start_time_s", nested_start_time_s);
     if (parameters.output.verbosity > 0)
       log << "cycle " << cycle << ": " << summary.count("n_cells") << " cells, "
           << summary.count("n_dofs") << " dofs, "
@@ -1148,7 +1290,8 @@ namespace PlateOnHalfspace
     if (parameters.output.vtu)
       output->write_vtu(cycle, plate, solution, contact);
     summary.set("output_time_s", phase.wall_time());
-    summary.set("wall_time_s", cycle_timer.wall_time() + setup_time_s);
+    summary.set("wall_time_s",
+                cycle_timer.wall_time() + setup_time_s + nested_start_time_s);
 
     const unsigned int verbosity = parameters.output.verbosity;
     if (verbosity > 0)

@@ -122,6 +122,26 @@ namespace PlateOnHalfspace
     bool
     refine_mesh();
 
+    /**
+     * Refine where @p mark flags the cells (false: nothing flagged, no
+     * refinement), set up the plate anew and carry the active set and
+     * the pressure over as the seed. Returns what @p mark returned.
+     */
+    bool
+    refine_and_carry_seed(const std::function<bool()> &mark);
+
+    /**
+     * Contact/Nested start: where it applies to the first cycle, solve
+     * the scene on the mesh one refinement coarser (every cell coarsened
+     * once), quietly, refine back and seed the cycle with that contact
+     * set and pressure (doc/formulation.md, "Nested start"). The coarse
+     * solve is seeded the same way where its mesh qualifies in turn
+     * (@p within_nested: such an inner call, which does not warn).
+     * Returns the wall time it took, 0 where it does not apply.
+     */
+    double
+    solve_on_coarser_mesh(const bool within_nested = false);
+
     /** The plate's loads and the cycle's first summary entries. */
     void
     assemble_loads(const unsigned int cycle);
@@ -256,6 +276,9 @@ namespace PlateOnHalfspace
     LoadList computed_loads;
     /** Whether a cycle has warned about load_integration_error. */
     bool integration_error_warned = false;
+    /** warn() holds its text back: during the nested start's coarse
+     *  solve, whose mesh the first cycle checks again. */
+    bool warnings_held_back = false;
     /** MPI_COMM_WORLD under MPI, else MPI_COMM_SELF: the ranks that
      *  share the mesh (doc/parallel.md). */
     const MPI_Comm   communicator;
@@ -311,6 +334,8 @@ namespace PlateOnHalfspace
     /** Wall times of the cycle (s): plate setup, and the cycle so far;
      *  building the foundation operator. */
     double setup_time_s = 0, foundation_time_s = 0;
+    /** Wall time of the first cycle's nested start (s; 0 without). */
+    double nested_start_time_s = 0;
     Timer  cycle_timer;
     /** Wall times per phase, printed with Output/Verbosity = 2. */
     TimerOutput timer_output;

@@ -945,6 +945,20 @@ namespace PlateOnHalfspace
         "the previous cycle's set (or all nodes), one solve per set. The "
         "answer is the same; the active-set steps and the time differ.");
       prm.declare_entry(
+        "Nested start",
+        "auto",
+        Patterns::Selection("auto|true|false"),
+        "Tensionless: seed the first cycle's contact set and pressure with "
+        "the same scene solved first on the mesh one refinement coarser "
+        "(every cell coarsened once, nested again while its mesh allows; "
+        "needs Discretization/Initial refinements of at least 1, 2 with "
+        "Adaptivity/Refinement = goal, and one process). The coarse solve "
+        "finds where the plate lifts off for about a quarter of the cost, "
+        "so the fine one only corrects its boundary. auto: from 20000 "
+        "foundation nodes on. The answer is the same; the active-set "
+        "steps and the time differ (doc/formulation.md, \"Nested "
+        "start\").");
+      prm.declare_entry(
         "Preconditioner",
         "auto",
         Patterns::Selection("auto|soil inverse|plate on springs"),
@@ -970,12 +984,16 @@ namespace PlateOnHalfspace
                                                             Method::element_exclusion);
       max_iterations = prm.get_integer("Max iterations");
       tolerance      = prm.get_double("Tolerance");
-      const std::string name = prm.get("Solver");
-      solver                 = (name == "iterative" ? Solver::iterative :
-                                name == "direct"    ? Solver::direct :
-                                                      Solver::automatic);
-      constrained_start      = prm.get_bool("Constrained start");
-      const std::string p    = prm.get("Preconditioner");
+      const std::string name   = prm.get("Solver");
+      solver                   = (name == "iterative" ? Solver::iterative :
+                                  name == "direct"    ? Solver::direct :
+                                                        Solver::automatic);
+      constrained_start        = prm.get_bool("Constrained start");
+      const std::string nested = prm.get("Nested start");
+      nested_start             = (nested == "true"  ? NestedStart::on :
+                                  nested == "false" ? NestedStart::off :
+                                                      NestedStart::automatic);
+      const std::string p      = prm.get("Preconditioner");
       preconditioner =
         (p == "soil inverse"     ? Preconditioner::soil_inverse :
          p == "plate on springs" ? Preconditioner::plate_on_springs :

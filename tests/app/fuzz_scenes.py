@@ -94,6 +94,7 @@ subsection Contact
   set Method         = active set
   set Max iterations = 100
   set Constrained start = true
+  set Nested start = auto
   set Preconditioner = auto
 end
 subsection Foundation operator
@@ -150,6 +151,7 @@ choices = {
     "Cycles": ["1", "2", "0", "31"],
     "Max iterations": ["1", "2", "0", "100"],
     "Constrained start": ["true", "false", "maybe", "", "1"],
+    "Nested start": ["auto", "true", "false", "yes", ""],
     "Preconditioner": ["auto", "soil inverse", "plate on springs", "jacobi", ""],
     "Storage": ["auto", "dense", "hierarchical", "fft", "fast", ""],
     "Rectangular patches": ["", "0,0,1,1,100", "1,0,0,1,10", "0,0,1", "5,5,6,6,1",

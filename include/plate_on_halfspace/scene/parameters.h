@@ -310,6 +310,18 @@ namespace PlateOnHalfspace
       Solver       solver;
       /** IterativeContactSolver: start from predict_contact_set(). */
       bool constrained_start = true;
+      /** A tensionless first cycle seeded by the same scene solved on
+       *  the mesh one refinement coarser (doc/formulation.md,
+       *  "Nested start"). */
+      enum class NestedStart
+      {
+        automatic, ///< from nested_start_nodes foundation nodes on
+        on,
+        off
+      };
+      NestedStart nested_start = NestedStart::automatic;
+      /** Foundation nodes from which NestedStart::automatic applies. */
+      static constexpr unsigned int nested_start_nodes = 20000;
       /** IterativeContactSolver: how the pressures are preconditioned
        *  (contact/pressure_preconditioner.h). */
       enum class Preconditioner
