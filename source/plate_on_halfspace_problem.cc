@@ -618,8 +618,7 @@ namespace PlateOnHalfspace
     using NestedStart         = Parameters::Contact::NestedStart;
     const NestedStart  choice = parameters.contact.nested_start;
     const unsigned int n      = mindlin_plate->get_foundation_dofs().size();
-    if (!parameters.foundation.tensionless || choice == NestedStart::off ||
-        parameters.contact.method != Parameters::Contact::Method::active_set ||
+    if (choice == NestedStart::off ||
         (choice == NestedStart::automatic &&
          n < Parameters::Contact::nested_start_nodes))
       return 0;
@@ -644,6 +643,11 @@ namespace PlateOnHalfspace
              "; the first cycle starts without it.");
       return 0.;
     };
+    if (!parameters.foundation.tensionless)
+      return not_applied("a bonded foundation has no contact set to seed");
+    if (parameters.contact.method != Parameters::Contact::Method::active_set)
+      return not_applied("Contact/Method = element exclusion does not start "
+                         "from a seed");
     if (n_ranks(communicator) > 1)
       return not_applied("the run has several processes");
     if (level < 1 || !on_levels(level))
@@ -652,23 +656,34 @@ namespace PlateOnHalfspace
     if (patches && level < 2)
       return not_applied("Adaptivity/Refinement = goal keeps the cells in "
                          "patches that the coarse mesh's cells cannot form");
-    Timer timer;
+    // The nested start's time holds the coarse solves, the refinement
+    // back and its plate setup; the cycle's assembly_time_s keeps the
+    // setup of the mesh as given (before the run's loop), as without.
+    Timer        timer;
+    const double given_setup_s = setup_time_s;
+    // back to the mesh as given: the cells coarsened are refined again
+    // (refine_global()'s cells, vertices and order)
+    const auto restore_mesh = [&]() {
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->level() < level)
+          cell->set_refine_flag();
+      triangulation.execute_coarsening_and_refinement();
+      AssertThrow(on_levels(level),
+                  ExcInternalError("Contact/Nested start: the mesh was not "
+                                   "restored."));
+      setup_plate();
+    };
     for (const auto &cell : triangulation.active_cell_iterators())
       cell->set_coarsen_flag();
     triangulation.execute_coarsening_and_refinement();
     if (!on_levels(level - 1))
       {
-        // not every cell coarsened (the mesh smoothing refused some): the
-        // cells that were are refined back, which restores the mesh
-        for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->level() < level)
-            cell->set_refine_flag();
-        triangulation.execute_coarsening_and_refinement();
-        AssertThrow(on_levels(level),
-                    ExcInternalError("Contact/Nested start: the mesh was not "
-                                     "restored after a refused coarsening."));
-        return not_applied("deal.II's mesh smoothing kept cells from "
-                           "being coarsened");
+        // not every cell coarsened: the mesh smoothing refused some
+        restore_mesh();
+        not_applied("deal.II's mesh smoothing kept cells from being "
+                    "coarsened");
+        setup_time_s = given_setup_s;
+        return timer.wall_time();
       }
     setup_plate();
     // the coarser mesh's own solve seeded from one coarser still, where
@@ -701,10 +716,23 @@ namespace PlateOnHalfspace
         build_foundation_operator();
         solve_contact();
       }
-    catch (...)
+    catch (const Interrupted &)
       {
         restore();
         throw;
+      }
+    catch (const std::exception &error)
+      {
+        // The coarse mesh is not the scene's: a load in the sliver its
+        // chords cut off a disk, or a layer too thin for its wider cells,
+        // may fail there and not on the mesh as given, which decides.
+        restore();
+        seed = ContactSeed();
+        restore_mesh();
+        not_applied("the solve on the mesh one refinement coarser stopped (" +
+                    one_line_message(error) + ")");
+        setup_time_s = given_setup_s;
+        return timer.wall_time();
       }
     restore();
     const unsigned int coarse_nodes     = contact.q.size();
@@ -720,6 +748,7 @@ namespace PlateOnHalfspace
     // than its default
     if (!coarse_converged)
       seed = ContactSeed();
+    setup_time_s = given_setup_s;
     if (parameters.output.verbosity > 0)
       log << "Contact/Nested start: " << coarse_nodes
           << " foundation nodes one refinement coarser"
