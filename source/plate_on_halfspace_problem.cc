@@ -431,7 +431,7 @@ namespace PlateOnHalfspace
   void
   PlateOnHalfspaceProblem::warn(const std::string &text)
   {
-    if (warnings_held_back)
+    if (coarse_solve_running)
       return;
     run_warnings.push_back(text);
     if (rank_in(communicator) == 0)
@@ -695,7 +695,7 @@ namespace PlateOnHalfspace
     // after a failure, a warning given once) is the first cycle's to
     // decide again.
     std::streambuf *const log_buffer = log.rdbuf(nullptr);
-    warnings_held_back               = true;
+    coarse_solve_running             = true;
     const auto decided               = std::make_tuple(integration_error_warned,
                                          coarse_cell_warned,
                                          last_kernel_report,
@@ -703,7 +703,7 @@ namespace PlateOnHalfspace
                                          hierarchical_after_fft_did_not_fit);
     const auto restore               = [&]() {
       log.rdbuf(log_buffer);
-      warnings_held_back                           = false;
+      coarse_solve_running                         = false;
       std::tie(integration_error_warned,
                coarse_cell_warned,
                last_kernel_report,
@@ -936,8 +936,8 @@ namespace PlateOnHalfspace
     Timer              phase;
     const unsigned int n          = summary.count("n_foundation_dofs");
     const auto         solve_with = [&](const Parameters::Contact::Solver s) {
-      contact_solver =
-        create_contact_solver(parameters, s, parameters.output.verbosity, log);
+      contact_solver = create_contact_solver(
+        parameters, s, parameters.output.verbosity, log, coarse_solve_running);
       contact = contact_solver->solve(*mindlin_plate,
                                       *foundation_operator,
                                       mindlin_plate->get_load_vector(),

@@ -276,9 +276,10 @@ namespace PlateOnHalfspace
     LoadList computed_loads;
     /** Whether a cycle has warned about load_integration_error. */
     bool integration_error_warned = false;
-    /** warn() holds its text back: during the nested start's coarse
-     *  solve, whose mesh the first cycle checks again. */
-    bool warnings_held_back = false;
+    /** The nested start's coarse solve is running: warn() holds its text
+     *  back (the first cycle checks that mesh again), and the contact
+     *  solve stops at the contact set, a seed needing no more. */
+    bool coarse_solve_running = false;
     /** MPI_COMM_WORLD under MPI, else MPI_COMM_SELF: the ranks that
      *  share the mesh (doc/parallel.md). */
     const MPI_Comm   communicator;

@@ -19,7 +19,8 @@ namespace PlateOnHalfspace
   create_contact_solver(const SceneParameters            &parameters,
                         const Parameters::Contact::Solver solver,
                         const unsigned int                verbosity,
-                        std::ostream                     &log)
+                        std::ostream                     &log,
+                        const bool                        contact_set_only)
   {
     // The mechanism message suggests the weight only to a weightless plate.
     set_plate_weightless(!(parameters.plate.unit_weight > 0));
@@ -28,6 +29,10 @@ namespace PlateOnHalfspace
         ConjugateGradientControl control;
         control.constrained_start = parameters.contact.constrained_start;
         control.preconditioner    = parameters.contact.preconditioner;
+        // the last set's solve at the changing sets' accuracy: the active
+        // set then stops at the first set that no longer changes
+        if (contact_set_only)
+          control.tolerance = control.changing_set_tolerance;
         return std::make_unique<IterativeContactSolver>(
           parameters.contact,
           parameters.foundation.tensionless,

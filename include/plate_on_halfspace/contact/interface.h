@@ -172,12 +172,16 @@ namespace PlateOnHalfspace
    * The solver @p solver (direct or iterative; SceneParameters::
    * contact_solver() resolves auto) for the scene's Contact and Foundation
    * entries. Per-iteration lines go to @p log when @p verbosity > 0.
+   * With @p contact_set_only the solve stops once the set no longer
+   * changes at the accuracy of the solves while it changes: enough for a
+   * seed (the nested start's coarse solves), not for the fields.
    */
   std::unique_ptr<ContactSolver>
   create_contact_solver(const SceneParameters            &parameters,
                         const Parameters::Contact::Solver solver,
                         const unsigned int                verbosity,
-                        std::ostream                     &log);
+                        std::ostream                     &log,
+                        const bool contact_set_only = false);
 } // namespace PlateOnHalfspace
 
 #endif
