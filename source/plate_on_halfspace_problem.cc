@@ -694,13 +694,14 @@ namespace PlateOnHalfspace
     // its own. What it decides for later cycles (a storage or solver
     // after a failure, a warning given once) is the first cycle's to
     // decide again.
-    std::streambuf *const log_buffer = log.rdbuf(nullptr);
-    coarse_solve_running             = true;
-    const auto decided               = std::make_tuple(integration_error_warned,
+    // (the copy first: nothing may throw between muting and the try)
+    const auto            decided    = std::make_tuple(integration_error_warned,
                                          coarse_cell_warned,
                                          last_kernel_report,
                                          direct_after_failed_iterations,
                                          hierarchical_after_fft_did_not_fit);
+    std::streambuf *const log_buffer = log.rdbuf(nullptr);
+    coarse_solve_running             = true;
     const auto restore               = [&]() {
       log.rdbuf(log_buffer);
       coarse_solve_running                         = false;

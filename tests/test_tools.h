@@ -74,13 +74,13 @@ namespace TestTools
   }
 
   /**
-   * Run parameters/@p scene (tests are in tests/unit, so SOURCE_DIR/../..
-   * is the project) with the entries @p extra appended, quietly, results
-   * in ./results, no verification checks, on the whole plate (Symmetry =
-   * none unless @p extra says otherwise).
+   * The parameter text of parameters/@p scene (tests are in tests/unit, so
+   * SOURCE_DIR/../.. is the project) with the entries @p extra appended:
+   * quiet, results in ./results, no verification checks, the whole plate
+   * (Symmetry = none unless @p extra says otherwise).
    */
-  inline std::unique_ptr<PlateOnHalfspaceProblem>
-  solve_scene(const std::string &scene, const std::string &extra)
+  inline std::string
+  scene_text(const std::string &scene, const std::string &extra)
   {
     std::ostringstream prm;
     prm << "include " << SOURCE_DIR << "/../../parameters/" << scene << "\n"
@@ -91,7 +91,14 @@ namespace TestTools
         << "subsection Verification\n set Checks =\nend\n"
         << "subsection Output\n set Verbosity = 0\n set VTU = false\nend\n"
         << extra;
-    return run_scene_text(prm.str());
+    return prm.str();
+  }
+
+  /** Run scene_text() of @p scene and @p extra. */
+  inline std::unique_ptr<PlateOnHalfspaceProblem>
+  solve_scene(const std::string &scene, const std::string &extra)
+  {
+    return run_scene_text(scene_text(scene, extra));
   }
 
   /**
