@@ -661,9 +661,10 @@ namespace PlateOnHalfspace
     // setup of the mesh as given (before the run's loop), as without.
     Timer        timer;
     const double given_setup_s = setup_time_s;
-    // back to the mesh as given: the cells coarsened are refined again
-    // (refine_global()'s cells, vertices and order)
-    const auto restore_mesh = [&]() {
+    // Back to the mesh as given, the cells coarsened refined again
+    // (refine_global()'s cells, vertices and order), and the cycle starts
+    // without a seed for @p reason.
+    const auto start_without = [&](const std::string &reason) {
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->level() < level)
           cell->set_refine_flag();
@@ -672,19 +673,18 @@ namespace PlateOnHalfspace
                   ExcInternalError("Contact/Nested start: the mesh was not "
                                    "restored."));
       setup_plate();
+      seed = ContactSeed();
+      not_applied(reason);
+      setup_time_s = given_setup_s;
+      return timer.wall_time();
     };
     for (const auto &cell : triangulation.active_cell_iterators())
       cell->set_coarsen_flag();
     triangulation.execute_coarsening_and_refinement();
+    // not every cell coarsened: the mesh smoothing refused some
     if (!on_levels(level - 1))
-      {
-        // not every cell coarsened: the mesh smoothing refused some
-        restore_mesh();
-        not_applied("deal.II's mesh smoothing kept cells from being "
-                    "coarsened");
-        setup_time_s = given_setup_s;
-        return timer.wall_time();
-      }
+      return start_without("deal.II's mesh smoothing kept cells from being "
+                           "coarsened");
     setup_plate();
     // the coarser mesh's own solve seeded from one coarser still, where
     // that applies in turn
@@ -728,12 +728,9 @@ namespace PlateOnHalfspace
         // chords cut off a disk, or a layer too thin for its wider cells,
         // may fail there and not on the mesh as given, which decides.
         restore();
-        seed = ContactSeed();
-        restore_mesh();
-        not_applied("the solve on the mesh one refinement coarser stopped (" +
-                    one_line_message(error) + ")");
-        setup_time_s = given_setup_s;
-        return timer.wall_time();
+        return start_without(
+          "the solve on the mesh one refinement coarser stopped (" +
+          one_line_message(error) + ")");
       }
     restore();
     const unsigned int coarse_nodes     = contact.q.size();
