@@ -280,6 +280,11 @@ namespace PlateOnHalfspace
      *  back (the first cycle checks that mesh again), and the contact
      *  solve stops at the contact set, a seed needing no more. */
     bool coarse_solve_running = false;
+    /** The nested start is running on the coarser meshes: the phases
+     *  (plate setup, operator, contact solve) are timed in its own
+     *  TimerOutput section, not in theirs, which then hold the mesh the
+     *  cycle solves only (Output/Verbosity = 2). */
+    bool timing_nested_start = false;
     /** MPI_COMM_WORLD under MPI, else MPI_COMM_SELF: the ranks that
      *  share the mesh (doc/parallel.md). */
     const MPI_Comm   communicator;
