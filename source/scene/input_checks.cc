@@ -476,8 +476,8 @@ namespace PlateOnHalfspace
       warnings.push_back(
         "Discretization/Element = lagrange with Shear integration = "
         "selective has a spurious zero-energy deflection mode that only the "
-        "foundation restrains (tests/unit/plate_zero_energy_modes); prefer "
-        "Element = heterosis with Shear integration = selective.");
+        "bonded foundation restrains (tests/unit/plate_zero_energy_modes); "
+        "prefer Element = heterosis with Shear integration = selective.");
 
     // A load patch or tyre partly off the plate is warned about by the
     // driver, on the mesh (plate/load_checks.h): only the mesh knows the

@@ -5,7 +5,8 @@
 //    to selective; an Element alone resolves auto to that element's rule
 //    (serendipity: reduced, the paper's practice; heterosis and lagrange:
 //    selective); an explicit choice is kept, and reduced with heterosis is
-//    still refused by the message that names the entry.
+//    still refused by the message that names the entry (parsed on a bonded
+//    foundation, where lagrange with selective is allowed).
 // 2. The default element and integration as parsed (only the plate and the
 //    load are set) on the simply supported square of thin_plate_limit (side
 //    a = 1, hard support, nu = 0.3, D = 1, uniform q = 1, 8 x 8 cells) at
@@ -63,8 +64,11 @@ namespace
         text += " set " + entry + "\n";
         shown += (shown.empty() ? "" : "; ") + entry;
       }
+    // on a bonded foundation: lagrange with selective is refused on a
+    // tensionless one (tests/app/bad_input/lagrange_selective_tensionless)
     SceneParameters p;
-    p.read_from_string(text + "end\n");
+    p.read_from_string("subsection Foundation\n set Contact = bonded\nend\n" +
+                       text + "end\n");
     const D &d = p.discretization;
     deallog << "{" << shown << "} -> " << name(d.element) << "/"
             << name(d.shear_integration) << std::endl;
