@@ -425,7 +425,9 @@ namespace PlateOnHalfspace
     const ResultantVerdict verdict =
       check_load_resultant(*mindlin_plate,
                            loads,
-                           parameters.plate.unit_weight > 0);
+                           parameters.plate.unit_weight > 0,
+                           parameters.foundation.model !=
+                             Parameters::Foundation::Model::dense_liquid);
     AssertThrow(verdict.error.empty(), ExcMessage(where + verdict.error));
     if (warn_resultant && !verdict.warning.empty())
       warn(where + verdict.warning);

@@ -207,7 +207,8 @@ namespace PlateOnHalfspace
   ResultantVerdict
   check_load_resultant(const MindlinPlate &plate,
                        const LoadList     &loads,
-                       const bool          has_weight)
+                       const bool          has_weight,
+                       const bool          soil_couples_nodes)
   {
     ResultantVerdict       verdict;
     const FoundationSpace &space = plate.get_foundation_space();
@@ -329,11 +330,46 @@ namespace PlateOnHalfspace
       std::count_if(bodies.begin(), bodies.end(), [](const Body &b) {
         return !b.points.empty();
       }) > 1;
+    const auto name_of = [&](const unsigned int s) {
+      std::string whose = "the plate";
+      if (several)
+        {
+          std::vector<unsigned int> members;
+          for (unsigned int t = 0; t < n_slabs; ++t)
+            if (find(t) == s)
+              members.push_back(t + 1);
+          whose = members.size() == 1 ? "slab " : "slabs ";
+          for (unsigned int k = 0; k < members.size(); ++k)
+            whose += (k > 0 ? ", " : "") + std::to_string(members[k]);
+          whose += members.size() == 1 ?
+                     " (as summary.json's slabs, counted from 1)" :
+                     " (as summary.json's slabs, counted from 1; joined "
+                     "by joints that are not free)";
+        }
+      return whose;
+    };
+    std::string unloaded;
     for (unsigned int s = 0; s < n_slabs; ++s)
       {
         const Body &b = bodies[s];
-        if (b.points.empty() || b.magnitude == 0)
-          continue; // no load: the body rests where it is
+        if (b.points.empty())
+          continue;
+        // A body without load on a weightless plate (a thermal load adds
+        // none: its resultant and moment vanish) rests where it is only
+        // if nothing moves it: on a dense liquid and without curling its
+        // answer is w = 0, the limit of a vanishing weight. A half-space
+        // settles under it with the loaded bodies and a temperature
+        // difference curls it: then nothing holds it down, any lifted
+        // position is an answer, and the contact iteration picked one by
+        // its path (doc/errors-and-limits.md). Refused after the loaded
+        // bodies' verdicts, which name the loads to move.
+        if (b.magnitude == 0)
+          {
+            if (unloaded.empty() &&
+                (soil_couples_nodes || plate.get_thermal_load().moment != 0))
+              unloaded = name_of(s);
+            continue;
+          }
         const std::vector<Point<2>> hull = convex_hull(b.points);
         if (hull.size() < 3)
           continue;
@@ -341,21 +377,7 @@ namespace PlateOnHalfspace
         for (const Point<2> &x : hull)
           for (const Point<2> &y : hull)
             diameter = std::max(diameter, x.distance(y));
-        std::string whose = "the plate";
-        if (several)
-          {
-            std::vector<unsigned int> members;
-            for (unsigned int t = 0; t < n_slabs; ++t)
-              if (find(t) == s)
-                members.push_back(t + 1);
-            whose = members.size() == 1 ? "slab " : "slabs ";
-            for (unsigned int k = 0; k < members.size(); ++k)
-              whose += (k > 0 ? ", " : "") + std::to_string(members[k]);
-            whose += members.size() == 1 ?
-                       " (as summary.json's slabs, counted from 1)" :
-                       " (as summary.json's slabs, counted from 1; joined "
-                       "by joints that are not free)";
-          }
+        const std::string whose = name_of(s);
         const std::string weight_advice =
           has_weight ? "" : "give the plate its weight (Plate/Unit weight), ";
         const std::string remedy =
@@ -421,6 +443,19 @@ namespace PlateOnHalfspace
             "Refine there (Adaptivity), move the load inward, " +
             weight_advice + "or spread the load as a patch.";
       }
+    if (!unloaded.empty())
+      verdict.error =
+        "The loads leave " + unloaded +
+        " without any load, and the plate has no weight: on a tensionless " +
+        (soil_couples_nodes ? "half-space, which settles under it with the "
+                              "loaded slabs," :
+                              "foundation, with the temperature difference "
+                              "curling it,") +
+        " nothing holds it down, so its position and every result on it (its "
+        "deflections, the load transfer of its joints) are not "
+        "determined. Give the plate its weight (Plate/Unit weight), load "
+        "that slab, or join it to a loaded one (Joints/Load transfer other "
+        "than free).";
     return verdict;
   }
 } // namespace PlateOnHalfspace

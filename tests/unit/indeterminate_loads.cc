@@ -20,7 +20,12 @@
 //   plate, its whole load counted at its place), an interior load and the
 //   load where four tied slabs meet run; the second and third with a
 //   warning that the cells are larger than the region that carries them;
-//   bonded, the corner load runs.
+//   bonded, the corner load runs;
+// - on 2 x 2 slabs with free joints and one loaded slab, weightless: the
+//   slabs without load are refused when curled by a temperature difference
+//   (dense liquid) and on the half-space, whose settlement reaches them (any
+//   lifted position was an answer: the run's result depended on its path);
+//   with the weight the half-space scene runs.
 // Only verdicts are printed.
 
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
@@ -196,6 +201,32 @@ main()
           slabs("free", " set Point loads = -2, -0.9, 100 ; 2, -0.9, -50"),
           {"no downward resultant", "slab 2 ", "Plate/Unit weight"});
 
+  // a slab without load beyond a free joint, weightless: on a dense liquid
+  // it rests where it is (tests/unit/jointed_slabs), curled it does not
+  {
+    std::string curled = slabs("free",
+                               " set Point loads = -2, -0.9, 100\nend\n"
+                               "subsection Temperature\n set Difference = -10");
+    refused("free joints, curled by a temperature difference, slabs without "
+            "load",
+            curled,
+            {"without any load", "curling it", "Plate/Unit weight"});
+    const auto replace =
+      [](std::string &text, const std::string &from, const std::string &to) {
+        text.replace(text.find(from), from.size(), to);
+      };
+    std::string half_space = slabs("free", " set Point loads = -2, -0.9, 100");
+    replace(half_space,
+            " set Model = dense liquid\n set Modulus of subgrade reaction = "
+            "5e4",
+            " set Model = half-space\n set Young's modulus = 1e5");
+    refused("free joints, half-space, slabs without load",
+            half_space,
+            {"without any load", "half-space", "Plate/Unit weight"});
+    runs("free joints, half-space, slabs without load, with the weight",
+         half_space + "subsection Plate\n set Unit weight = 24\nend\n",
+         false);
+  }
   runs("corner load on the plate with its weight",
        slab("dense liquid",
             "tensionless",

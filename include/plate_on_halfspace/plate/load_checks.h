@@ -87,16 +87,20 @@ namespace PlateOnHalfspace
    * pressure concentrated on a line or a point would balance it, the
    * continuous problem has no solution and the discrete one gives a contact
    * region of one cell whose peak pressure grows without bound under
-   * refinement. A body without any load rests where it is. The
-   * criterion reads only the load vector's resultant and the plate's
-   * outline, so it does not depend on the mesh. @p loads names the
-   * entries in the message; @p has_weight says whether the plate's own
-   * weight is among the loads, so that the advice does not ask for it.
+   * refinement. A body without any load rests where it is on a soil
+   * whose nodes do not interact (@p soil_couples_nodes false: the dense
+   * liquid) unless the plate curls; on a half-space, or curled, its
+   * position is not determined and the scene is refused. The criterion
+   * reads only the load vector's resultant and the plate's outline, so it
+   * does not depend on the mesh. @p loads names the entries in the
+   * message; @p has_weight says whether the plate's own weight is among
+   * the loads, so that the advice does not ask for it.
    */
   ResultantVerdict
   check_load_resultant(const MindlinPlate &plate,
                        const LoadList     &loads,
-                       const bool          has_weight);
+                       const bool          has_weight,
+                       const bool          soil_couples_nodes);
 } // namespace PlateOnHalfspace
 
 #endif
