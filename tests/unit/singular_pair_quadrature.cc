@@ -53,8 +53,8 @@ namespace
   double
   corner_function(double u, double v)
   {
-    u = std::abs(u);
-    v = std::abs(v);
+    u        = std::abs(u);
+    v        = std::abs(v);
     double g = -std::pow(u * u + v * v, 1.5) / 6.;
     if (u > 0 && v > 0)
       g += 0.5 * u * v * v * std::asinh(u / v) +
@@ -70,7 +70,7 @@ namespace
                                 b = {{k.y0, k.y0 + k.height}},
                                 c = {{l.x0, l.x0 + l.width}},
                                 d = {{l.y0, l.y0 + l.height}};
-    double sum = 0;
+    double sum                    = 0;
     for (unsigned int i = 0; i < 2; ++i)
       for (unsigned int j = 0; j < 2; ++j)
         for (unsigned int m = 0; m < 2; ++m)
@@ -106,8 +106,8 @@ namespace
   {
     const std::vector<FoundationSpace::Cell> cells = {
       cell_with_own_nodes(vertices(k), 0), cell_with_own_nodes(vertices(l), 9)};
-    const bool                same = k.x0 == l.x0 && k.y0 == l.y0 &&
-                      k.width == l.width && k.height == l.height;
+    const bool same = k.x0 == l.x0 && k.y0 == l.y0 && k.width == l.width &&
+                      k.height == l.height;
     const CellPairIntegrator integrator(cells, 8);
     const unsigned int       second = same ? 0 : 1;
     AssertThrow(integrator.singular_pair(0, second),
