@@ -77,10 +77,14 @@ namespace PlateOnHalfspace
                            "Pressure function counts at its quadrature points "
                            "only); set at least one non-zero load."));
     AssertThrow(!tensionless || plate.resultant(load) > 0,
-                ExcMessage("The loads lift the plate off a tensionless "
-                           "foundation: their resultant is not downward (a "
-                           "temperature difference alone does not hold a "
-                           "plate down: give it its Plate/Unit weight)."));
+                ExcMessage(
+                  std::string("The loads lift the plate off a tensionless "
+                              "foundation: their resultant is not downward (") +
+                  (plate.get_thermal_load().moment != 0 ?
+                     "a temperature difference alone does not hold a plate "
+                     "down: give it its Plate/Unit weight)." :
+                     "loads are positive downward: turn them down, or give "
+                     "the plate its Plate/Unit weight).")));
 
     prepare(plate, foundation, state);
     prepare_load(load);
