@@ -13,6 +13,8 @@
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace PlateOnHalfspace
 {
@@ -88,15 +90,33 @@ namespace PlateOnHalfspace
       return;
     const bool        symmetric = foundation->is_symmetric();
     const std::string advice    = foundation->soil().definiteness_advice();
+    // Cells far more elongated than the cell-pair rules hold (about
+    // 300 : 1, doc/formulation.md, "Graded and elongated pairs") make A
+    // indefinite whatever the singular order: say so instead.
+    double elongation = 1;
+    for (const auto &cell : plate->get_foundation_space().cells)
+      {
+        const double d = cell.geometry.diameter();
+        elongation     = std::max(elongation, d * d / cell.geometry.area());
+      }
+    std::ostringstream elongated;
+    elongated << "the cells are up to " << std::setprecision(3) << elongation
+              << " times longer than wide, beyond the about 300 : 1 that "
+                 "its cell-pair quadrature holds: make them nearer square "
+                 "(Discretization/Subdivisions x and y against Plate/Length "
+                 "x and y, or Slab lengths x and y).";
+    const std::string cause =
+      elongation > 300 ?
+        elongated.str() :
+        "the singular quadrature is too coarse for this mesh (raise "
+        "Discretization/Singular quadrature order).";
     state.contact_block_rcond =
       factorise(contact_factor,
                 symmetric,
                 symmetric ?
                   "The Galerkin half-space matrix A of the contact set is not "
-                  "positive definite; the singular quadrature is too coarse "
-                  "for this mesh (raise Discretization/Singular quadrature "
-                  "order)." +
-                    (advice.empty() ? std::string() : " " + advice) :
+                  "positive definite; " +
+                    cause + (advice.empty() ? std::string() : " " + advice) :
                   "The collocation flexibility matrix G of the contact set is "
                   "singular.");
     if (!factorised_once)
