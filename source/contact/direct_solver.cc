@@ -13,6 +13,7 @@
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
@@ -22,13 +23,13 @@ namespace PlateOnHalfspace
   {
     /**
      * Factorise @p matrix in place (Cholesky if @p symmetric, else LU) and
-     * return LAPACK's estimate of 1/κ₁; throw ExcMessage(@p failure) if it
-     * cannot be factorised.
+     * return LAPACK's estimate of 1/κ₁; throw ExcMessage(@p failure()) if
+     * it cannot be factorised (the message is composed only then).
      */
     double
-    factorise(LAPACKFullMatrix<double> &matrix,
-              const bool                symmetric,
-              const std::string        &failure)
+    factorise(LAPACKFullMatrix<double>           &matrix,
+              const bool                          symmetric,
+              const std::function<std::string()> &failure)
     {
       const double l1_norm = matrix.l1_norm();
       try
@@ -40,7 +41,7 @@ namespace PlateOnHalfspace
         }
       catch (...)
         {
-          AssertThrow(false, ExcMessage(failure));
+          AssertThrow(false, ExcMessage(failure()));
         }
       return reciprocal_condition_number(matrix, l1_norm, symmetric);
     }
@@ -88,37 +89,37 @@ namespace PlateOnHalfspace
     state.contact_block_rcond = 1.;
     if (contact_index.empty())
       return;
-    const bool        symmetric = foundation->is_symmetric();
-    const std::string advice    = foundation->soil().definiteness_advice();
-    // Cells far more elongated than the cell-pair rules hold (about
-    // 300 : 1, doc/formulation.md, "Graded and elongated pairs") make A
-    // indefinite whatever the singular order: say so instead.
-    double elongation = 1;
-    for (const auto &cell : plate->get_foundation_space().cells)
-      {
-        const double d = cell.geometry.diameter();
-        elongation     = std::max(elongation, d * d / cell.geometry.area());
-      }
-    std::ostringstream elongated;
-    elongated << "the cells are up to " << std::setprecision(3) << elongation
+    const bool symmetric       = foundation->is_symmetric();
+    const auto failure_message = [&]() -> std::string {
+      if (!symmetric)
+        return "The collocation flexibility matrix G of the contact set is "
+               "singular.";
+      // Cells far more elongated than the cell-pair rules hold (about
+      // 300 : 1, doc/formulation.md, "Graded and elongated pairs") make A
+      // indefinite whatever the singular order: say so instead.
+      double elongation = 1;
+      for (const auto &cell : plate->get_foundation_space().cells)
+        {
+          const double d = cell.geometry.diameter();
+          elongation     = std::max(elongation, d * d / cell.geometry.area());
+        }
+      std::ostringstream cause;
+      if (elongation > 300)
+        cause << "the cells are up to " << std::setprecision(3) << elongation
               << " times longer than wide, beyond the about 300 : 1 that "
                  "its cell-pair quadrature holds: make them nearer square "
                  "(Discretization/Subdivisions x and y against Plate/Length "
                  "x and y, or Slab lengths x and y).";
-    const std::string cause =
-      elongation > 300 ?
-        elongated.str() :
-        "the singular quadrature is too coarse for this mesh (raise "
-        "Discretization/Singular quadrature order).";
+      else
+        cause << "the singular quadrature is too coarse for this mesh (raise "
+                 "Discretization/Singular quadrature order).";
+      const std::string advice = foundation->soil().definiteness_advice();
+      return "The Galerkin half-space matrix A of the contact set is not "
+             "positive definite; " +
+             cause.str() + (advice.empty() ? std::string() : " " + advice);
+    };
     state.contact_block_rcond =
-      factorise(contact_factor,
-                symmetric,
-                symmetric ?
-                  "The Galerkin half-space matrix A of the contact set is not "
-                  "positive definite; " +
-                    cause + (advice.empty() ? std::string() : " " + advice) :
-                  "The collocation flexibility matrix G of the contact set is "
-                  "singular.");
+      factorise(contact_factor, symmetric, failure_message);
     if (!factorised_once)
       {
         state.factorization_time_s = timer.wall_time();
@@ -209,7 +210,7 @@ namespace PlateOnHalfspace
         add_foundation_stiffness(coupled);
         coupled_rcond  = factorise(coupled,
                                   foundation->is_symmetric(),
-                                  plate_is_mechanism_message());
+                                  plate_is_mechanism_message);
         block_rcond    = state.contact_block_rcond;
         factorised_set = contact_set;
       }
