@@ -154,7 +154,28 @@ namespace PlateOnHalfspace
                   "units of the moduli.";
           require(layer.youngs_modulus >= 1e-15 * plate.youngs_modulus,
                   soft.str());
+          std::ostringstream stiff;
+          stiff << which.str() << "is stiffer than 1e15 times the plate's "
+                << "Young's modulus (" << plate.youngs_modulus
+                << "): for the plate such a soil is rigid in every digit; "
+                   "check the units of the moduli.";
+          require(layer.youngs_modulus <= 1e15 * plate.youngs_modulus,
+                  stiff.str());
         }
+    // The mirror of the layers' bound above: the contact pressures of a
+    // soil this much stiffer than the plate are rounding (the direct
+    // solver names the floor from far below it: contact/direct_solver.cc).
+    if (foundation.model == Parameters::Foundation::Model::half_space)
+      {
+        std::ostringstream stiff;
+        stiff << "Foundation/Young's modulus (" << foundation.youngs_modulus
+              << ") is stiffer than 1e15 times Plate/Young's modulus ("
+              << plate.youngs_modulus
+              << "): for the plate such a soil is rigid in every digit; "
+                 "check the units of the moduli.";
+        require(foundation.youngs_modulus <= 1e15 * plate.youngs_modulus,
+                stiff.str());
+      }
     if (foundation.model == Parameters::Foundation::Model::dense_liquid)
       {
         // Below this the soil no longer holds the plate in any digit that
