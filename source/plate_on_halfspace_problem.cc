@@ -26,6 +26,7 @@
 #include <optional>
 #include <sstream>
 #include <tuple>
+#include <utility>
 
 namespace PlateOnHalfspace
 {
@@ -235,6 +236,8 @@ namespace PlateOnHalfspace
             build_foundation_operator();
             Interruption::check();
             solve_contact();
+            if (!nested_start_note.empty())
+              warn(std::exchange(nested_start_note, std::string()));
             Interruption::check();
             if (contact.converged)
               estimate_goal_error();
@@ -642,10 +645,16 @@ namespace PlateOnHalfspace
     // level.
     const bool patches =
       triangulation.get_mesh_smoothing() & Triangulation<2>::patch_level_1;
-    const auto not_applied = [&](const std::string &reason) {
-      if (choice == NestedStart::on && !within_nested)
-        warn("Contact/Nested start = true: " + reason +
-             "; the first cycle starts without it.");
+    const auto not_applied = [&](const std::string &reason,
+                                 const bool         after_first_solve = false) {
+      if (choice != NestedStart::on || within_nested)
+        return 0.;
+      const std::string text = "Contact/Nested start = true: " + reason +
+                               "; the first cycle starts without it.";
+      if (after_first_solve)
+        nested_start_note = text;
+      else
+        warn(text);
       return 0.;
     };
     if (!parameters.foundation.tensionless)
@@ -688,7 +697,8 @@ namespace PlateOnHalfspace
     // Back to the mesh as given, the cells coarsened refined again
     // (refine_global()'s cells, vertices and order), and the cycle starts
     // without a seed for @p reason.
-    const auto start_without = [&](const std::string &reason) {
+    const auto start_without = [&](const std::string &reason,
+                                   const bool after_first_solve = false) {
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->level() < level)
           cell->set_refine_flag();
@@ -698,7 +708,7 @@ namespace PlateOnHalfspace
                                    "restored."));
       setup_plate();
       seed = ContactSeed();
-      not_applied(reason);
+      not_applied(reason, after_first_solve);
       setup_time_s = given_setup_s;
       return timer.wall_time();
     };
@@ -751,10 +761,13 @@ namespace PlateOnHalfspace
         // The coarse mesh is not the scene's: a load in the sliver its
         // chords cut off a disk, or a layer too thin for its wider cells,
         // may fail there and not on the mesh as given, which decides.
+        // Said once the first cycle has solved: a scene refused on the
+        // mesh as given too gets its refusal alone.
         restore();
         return start_without(
           "the solve on the mesh one refinement coarser stopped (" +
-          one_line_message(error) + ")");
+            one_line_message(error) + ")",
+          true);
       }
     restore();
     const unsigned int coarse_nodes     = contact.q.size();

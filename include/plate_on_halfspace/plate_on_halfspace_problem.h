@@ -280,6 +280,10 @@ namespace PlateOnHalfspace
      *  back (the first cycle checks that mesh again), and the contact
      *  solve stops at the contact set, a seed needing no more. */
     bool coarse_solve_running = false;
+    /** Contact/Nested start = true whose coarse solve stopped: said once
+     *  the first cycle has solved, so that a scene refused on the mesh as
+     *  given shows its refusal alone. */
+    std::string nested_start_note;
     /** The nested start is running on the coarser meshes: the phases
      *  (plate setup, operator, contact solve) are timed in its own
      *  TimerOutput section, not in theirs, which then hold the mesh the

@@ -5,7 +5,8 @@
 # stderr that contains every "# expect: TEXT" line of the file (the
 # section/entry and the allowed values) and one of its "# expect-any: TEXT"
 # lines, if it has any (for scenes where the OpenBLAS kernel's rounding
-# decides which of two refusals comes first); an "# env: VAR=VALUE" line sets an
+# decides which of two refusals comes first), and none of its "# reject: TEXT"
+# lines (not even in a warning); an "# env: VAR=VALUE" line sets an
 # environment variable for the run; a "# setup: COMMAND" line runs COMMAND
 # (bash) in the working directory first (the files an include cycle, a
 # link or a FIFO needs); a "# filter: COMMAND" line writes the scene through
@@ -92,6 +93,11 @@ for scene in "$here"/bad_input/*.prm; do
         fail "$name: the message lacks each of the '# expect-any:' texts"; cat stderr; ok=0
       fi
     fi
+    while IFS= read -r unwanted; do
+      if grep -qF -- "$unwanted" stderr; then
+        fail "$name: stderr holds <$unwanted>"; cat stderr; ok=0
+      fi
+    done < <(sed -n 's/^# reject: //p' "$scene")
     if [ -z "$(sed -n 's/^# expect: //p' "$scene")$alternatives" ]; then
       fail "$name: no '# expect:' line"; ok=0
     fi
