@@ -93,6 +93,34 @@ namespace PlateOnHalfspace
       return depth;
     }
 
+    /**
+     * The smallest distance of @p x from an edge of the convex @p hull
+     * among the edges that @p x lies outside the middle third of the width
+     * across (the hull's largest distance from that edge's line): where a
+     * linear pressure q >= 0 with its resultant at @p x cannot cover the
+     * whole width, and carries it on a region three such distances wide.
+     * Infinity where @p x lies within the middle third across every edge.
+     */
+    double
+    depth_outside_middle_third(const std::vector<Point<2>> &hull,
+                               const Point<2>              &x)
+    {
+      double depth = std::numeric_limits<double>::infinity();
+      for (unsigned int i = 0; i < hull.size(); ++i)
+        {
+          const Tensor<1, 2> edge = hull[(i + 1) % hull.size()] - hull[i];
+          if (!(edge.norm() > 0))
+            continue;
+          const double distance = cross(edge, x - hull[i]) / edge.norm();
+          double       width    = 0;
+          for (const Point<2> &y : hull)
+            width = std::max(width, cross(edge, y - hull[i]) / edge.norm());
+          if (3 * distance < width)
+            depth = std::min(depth, distance);
+        }
+      return depth;
+    }
+
     std::string
     number(const double value)
     {
@@ -420,9 +448,13 @@ namespace PlateOnHalfspace
             return verdict;
           }
         // The resultant inside: determinate. A linear pressure q >= 0 with
-        // its resultant at the depth d from an edge needs a contact region
-        // at least 3 d wide (a triangle); cells larger than that cannot
-        // resolve it.
+        // its resultant at the depth d from an edge, outside the middle
+        // third of the width across it, needs a contact region 3 d wide (a
+        // triangle); cells larger than that cannot resolve it. Within the
+        // middle third across every edge (a narrow strip under a central
+        // load) the whole plate carries it.
+        const double eccentric_depth =
+          depth_outside_middle_third(hull, resultant);
         double size = 0, nearest = std::numeric_limits<double>::infinity();
         for (const auto &[x, h] : b.sizes)
           if (x.distance(resultant) < nearest)
@@ -430,10 +462,10 @@ namespace PlateOnHalfspace
               nearest = x.distance(resultant);
               size    = h;
             }
-        if (3 * depth < size && verdict.warning.empty())
+        if (3 * eccentric_depth < size && verdict.warning.empty())
           verdict.warning =
             "The resultant of the loads on " + whose + ", " + number(b.force) +
-            " at " + point(resultant) + ", lies " + number(depth) +
+            " at " + point(resultant) + ", lies " + number(eccentric_depth) +
             " from the outline, less than a third of the cells there (" +
             number(size) +
             "): on a tensionless foundation the plate is then carried on a "

@@ -8,7 +8,9 @@
 # - Loads/Sweep moving that axle over the edge: one warning per position
 #   with a tyre partly off, and sweep.csv's applied_load column;
 # - a point load 1 mm from the corner of a weightless plate on a
-#   tensionless soil: the warning that the cells are too large to carry it.
+#   tensionless soil: the warning that the cells are too large to carry it;
+# - a narrow strip: no such warning for a central load, which the whole
+#   width carries, but for one near a long edge or near an end.
 # usage: load_warnings.sh PROGRAM
 set -u
 program=$1
@@ -104,6 +106,78 @@ subsection Output
 end'
 grep -q '^Warning: The resultant of the loads on the plate, 100 at (1.999, 1.499), lies 0.001 from the outline, less than a third of the cells there' near_corner.stderr ||
   { fail "near_corner: no warning about the cells"; cat near_corner.stderr; }
+
+# A strip 0.2 m wide on cells 1 m long, tensionless: under a uniform
+# load the resultant lies 0.1 from the long edges, but within the middle
+# third of the width, so the whole width carries it and no warning is due;
+# a point load 0.02 from one long edge, with the weight a resultant 0.027
+# from it (outside the middle third), is warned.
+strip='set Output directory = results
+subsection Plate
+  set Length x  = 10
+  set Length y  = 0.2
+  set Thickness = 0.2
+end
+subsection Foundation
+  set Model                        = dense liquid
+  set Modulus of subgrade reaction = 5e4
+end
+subsection Discretization
+  set Subdivisions x = 10
+  set Subdivisions y = 1
+end
+subsection Output
+  set VTU       = false
+  set Verbosity = 0
+end'
+run strip_central "$strip
+subsection Loads
+  set Uniform pressure = 10
+end"
+[ ! -s strip_central.stderr ] ||
+  { fail "strip_central: a warning for a central load on a strip"; cat strip_central.stderr; }
+# (one cell across: the contact region's nodes along the edge are then a
+# line, and the run stops as a mechanism after the warning)
+printf '%s\n' "$strip
+subsection Plate
+  set Unit weight = 24
+end
+subsection Loads
+  set Point loads = 0, 0.08, 100
+end" >strip_eccentric.prm
+"$program" strip_eccentric.prm >strip_eccentric.stdout 2>strip_eccentric.stderr
+grep -q '^Warning: The resultant of the loads on the plate, 109.6 at (0, 0.07299), lies 0.02701 from the outline, less than a third of the cells there' strip_eccentric.stderr ||
+  { fail "strip_eccentric: no warning about the cells"; cat strip_eccentric.stderr; }
+
+# A strip 0.6 m wide on cells 2 m long, its load 0.4 from one end: the
+# resultant is within the middle third of the width but 0.4 from the end,
+# far outside the middle third of the length, and the 2 m cells cannot
+# resolve the 1.2 m the plate is carried on there (max Mx 9.3 on 6 x 1
+# cells, 61 on 96 x 4).
+run strip_near_end 'set Output directory = results
+subsection Plate
+  set Length x        = 12
+  set Length y        = 0.6
+  set Thickness       = 0.5
+  set Young'"'"'s modulus = 3e7
+end
+subsection Foundation
+  set Young'"'"'s modulus = 1e5
+  set Contact         = tensionless
+end
+subsection Loads
+  set Rectangular patches = 5.45,-0.15,5.75,0.15,3333.33
+end
+subsection Discretization
+  set Subdivisions x = 6
+  set Subdivisions y = 1
+end
+subsection Output
+  set VTU       = false
+  set Verbosity = 0
+end'
+grep -q '^Warning: The resultant of the loads on the plate, 300 at (5.6, [^)]*), lies 0.4 from the outline, less than a third of the cells there' strip_near_end.stderr ||
+  { fail "strip_near_end: no warning about the cells"; cat strip_near_end.stderr; }
 
 echo "$failed failed"
 [ $failed -eq 0 ]
