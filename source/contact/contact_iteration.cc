@@ -94,6 +94,8 @@ namespace PlateOnHalfspace
       solve_by_element_exclusion(state);
     else
       solve_by_active_set(seed, state);
+    if (state.converged)
+      check_accepted_solution(state);
     express_in_nodal_values(foundation, state);
     measure_contact_region(plate.get_foundation_space(),
                            foundation,

@@ -8,6 +8,7 @@
 #include <plate_on_halfspace/base/condition_estimate.h>
 #include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/direct_solver.h>
+#include <plate_on_halfspace/contact/pressure_preconditioner.h>
 #include <plate_on_halfspace/halfspace/interface.h>
 #include <plate_on_halfspace/plate/generalized_inverse.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
@@ -244,15 +245,24 @@ namespace PlateOnHalfspace
     // that kernel restores these equations at the soil's scale without
     // touching the others. A plate with supports has no such motions and is
     // left as solved.
-    const unsigned int n_modes = rigid_motions.size();
-    if (state.w.size() < 3 || n_modes == 0)
+    if (state.w.size() < 3 || rigid_motions.empty())
       return;
+    state.w += rigid_correction(state.w, plate_load);
+    pressures(state.w, state.q);
+  }
+
+  Vector<double>
+  DirectContactSolver::rigid_correction(const Vector<double> &w,
+                                        const Vector<double> &f) const
+  {
+    const unsigned int n_modes = rigid_motions.size();
     FullMatrix<double> rigid_stiffness(n_modes, n_modes); // R^T S R
-    Vector<double>     residual(n_modes), correction(n_modes), forces, q;
-    foundation->nodal_forces(state.q, forces);
+    Vector<double>     residual(n_modes), amplitudes(n_modes), forces, q;
+    pressures(w, q);
+    foundation->nodal_forces(q, forces);
     for (unsigned int j = 0; j < n_modes; ++j)
       {
-        residual[j] = rigid_motions[j] * plate_load - rigid_motions[j] * forces;
+        residual[j] = rigid_motions[j] * f - rigid_motions[j] * forces;
         Vector<double> s_mode;
         pressures(rigid_motions[j], q);
         foundation->nodal_forces(q, s_mode);
@@ -260,9 +270,78 @@ namespace PlateOnHalfspace
           rigid_stiffness(i, j) = rigid_motions[i] * s_mode;
       }
     rigid_stiffness.gauss_jordan();
-    rigid_stiffness.vmult(correction, residual);
+    rigid_stiffness.vmult(amplitudes, residual);
+    Vector<double> correction(w.size());
     for (unsigned int j = 0; j < n_modes; ++j)
-      state.w.add(correction[j], rigid_motions[j]);
-    pressures(state.w, state.q);
+      correction.add(amplitudes[j], rigid_motions[j]);
+    return correction;
+  }
+
+  void
+  DirectContactSolver::check_accepted_solution(const ContactState &state) const
+  {
+    // Where the soil is far stiffer than the plate over a cell, the
+    // settlement (B w)_C on the contact set is a small difference of the
+    // plate's nodal deflections, and q = F^-1 (B w)_C keeps only what their
+    // rounding leaves (doc/errors-and-limits.md, "Stiffness ratio"). One
+    // step of iterative refinement measures it: the residual
+    // P̄ - K̄ w - S w, its soil part computed as the forces of the pressures
+    // and K̄ applied to w without its rigid-body part (which K̄ maps to
+    // rounding alone), is accurate to eps |P̄|, so the correction it gives
+    // is the solve's error. Its rigid-body part is equilibrated as the
+    // answer's is (correct_rigid_body_equilibrium()).
+    if (contact_index.empty() || state.w.size() < 3)
+      return;
+    Vector<double> deformation = state.w;
+    {
+      // an orthonormal basis of the rigid motions, to take them out of w
+      std::vector<Vector<double>> basis;
+      for (const Vector<double> &motion : rigid_motions)
+        {
+          Vector<double> e = motion;
+          for (const Vector<double> &b : basis)
+            e.add(-(b * e), b);
+          if (e.l2_norm() > 1e-8 * motion.l2_norm())
+            {
+              e /= e.l2_norm();
+              basis.push_back(e);
+            }
+        }
+      for (const Vector<double> &b : basis)
+        deformation.add(-(b * deformation), b);
+    }
+    Vector<double> q, forces, stiffness_w(state.w.size());
+    pressures(state.w, q);
+    foundation->nodal_forces(q, forces);
+    plate_stiffness.vmult(stiffness_w, deformation);
+    Vector<double> correction = plate_load;
+    correction -= stiffness_w;
+    correction -= forces;
+    coupled.solve(correction);
+    if (!rigid_motions.empty())
+      correction +=
+        rigid_correction(correction, Vector<double>(state.w.size()));
+    Vector<double> pressure_correction;
+    pressures(correction, pressure_correction);
+    const double scale = q.linfty_norm();
+    const double error = pressure_correction.linfty_norm() / scale;
+    if (!(scale > 0) || !(error > accepted_rounding_floor))
+      return;
+    std::ostringstream message;
+    message << "The contact pressures cannot be solved to better than "
+            << std::scientific << std::setprecision(2) << error
+            << " of their scale: the soil is so much stiffer than the plate "
+               "over a cell that the settlement on the contact set is a "
+               "small difference of the plate's deflections, and rounding "
+               "leaves no more digits (at most "
+            << accepted_rounding_floor
+            << " is accepted). For the plate such a soil is rigid: one "
+            << std::defaultfloat << std::setprecision(2)
+            << error / (0.1 * accepted_rounding_floor)
+            << " times softer is as rigid and keeps the digits; compare "
+               "Foundation/Young's modulus (or the layers') with "
+               "Plate/Young's modulus and Plate/Thickness, and check the "
+               "units of the moduli.";
+    AssertThrow(false, ExcMessage(message.str()));
   }
 } // namespace PlateOnHalfspace

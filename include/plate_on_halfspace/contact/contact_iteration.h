@@ -86,6 +86,17 @@ namespace PlateOnHalfspace
       return seed.contact_set;
     }
 
+    /**
+     * After the iteration has accepted @p state: a solver that can tell
+     * how many digits of its pressures rounding left refuses an answer
+     * less accurate than accepted_rounding_floor. By default nothing.
+     */
+    virtual void
+    check_accepted_solution(const ContactState &state) const
+    {
+      (void)state;
+    }
+
     /** Relative accuracy of the solves while the active set changes. */
     virtual double
     changing_set_tolerance() const

@@ -61,6 +61,22 @@ namespace PlateOnHalfspace
     add_foundation_stiffness(LAPACKFullMatrix<double> &matrix) const;
 
     /**
+     * Refuse pressures that rounding leaves less accurate than
+     * accepted_rounding_floor, measured by one step of iterative refinement
+     * (a soil far stiffer than the plate over a cell; see the
+     * implementation).
+     */
+    void
+    check_accepted_solution(const ContactState &state) const override;
+
+    /**
+     * The rigid-body motion R a that restores R^T S (w + R a) = R^T f for
+     * the forces @p f (correct_rigid_body_equilibrium()'s correction).
+     */
+    Vector<double>
+    rigid_correction(const Vector<double> &w, const Vector<double> &f) const;
+
+    /**
      * Restore vertical force and moment equilibrium within the rigid-body
      * kernel of the free plate (see the implementation for why).
      */
