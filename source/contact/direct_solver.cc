@@ -310,9 +310,9 @@ namespace PlateOnHalfspace
       for (const Vector<double> &b : basis)
         deformation.add(-(b * deformation), b);
     }
-    Vector<double> q, forces, stiffness_w(state.w.size());
-    pressures(state.w, q);
-    foundation->nodal_forces(q, forces);
+    // state.q is still pressures(state.w) (solve_on_set())
+    Vector<double> forces, stiffness_w(state.w.size());
+    foundation->nodal_forces(state.q, forces);
     plate_stiffness.vmult(stiffness_w, deformation);
     Vector<double> correction = plate_load;
     correction -= stiffness_w;
@@ -323,7 +323,7 @@ namespace PlateOnHalfspace
         rigid_correction(correction, Vector<double>(state.w.size()));
     Vector<double> pressure_correction;
     pressures(correction, pressure_correction);
-    const double scale = q.linfty_norm();
+    const double scale = state.q.linfty_norm();
     const double error = pressure_correction.linfty_norm() / scale;
     if (!(scale > 0) || !(error > accepted_rounding_floor))
       return;

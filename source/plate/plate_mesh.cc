@@ -125,9 +125,9 @@ namespace PlateOnHalfspace
         << "> is not plane: its vertices' z differ by " << highest - lowest
         << " (from " << lowest << " to " << highest
         << ") over a plate of diameter " << size
-        << ", more than 1e-4 of it. The plate lies in the plane z = const and only x and y "
-           "are read; mesh the plate in one plane (a constant z is "
-           "allowed).";
+        << ", more than 1e-4 of it. The plate lies in the plane z = const "
+           "and only x and y are read; mesh the plate in one plane (a "
+           "constant z is allowed).";
       AssertThrow(false, ExcMessage(message.str()));
     }
   } // namespace
