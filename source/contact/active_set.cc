@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 
 namespace PlateOnHalfspace
 {
@@ -156,10 +157,12 @@ namespace PlateOnHalfspace
     return set;
   }
 
-  ActiveSetUpdate::ActiveSetUpdate(const FoundationSpace   &space,
-                                   const std::vector<bool> &supported,
-                                   const std::vector<bool> &initial_contact)
+  ActiveSetUpdate::ActiveSetUpdate(const FoundationSpace      &space,
+                                   const std::vector<bool>    &supported,
+                                   const std::vector<bool>    &initial_contact,
+                                   const SparseMatrix<double> &test_coupling)
     : space(space)
+    , test_coupling(test_coupling)
     , supported(supported)
     , active(initial_contact_set(space, supported, initial_contact))
   {}
@@ -176,7 +179,9 @@ namespace PlateOnHalfspace
                                    const double          q_tolerance,
                                    const double          g_tolerance)
   {
-    next = active;
+    next     = active;
+    last_q   = q;
+    last_gap = gap;
     changes.clear();
     for (unsigned int i = 0; i < active.size(); ++i)
       {
@@ -272,8 +277,85 @@ namespace PlateOnHalfspace
                 next[i] = true;
             }
       }
+    if (next == active)
+      next = exchange_tensile_node();
     AssertThrow(next != active, ExcMessage(plate_is_mechanism_message()));
     active = next;
+  }
+
+  std::vector<bool>
+  ActiveSetUpdate::exchange_tensile_node() const
+  {
+    const std::vector<Vector<double>> &motions   = space.rigid_motions;
+    const unsigned int                 n_motions = motions.size();
+    if (n_motions == 0)
+      return active;
+    // the most tensile node first
+    std::vector<unsigned int> tensile;
+    for (const unsigned int i : changes)
+      if (active[i])
+        tensile.push_back(i);
+    std::sort(tensile.begin(),
+              tensile.end(),
+              [&](const unsigned int a, const unsigned int b) {
+                return last_q[a] < last_q[b];
+              });
+    for (const unsigned int k : tensile)
+      {
+        // The motion that the set without k no longer holds: the
+        // eigenvector of the smallest eigenvalue of the motions' Gram
+        // matrix on that set (contact_set_supports_plate()).
+        std::vector<bool> rest(active);
+        rest[k] = false;
+        LAPACKFullMatrix<double> gram(n_motions, n_motions);
+        for (unsigned int i = 0; i < rest.size(); ++i)
+          if (rest[i])
+            for (unsigned int a = 0; a < n_motions; ++a)
+              for (unsigned int b = 0; b < n_motions; ++b)
+                gram(a, b) += motions[a][i] * motions[b][i];
+        Vector<double>     eigenvalues;
+        FullMatrix<double> eigenvectors;
+        gram.compute_eigenvalues_symmetric(-1.,
+                                           std::numeric_limits<double>::max(),
+                                           0.,
+                                           eigenvalues,
+                                           eigenvectors);
+        if (eigenvalues.size() == 0)
+          continue;
+        Vector<double> motion(active.size());
+        for (unsigned int a = 0; a < n_motions; ++a)
+          motion.add(eigenvectors(a, 0), motions[a]);
+        // w is positive downward: k lifts (its tension held it down)
+        if (motion[k] == 0)
+          continue;
+        if (motion[k] > 0)
+          motion *= -1.;
+        // the gaps close by B m: the first to reach zero among the nodes
+        // that go down (a ratio test)
+        Vector<double> closing(active.size());
+        test_coupling.vmult(closing, motion);
+        const double negligible = 1e-12 * closing.linfty_norm();
+        unsigned int entering   = numbers::invalid_unsigned_int;
+        double       first      = std::numeric_limits<double>::max();
+        for (unsigned int i = 0; i < active.size(); ++i)
+          if (supported[i] && !active[i] && closing[i] > negligible)
+            {
+              const double distance = std::max(last_gap[i], 0.) / closing[i];
+              if (distance < first)
+                {
+                  first    = distance;
+                  entering = i;
+                }
+            }
+        if (entering == numbers::invalid_unsigned_int)
+          continue;
+        // a set seen before would start a cycle: a plate that no exchange
+        // carries is a mechanism
+        rest[entering] = true;
+        if (visited.count(rest) == 0 && contact_set_supports_plate(space, rest))
+          return rest;
+      }
+    return active;
   }
 
 } // namespace PlateOnHalfspace

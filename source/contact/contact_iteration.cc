@@ -218,8 +218,11 @@ namespace PlateOnHalfspace
     // A direct solver solves every set exactly (both accuracies 0).
     const FoundationSpace  &space     = plate->get_foundation_space();
     const std::vector<bool> predicted = predict_contact_set(seed, state);
-    ActiveSetUpdate active_set(space, foundation->supported_nodes(), predicted);
-    Vector<double>  plate_settlement;
+    ActiveSetUpdate         active_set(space,
+                               foundation->supported_nodes(),
+                               predicted,
+                               foundation->test_coupling());
+    Vector<double>          plate_settlement;
     double tolerance = std::max(final_tolerance(), changing_set_tolerance());
     for (state.iterations = 1; state.iterations <= contact.max_iterations;
          ++state.iterations)

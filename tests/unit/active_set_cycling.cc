@@ -117,9 +117,16 @@ main()
 
   const FullMatrix<double> f = flexibility();
   const std::vector<bool>  supported(n, true);
-  ActiveSetUpdate          active_set(space, supported, {});
-  std::ostringstream       log;
-  ContactState             state;
+  SparsityPattern          diagonal(n, n, 1);
+  for (unsigned int i = 0; i < n; ++i)
+    diagonal.add(i, i);
+  diagonal.compress();
+  SparseMatrix<double> identity(diagonal); // B = I
+  for (unsigned int i = 0; i < n; ++i)
+    identity.set(i, i, 1.);
+  ActiveSetUpdate    active_set(space, supported, {}, identity);
+  std::ostringstream log;
+  ContactState       state;
   for (state.iterations = 1; state.iterations <= 50; ++state.iterations)
     {
       solve_on_set(active_set.contact_set(), f, load, state);

@@ -79,16 +79,26 @@ namespace PlateOnHalfspace
    * plate (contact_set_supports_plate()): a full step that would leave a
    * mechanism takes every entry, then the exits in order while the rest
    * still carries the plate; a single pivot is the least index whose change
-   * keeps the set carrying. Shared by the direct and the iterative contact
-   * solvers so that both walk the same sequence of sets.
+   * keeps the set carrying. Where no such change is left (every violation
+   * is a tensile node whose exit would leave a mechanism, and no node
+   * penetrates), the tensile node is exchanged for the node whose gap the
+   * rigid motion freed by its exit closes first: the pivot of a simplex
+   * step on the plate's rigid motions (doc/formulation.md, "Tensionless
+   * contact"). Shared by the direct and the iterative contact solvers so
+   * that both walk the same sequence of sets.
    */
   class ActiveSetUpdate
   {
   public:
-    /** Start from initial_contact_set(@p supported, @p initial_contact). */
-    ActiveSetUpdate(const FoundationSpace   &space,
-                    const std::vector<bool> &supported,
-                    const std::vector<bool> &initial_contact);
+    /**
+     * Start from initial_contact_set(@p supported, @p initial_contact).
+     * @p test_coupling is B of the gaps' tests (FoundationOperator::
+     * test_coupling()): a rigid motion m changes the gaps by -B m.
+     */
+    ActiveSetUpdate(const FoundationSpace      &space,
+                    const std::vector<bool>    &supported,
+                    const std::vector<bool>    &initial_contact,
+                    const SparseMatrix<double> &test_coupling);
 
     /** The current contact set. */
     const std::vector<bool> &
@@ -152,7 +162,19 @@ namespace PlateOnHalfspace
     void
     advance();
 
+    /**
+     * The set with a tensile node of the current one exchanged for the
+     * node that the rigid motion freed by its exit brings into contact
+     * first (see the class documentation); the current set if there is
+     * none.
+     */
+    std::vector<bool>
+    exchange_tensile_node() const;
+
     const FoundationSpace      &space;
+    const SparseMatrix<double> &test_coupling;
+    Vector<double>              last_q;   ///< of find_violations()
+    Vector<double>              last_gap; ///< of find_violations()
     std::vector<bool>           supported;
     std::vector<bool>           active;
     std::vector<bool>           next;
