@@ -165,7 +165,10 @@ namespace PlateOnHalfspace
     // The mirror of the layers' bound above: the contact pressures of a
     // soil this much stiffer than the plate are rounding (the direct
     // solver names the floor from far below it: contact/direct_solver.cc).
-    if (foundation.model == Parameters::Foundation::Model::half_space)
+    // (and of the half-space under the layers)
+    if (foundation.model == Parameters::Foundation::Model::half_space ||
+        (foundation.model == Parameters::Foundation::Model::layered &&
+         !foundation.rigid_base))
       {
         std::ostringstream stiff;
         stiff << "Foundation/Young's modulus (" << foundation.youngs_modulus
