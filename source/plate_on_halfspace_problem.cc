@@ -1048,6 +1048,7 @@ namespace PlateOnHalfspace
     pressure_field = mindlin_plate->foundation_field_to_solution(contact.q);
     warn_rounding_floor(contact.rounding_limited_residual,
                         "on " + std::to_string(n) + " foundation nodes");
+    warn_unresolved_contact_region();
     // The solver's factorisation of the flexibility belongs to the
     // foundation's time (doc/outputs.md, the time split); so does a
     // rebuild after failed iterations, whose time the solve had.
@@ -1074,6 +1075,37 @@ namespace PlateOnHalfspace
                (hierarchical_after_fft_did_not_fit || fft_unsuited_cycle) ?
              Storage::hierarchical :
              storage;
+  }
+
+  void
+  PlateOnHalfspaceProblem::warn_unresolved_contact_region()
+  {
+    if (coarse_solve_running || unresolved_contact_warned ||
+        !parameters.foundation.tensionless || !contact.converged)
+      return;
+    const FoundationSpace &space    = mindlin_plate->get_foundation_space();
+    double                 smallest = std::numeric_limits<double>::max();
+    for (const auto &cell : space.cells)
+      for (const unsigned int i : cell.nodes())
+        if (contact.in_contact[i])
+          {
+            smallest = std::min(smallest, cell.geometry.area());
+            break;
+          }
+    const double located = contact_area(contact);
+    if (smallest == std::numeric_limits<double>::max() || located >= smallest)
+      return;
+    unresolved_contact_warned = true;
+    std::ostringstream text;
+    text << "cycle " << summary.count("cycle")
+         << ": the plate bears on a contact region smaller than one of the "
+            "cells that carry it (contact_area_fraction "
+         << std::setprecision(3) << located / space.area() << ", the region "
+         << located << " against a cell of " << smallest
+         << "): its extent and the pressure under it are not resolved on "
+            "this mesh. Refine there (Adaptivity/Refinement = adaptive, or "
+            "goal with Adaptivity/Goal = contact area).";
+    warn(text.str());
   }
 
   void

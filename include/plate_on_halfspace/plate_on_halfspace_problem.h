@@ -195,6 +195,15 @@ namespace PlateOnHalfspace
     warn_rounding_floor(const double residual, const std::string &what);
 
     /**
+     * Warn (once per run) if the cycle's contact region, located inside
+     * the cells, measures less than the smallest cell that carries it: a
+     * plate that bears on a few nodes, whose contact area and pressure
+     * peak the mesh does not resolve.
+     */
+    void
+    warn_unresolved_contact_region();
+
+    /**
      * The goal's value and the dual-weighted residual estimate of its
      * error (doc/formulation.md, "Goal-oriented refinement"): the adjoint
      * problem on the cycle's contact set, solved by the cycle's contact
@@ -276,6 +285,8 @@ namespace PlateOnHalfspace
     LoadList computed_loads;
     /** Whether a cycle has warned about load_integration_error. */
     bool integration_error_warned = false;
+    /** Whether a cycle has warned about an unresolved contact region. */
+    bool unresolved_contact_warned = false;
     /** The nested start's coarse solve is running: warn() holds its text
      *  back (the first cycle checks that mesh again), and the contact
      *  solve stops at the contact set, a seed needing no more. */

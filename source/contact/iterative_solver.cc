@@ -62,6 +62,13 @@ namespace PlateOnHalfspace
         return nodes.size();
       }
 
+      /** The columns of G: the rigid motions the set must hold. */
+      unsigned int
+      n_motions() const
+      {
+        return g.size();
+      }
+
       /** y = H x and @p soil = (F x)_C, the soil's part of it. */
       void
       vmult(Vector<double>       &y,
@@ -386,6 +393,17 @@ namespace PlateOnHalfspace
             q, r, soil, result.product_on_all_nodes, result.soil_on_all_nodes);
           result.relative_residual =
             r.l2_norm() / std::max(soil.l2_norm(), 1e-300);
+          // A set of no more nodes than the rigid motions it holds (three
+          // for a free plate; G^T G is regular on it) leaves ker G^T = {0}:
+          // equilibrium alone fixes q, and what is left of the residual is
+          // rounding, with no direction to search (a right-hand side with no
+          // resultant, as an adjoint's, leaves q = 0 and no soil scale).
+          if (m <= problem.n_motions())
+            {
+              result.relative_residual = 0;
+              result.converged         = true;
+              return result;
+            }
           // The residual is a difference of deflections of size |H q|, so
           // rounding bounds it below by some eps |H q|: where the plate's
           // deflections dwarf the soil's settlement (a plate far more

@@ -27,7 +27,9 @@
 //   lifts more as e grows and almost entirely (contact < 0.1) at 0.95 a;
 // - a slab curled on rock, whose active set meets a tensile node that no
 //   set without it carries, is carried by the exchange step
-//   (ActiveSetUpdate) and not called a mechanism.
+//   (ActiveSetUpdate) and not called a mechanism, with either solver and
+//   its goal estimated; where it bears on isolated nodes the run warns
+//   that the mesh does not resolve the contact region.
 
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/scene/input_checks.h>
@@ -320,17 +322,76 @@ main()
   // the middle third, so this is no mechanism, and the exchange of the
   // tensile node for the node that the freed tilt closes first carries on
   // to the exact discrete contact conditions (solve()'s checks).
+  // The iterative solver reaches the same set of three nodes, as many as
+  // the plate's rigid motions: equilibrium alone fixes the pressures there,
+  // and the goal's adjoint solve on it (no resultant, so no soil scale)
+  // must not search for a direction.
+  const std::string curled_on_rock =
+    "subsection Foundation\n set Young's modulus = 1e8\nend\n"
+    "subsection Temperature\n set Difference = -20\nend\n"
+    "subsection Adaptivity\n set Cycles = 1\nend\n"
+    "subsection Output\n set Probe points = 0,0\nend\n";
   {
-    const ResultRecord s =
+    const ResultRecord direct =
       solve("pavement-night-half-space.prm",
-            "subsection Foundation\n set Young's modulus = 1e8\nend\n"
-            "subsection Temperature\n set Difference = -20\nend\n"
-            "subsection Adaptivity\n set Cycles = 1\nend\n"
-            "subsection Output\n set Probe points = 0,0\nend\n",
+            curled_on_rock,
             "slab curled at -20 K on rock, 10 x 8 cells");
-    AssertThrow(s.number("contact_area_fraction") < 0.05,
+    AssertThrow(direct.number("contact_area_fraction") < 0.05,
                 ExcMessage("a curled slab on rock bears on its centre"));
+    // (its iterations and the last digits vary with the CPU: only
+    // verdicts are printed)
+    const auto problem =
+      solve_scene("pavement-night-half-space.prm",
+                  curled_on_rock +
+                    "subsection Contact\n set Solver = iterative\nend\n"
+                    "subsection Foundation operator\n set Storage = "
+                    "dense\nend\n");
+    const ResultRecord &iterative = problem->summaries().back();
+    AssertThrow(iterative.flag("converged") &&
+                  std::abs(iterative.number("contact_force") -
+                           iterative.number("applied_load")) <=
+                    1e-10 * iterative.number("applied_load") &&
+                  iterative.number("complementarity_violation") <= 1e-8,
+                ExcMessage("iterative solver: not carried"));
+    check("  iterative w(0,0) against the direct solver's",
+          iterative.items("probes")[0].number("w"),
+          direct.items("probes")[0].number("w"),
+          1e-8);
+    AssertThrow(iterative.has("goal"),
+                ExcMessage("no goal estimate on a three-node set"));
   }
-  deallog << "slab curled on rock: carried, contact area < 0.05: ok"
+  deallog << "slab curled on rock: carried, contact area < 0.05, the goal "
+             "estimated with either solver: ok"
           << std::endl;
+
+  // On the coarsest mesh with the tyre at the far edge the slab bears on
+  // two nodes of each half and the located contact area is 0 to rounding
+  // while the load is carried: the run says that the mesh does not
+  // resolve the region.
+  {
+    const auto problem = solve_scene(
+      "pavement-night-half-space.prm",
+      "subsection Foundation\n set Young's modulus = 1e9\nend\n"
+      "subsection Temperature\n set Difference = -30\nend\n"
+      "subsection Loads\n set Circular patches = 2.1,0,0.15,700\nend\n"
+      "subsection Discretization\n set Initial refinements = 0\n"
+      " set Symmetry = auto\nend\n"
+      "subsection Adaptivity\n set Cycles = 1\n set Refinement = global\n"
+      " set Goal =\nend\n");
+    const ResultRecord &s = problem->summaries().back();
+    AssertThrow(s.flag("converged") && std::abs(s.number("contact_force") -
+                                                s.number("applied_load")) <=
+                                         1e-12 * s.number("applied_load"),
+                ExcMessage("the slab on two nodes is not carried"));
+    const auto warnings = problem->warnings();
+    AssertThrow(warnings.size() == 1 &&
+                  warnings[0].find("smaller than one of the cells") !=
+                    std::string::npos,
+                ExcMessage("no warning for an unresolved contact region"));
+    AssertThrow(s.number("contact_area_fraction") < 1e-3,
+                ExcMessage("the located area is not 0 to rounding"));
+    deallog << "slab on two nodes: carried, contact area < 1e-3, warned "
+               "that the mesh does not resolve it: ok"
+            << std::endl;
+  }
 }
