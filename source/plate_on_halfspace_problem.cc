@@ -6,6 +6,7 @@
 #include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
+#include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/iterative_solver.h>
 #include <plate_on_halfspace/contact/pressure_preconditioner.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
@@ -1049,6 +1050,7 @@ namespace PlateOnHalfspace
     warn_rounding_floor(contact.rounding_limited_residual,
                         "on " + std::to_string(n) + " foundation nodes");
     warn_unresolved_contact_region();
+    warn_knife_edge();
     // The solver's factorisation of the flexibility belongs to the
     // foundation's time (doc/outputs.md, the time split); so does a
     // rebuild after failed iterations, whose time the solve had.
@@ -1106,6 +1108,25 @@ namespace PlateOnHalfspace
             "this mesh. Refine there (Adaptivity/Refinement = adaptive, or "
             "goal with Adaptivity/Goal = contact area).";
     warn(text.str());
+  }
+
+  void
+  PlateOnHalfspaceProblem::warn_knife_edge()
+  {
+    if (coarse_solve_running || knife_edge_warned ||
+        !parameters.foundation.tensionless || !contact.converged ||
+        !carried_on_knife_edge(mindlin_plate->get_foundation_space(), contact))
+      return;
+    knife_edge_warned = true;
+    warn("cycle " + std::to_string(summary.count("cycle")) +
+         ": the plate balances on a line of contact nodes (a knife edge): "
+         "the nodes that hold its tilt about that line carry no pressure "
+         "(less than 1e-6 of the largest), so the contact conditions hold "
+         "for a range of tilts, and the deflections away from the line are "
+         "those of the tilt the solver stopped at (for a scene symmetric "
+         "about the line, its mirror image is as valid). Use "
+         "Discretization/Symmetry for such a scene, or refine the mesh "
+         "there.");
   }
 
   void

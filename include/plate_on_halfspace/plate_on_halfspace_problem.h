@@ -204,6 +204,13 @@ namespace PlateOnHalfspace
     warn_unresolved_contact_region();
 
     /**
+     * Warn (once per run) if the cycle's contact set carries the plate
+     * only through nodes without pressure (carried_on_knife_edge()).
+     */
+    void
+    warn_knife_edge();
+
+    /**
      * The goal's value and the dual-weighted residual estimate of its
      * error (doc/formulation.md, "Goal-oriented refinement"): the adjoint
      * problem on the cycle's contact set, solved by the cycle's contact
@@ -287,6 +294,8 @@ namespace PlateOnHalfspace
     bool integration_error_warned = false;
     /** Whether a cycle has warned about an unresolved contact region. */
     bool unresolved_contact_warned = false;
+    /** Whether a cycle has warned about a plate on a knife edge. */
+    bool knife_edge_warned = false;
     /** The nested start's coarse solve is running: warn() holds its text
      *  back (the first cycle checks that mesh again), and the contact
      *  solve stops at the contact set, a seed needing no more. */

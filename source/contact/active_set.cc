@@ -117,6 +117,20 @@ namespace PlateOnHalfspace
     return smallest > 1e-10 * n * extent;
   }
 
+  bool
+  carried_on_knife_edge(const FoundationSpace &space, const ContactState &state)
+  {
+    const Vector<double> &q = state.pressure_coefficients;
+    if (q.size() != state.in_contact.size() ||
+        !contact_set_supports_plate(space, state.in_contact))
+      return false;
+    const double      negligible = 1e-6 * max_abs(q);
+    std::vector<bool> loaded(state.in_contact);
+    for (unsigned int i = 0; i < loaded.size(); ++i)
+      loaded[i] = loaded[i] && q[i] > negligible;
+    return !contact_set_supports_plate(space, loaded);
+  }
+
   void
   evaluate_contact_conditions(const Vector<double>    &plate_settlement,
                               const std::vector<bool> &supported,

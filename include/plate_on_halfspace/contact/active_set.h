@@ -48,6 +48,17 @@ namespace PlateOnHalfspace
                              const std::vector<bool> &in_contact);
 
   /**
+   * Whether @p state's contact set carries the plate only through nodes
+   * without pressure: its nodes whose pressure coefficient exceeds 1e-6 of
+   * the largest no longer carry the plate on their own (contact_set_
+   * supports_plate()). The plate then balances on a line of nodes (a knife
+   * edge), and the contact conditions hold for a range of tilts about it.
+   */
+  bool
+  carried_on_knife_edge(const FoundationSpace &space,
+                        const ContactState    &state);
+
+  /**
    * Fill complementarity_violation, tensile_nodes and max_penetration of
    * @p state from its q and gap (which must be set), with @p plate_settlement
    * = B w giving the gap's scale and @p supported the nodes under the
