@@ -19,6 +19,22 @@ namespace PlateOnHalfspace
     {
       return v.size() > 0 ? v.linfty_norm() : 0.;
     }
+
+    /** The Gram matrix of the plate's rigid motions over the nodes of
+     *  @p set (contact_set_supports_plate()). */
+    LAPACKFullMatrix<double>
+    motions_gram(const FoundationSpace &space, const std::vector<bool> &set)
+    {
+      const unsigned int       m = space.rigid_motions.size();
+      LAPACKFullMatrix<double> gram(m, m);
+      for (unsigned int i = 0; i < set.size(); ++i)
+        if (set[i])
+          for (unsigned int a = 0; a < m; ++a)
+            for (unsigned int b = 0; b < m; ++b)
+              gram(a, b) +=
+                space.rigid_motions[a][i] * space.rigid_motions[b][i];
+      return gram;
+    }
   } // namespace
 
   namespace
@@ -66,20 +82,11 @@ namespace PlateOnHalfspace
         // with the motions orthonormal over all nodes, the Gram matrix on
         // the set is positive definite, its eigenvalues about the set's
         // share of the nodes where it holds them well.
-        const unsigned int       m         = space.rigid_motions.size();
-        unsigned int             n_contact = 0;
-        LAPACKFullMatrix<double> gram(m, m);
-        for (unsigned int i = 0; i < in_contact.size(); ++i)
-          if (in_contact[i])
-            {
-              ++n_contact;
-              for (unsigned int a = 0; a < m; ++a)
-                for (unsigned int b = 0; b < m; ++b)
-                  gram(a, b) +=
-                    space.rigid_motions[a][i] * space.rigid_motions[b][i];
-            }
+        const auto n_contact =
+          std::count(in_contact.begin(), in_contact.end(), true);
         if (n_contact == 0)
           return false;
+        LAPACKFullMatrix<double> gram = motions_gram(space, in_contact);
         gram.compute_eigenvalues_symmetric(-1.,
                                            1e-10 * n_contact /
                                              in_contact.size(),
@@ -193,9 +200,7 @@ namespace PlateOnHalfspace
                                    const double          q_tolerance,
                                    const double          g_tolerance)
   {
-    next     = active;
-    last_q   = q;
-    last_gap = gap;
+    next = active;
     changes.clear();
     for (unsigned int i = 0; i < active.size(); ++i)
       {
@@ -232,7 +237,7 @@ namespace PlateOnHalfspace
     if (detect_cycle() && verbosity > 0)
       log << "   contact iteration " << iteration
           << ": cycle detected, switching to single pivots" << std::endl;
-    advance();
+    advance(q, gap);
     return false;
   }
 
@@ -259,7 +264,7 @@ namespace PlateOnHalfspace
   }
 
   void
-  ActiveSetUpdate::advance()
+  ActiveSetUpdate::advance(const Vector<double> &q, const Vector<double> &gap)
   {
     if (single_pivot_mode)
       {
@@ -292,13 +297,14 @@ namespace PlateOnHalfspace
             }
       }
     if (next == active)
-      next = exchange_tensile_node();
+      next = exchange_tensile_node(q, gap);
     AssertThrow(next != active, ExcMessage(plate_is_mechanism_message()));
     active = next;
   }
 
   std::vector<bool>
-  ActiveSetUpdate::exchange_tensile_node() const
+  ActiveSetUpdate::exchange_tensile_node(const Vector<double> &q,
+                                         const Vector<double> &gap) const
   {
     const std::vector<Vector<double>> &motions   = space.rigid_motions;
     const unsigned int                 n_motions = motions.size();
@@ -312,7 +318,7 @@ namespace PlateOnHalfspace
     std::sort(tensile.begin(),
               tensile.end(),
               [&](const unsigned int a, const unsigned int b) {
-                return last_q[a] < last_q[b];
+                return q[a] < q[b];
               });
     for (const unsigned int k : tensile)
       {
@@ -320,15 +326,10 @@ namespace PlateOnHalfspace
         // eigenvector of the smallest eigenvalue of the motions' Gram
         // matrix on that set (contact_set_supports_plate()).
         std::vector<bool> rest(active);
-        rest[k] = false;
-        LAPACKFullMatrix<double> gram(n_motions, n_motions);
-        for (unsigned int i = 0; i < rest.size(); ++i)
-          if (rest[i])
-            for (unsigned int a = 0; a < n_motions; ++a)
-              for (unsigned int b = 0; b < n_motions; ++b)
-                gram(a, b) += motions[a][i] * motions[b][i];
-        Vector<double>     eigenvalues;
-        FullMatrix<double> eigenvectors;
+        rest[k]                       = false;
+        LAPACKFullMatrix<double> gram = motions_gram(space, rest);
+        Vector<double>           eigenvalues;
+        FullMatrix<double>       eigenvectors;
         gram.compute_eigenvalues_symmetric(-1.,
                                            std::numeric_limits<double>::max(),
                                            0.,
@@ -354,7 +355,7 @@ namespace PlateOnHalfspace
         for (unsigned int i = 0; i < active.size(); ++i)
           if (supported[i] && !active[i] && closing[i] > negligible)
             {
-              const double distance = std::max(last_gap[i], 0.) / closing[i];
+              const double distance = std::max(gap[i], 0.) / closing[i];
               if (distance < first)
                 {
                   first    = distance;

@@ -292,24 +292,11 @@ namespace PlateOnHalfspace
     // answer's is (correct_rigid_body_equilibrium()).
     if (contact_index.empty() || state.w.size() < 3)
       return;
+    // w without its rigid part: the foundation space's rigid motions are
+    // orthonormal over the nodes and span rigid_motions
     Vector<double> deformation = state.w;
-    {
-      // an orthonormal basis of the rigid motions, to take them out of w
-      std::vector<Vector<double>> basis;
-      for (const Vector<double> &motion : rigid_motions)
-        {
-          Vector<double> e = motion;
-          for (const Vector<double> &b : basis)
-            e.add(-(b * e), b);
-          if (e.l2_norm() > 1e-8 * motion.l2_norm())
-            {
-              e /= e.l2_norm();
-              basis.push_back(e);
-            }
-        }
-      for (const Vector<double> &b : basis)
-        deformation.add(-(b * deformation), b);
-    }
+    for (const Vector<double> &e : plate->get_foundation_space().rigid_motions)
+      deformation.add(-(e * deformation), e);
     // state.q is still pressures(state.w) (solve_on_set())
     Vector<double> forces, stiffness_w(state.w.size());
     foundation->nodal_forces(state.q, forces);

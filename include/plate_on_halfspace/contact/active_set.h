@@ -169,23 +169,23 @@ namespace PlateOnHalfspace
     bool
     detect_cycle();
 
-    /** Move to the next set (see step()). */
+    /** Move to the next set (see step()), from the solution (@p q,
+     *  @p gap) that find_violations() judged. */
     void
-    advance();
+    advance(const Vector<double> &q, const Vector<double> &gap);
 
     /**
      * The set with a tensile node of the current one exchanged for the
      * node that the rigid motion freed by its exit brings into contact
-     * first (see the class documentation); the current set if there is
-     * none.
+     * first, judged from (@p q, @p gap) (see the class documentation); the
+     * current set if there is none.
      */
     std::vector<bool>
-    exchange_tensile_node() const;
+    exchange_tensile_node(const Vector<double> &q,
+                          const Vector<double> &gap) const;
 
     const FoundationSpace      &space;
     const SparseMatrix<double> &test_coupling;
-    Vector<double>              last_q;   ///< of find_violations()
-    Vector<double>              last_gap; ///< of find_violations()
     std::vector<bool>           supported;
     std::vector<bool>           active;
     std::vector<bool>           next;
