@@ -6,6 +6,7 @@
 #include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/base/progress.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
+#include <plate_on_halfspace/base/tasks.h>
 #include <plate_on_halfspace/contact/active_set.h>
 #include <plate_on_halfspace/contact/iterative_solver.h>
 #include <plate_on_halfspace/contact/pressure_preconditioner.h>
@@ -17,6 +18,10 @@
 #include <plate_on_halfspace/plate_on_halfspace_problem.h>
 #include <plate_on_halfspace/refinement/interface.h>
 #include <plate_on_halfspace/scene/input_checks.h>
+
+#ifdef __GLIBC__
+#  include <malloc.h>
+#endif
 
 #include <cfloat>
 #include <cmath>
@@ -99,11 +104,13 @@ namespace PlateOnHalfspace
        {{"nested_start_time_s"},
         "s",
         "the first cycle's nested start: the scene solved on the mesh one "
-        "refinement coarser, and the refinement back "
+        "refinement coarser, and the refinement back with the plate's "
+        "stiffness on the first mesh "
         "([formulation.md](formulation.md#nested-start)); 0 without it"},
        {{"assembly_time_s"},
         "s",
-        "plate setup (DoFs, constraints, stiffness) and loads"},
+        "plate setup (DoFs, constraints, stiffness: with a nested start, "
+        "the stiffness is in nested_start_time_s) and loads"},
        {{"foundation_time_s"},
         "s",
         "building the foundation operator; the sum of the next three"},
@@ -224,7 +231,7 @@ namespace PlateOnHalfspace
     try
       {
         make_mesh();
-        setup_plate();
+        setup_plate(stiffness_unless_coarsened());
         check_sweep_positions();
         for (unsigned int cycle = 0; cycle < parameters.adaptivity.cycles;
              ++cycle)
@@ -233,6 +240,8 @@ namespace PlateOnHalfspace
             if (cycle > 0 && !refine_mesh())
               break;
             nested_start_time_s = cycle == 0 ? solve_on_coarser_mesh() : 0.;
+            // made already, as the mesh was left or refined back
+            mindlin_plate->complete_setup();
             assemble_loads(cycle);
             build_foundation_operator();
             Interruption::check();
@@ -348,14 +357,19 @@ namespace PlateOnHalfspace
   }
 
   void
-  PlateOnHalfspaceProblem::setup_plate()
+  PlateOnHalfspaceProblem::setup_plate(
+    const std::function<bool()> &stiffness_needed)
   {
     std::optional<TimerOutput::Scope> scope;
     if (!timing_nested_start)
       scope.emplace(timer_output, "plate setup");
     Timer setup_timer;
+    // an analysis of the plate as it was
+    plate_inverse.reset();
     partition_plate_mesh(triangulation, communicator);
-    mindlin_plate->setup(triangulation);
+    mindlin_plate->setup_dofs(triangulation);
+    if (!stiffness_needed || stiffness_needed())
+      mindlin_plate->complete_setup();
     if (n_ranks(communicator) > 1)
       {
         // A rank with cells may still own no foundation node (the nodes
@@ -621,8 +635,17 @@ namespace PlateOnHalfspace
     return true;
   }
 
-  double
-  PlateOnHalfspaceProblem::solve_on_coarser_mesh(const bool within_nested)
+  std::function<bool()>
+  PlateOnHalfspaceProblem::stiffness_unless_coarsened() const
+  {
+    // A mesh that the nested start coarsens is set up again once refined
+    // back: its stiffness would be assembled twice. Nothing before the
+    // nested start reads it (the sweep's checks read loads and nodes).
+    return [this]() { return nested_start_obstacle().has_value(); };
+  }
+
+  std::optional<std::string>
+  PlateOnHalfspaceProblem::nested_start_obstacle() const
   {
     using NestedStart         = Parameters::Contact::NestedStart;
     const NestedStart  choice = parameters.contact.nested_start;
@@ -630,22 +653,53 @@ namespace PlateOnHalfspace
     if (choice == NestedStart::off ||
         (choice == NestedStart::automatic &&
          n < Parameters::Contact::nested_start_nodes))
-      return 0;
+      return std::string();
     // The coarser mesh is the initial refinements' last but one: every
     // cell one level up. The mesh and plate are replicated on several
     // processes, but the coarse solve is not worth their collectives.
-    const int  level     = static_cast<int>(triangulation.n_levels()) - 1;
-    const auto on_levels = [this](const int finest) {
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->level() != finest)
-          return false;
-      return true;
-    };
+    const int level = nested_start_level();
     // Adaptivity/Refinement = goal keeps every cell's siblings as a patch
     // (make_mesh()): deal.II then coarsens no cell to the coarse mesh's
     // level.
     const bool patches =
       triangulation.get_mesh_smoothing() & Triangulation<2>::patch_level_1;
+    if (!parameters.foundation.tensionless)
+      return std::string("a bonded foundation has no contact set to seed");
+    if (parameters.contact.method != Parameters::Contact::Method::active_set)
+      return std::string("Contact/Method = element exclusion does not start "
+                         "from a seed");
+    if (n_ranks(communicator) > 1)
+      return std::string("the run has several processes");
+    if (level < 1)
+      return std::string("the first mesh has no coarser level (it needs "
+                         "Discretization/Initial refinements of at least 1)");
+    if (patches && level < 2)
+      return std::string("Adaptivity/Refinement = goal keeps the cells in "
+                         "patches that the coarse mesh's cells cannot form");
+    return std::nullopt;
+  }
+
+  int
+  PlateOnHalfspaceProblem::nested_start_level() const
+  {
+    const int level = static_cast<int>(triangulation.n_levels()) - 1;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->level() != level)
+        return -1;
+    return level;
+  }
+
+  double
+  PlateOnHalfspaceProblem::solve_on_coarser_mesh(const bool within_nested)
+  {
+    using NestedStart           = Parameters::Contact::NestedStart;
+    const NestedStart choice    = parameters.contact.nested_start;
+    const auto        on_levels = [this](const int finest) {
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->level() != finest)
+          return false;
+      return true;
+    };
     const auto not_applied = [&](const std::string &reason,
                                  const bool         after_first_solve = false) {
       if (choice != NestedStart::on || within_nested)
@@ -658,22 +712,13 @@ namespace PlateOnHalfspace
         warn(text);
       return 0.;
     };
-    if (!parameters.foundation.tensionless)
-      return not_applied("a bonded foundation has no contact set to seed");
-    if (parameters.contact.method != Parameters::Contact::Method::active_set)
-      return not_applied("Contact/Method = element exclusion does not start "
-                         "from a seed");
-    if (n_ranks(communicator) > 1)
-      return not_applied("the run has several processes");
-    if (level < 1 || !on_levels(level))
-      return not_applied("the first mesh has no coarser level (it needs "
-                         "Discretization/Initial refinements of at least 1)");
-    if (patches && level < 2)
-      return not_applied("Adaptivity/Refinement = goal keeps the cells in "
-                         "patches that the coarse mesh's cells cannot form");
+    if (const std::optional<std::string> obstacle = nested_start_obstacle())
+      return obstacle->empty() ? 0. : not_applied(*obstacle);
+    const int level = nested_start_level();
     // The nested start's time holds the coarse solves, the refinement
-    // back and its plate setup; the cycle's assembly_time_s keeps the
-    // setup of the mesh as given (before the run's loop), as without.
+    // back and its plate setup (the stiffness of the mesh as given among
+    // it); the cycle's assembly_time_s keeps the setup of the mesh as
+    // given before the run's loop: its DoFs and foundation nodes.
     // The whole nested start in one section of the timings: the phases
     // on the coarser meshes and the refinement back (timing_nested_start).
     struct NestedStartSection
@@ -720,7 +765,7 @@ namespace PlateOnHalfspace
     if (!on_levels(level - 1))
       return start_without("deal.II's mesh smoothing kept cells from being "
                            "coarsened");
-    setup_plate();
+    setup_plate(stiffness_unless_coarsened());
     // the coarser mesh's own solve seeded from one coarser still, where
     // that applies in turn
     solve_on_coarser_mesh(true);
@@ -912,9 +957,45 @@ namespace PlateOnHalfspace
           create_foundation_operator(parameters, soil, storage);
         operator_storage = storage;
       }
+    // The iterative solver's K^+ needs the plate alone, and its symbolic
+    // stage (the ordering) runs on one core: beside the operator's build,
+    // which leaves the second core idle for much of its time
+    // (doc/performance.md, "The plate's ordering beside the operator's
+    // build"). A failure there is left to the solver, which makes its own
+    // K^+ and reports it where it always has. Only beside the fft build:
+    // METIS draws from the C library's rand(), and hmat-oss's compression
+    // draws from it too, so that beside a hierarchical build both would
+    // depend on the timing.
+    plate_inverse.reset();
+    const bool analyse_plate =
+      n_ranks(communicator) == 1 && storage == Storage::fft &&
+      cycle_solver(n) == Parameters::Contact::Solver::iterative;
     try
       {
-        foundation_operator->build(mindlin_plate->get_foundation_space(), {});
+        run_tasks(analyse_plate ? 2 : 1, [&](const unsigned int part) {
+          if (part == 0)
+            foundation_operator->build(mindlin_plate->get_foundation_space(),
+                                       {});
+          else
+            try
+              {
+                plate_inverse =
+                  std::make_unique<PlateGeneralizedInverse>(*mindlin_plate);
+              }
+            catch (...)
+              {
+                plate_inverse.reset();
+              }
+        });
+#ifdef __GLIBC__
+        // The analysis's blocks, freed on its thread, stay in that
+        // thread's heap, where the main thread's later factors do not
+        // reuse them: given back, the run's peak is what it was without
+        // the analysis beside the build (doc/performance.md, "The plate's
+        // ordering beside the operator's build").
+        if (analyse_plate)
+          malloc_trim(0);
+#endif
       }
     catch (const StorageDoesNotFit &shortfall)
       {
@@ -978,6 +1059,10 @@ namespace PlateOnHalfspace
     const auto         solve_with = [&](const Parameters::Contact::Solver s) {
       contact_solver = create_contact_solver(
         parameters, s, parameters.output.verbosity, log, coarse_solve_running);
+      if (auto *iterative =
+            dynamic_cast<IterativeContactSolver *>(contact_solver.get()))
+        iterative->use_plate_inverse(std::move(plate_inverse));
+      plate_inverse.reset();
       contact = contact_solver->solve(*mindlin_plate,
                                       *foundation_operator,
                                       mindlin_plate->get_load_vector(),

@@ -19,13 +19,16 @@
 #include <plate_on_halfspace/contact/interface.h>
 #include <plate_on_halfspace/halfspace/interface.h>
 #include <plate_on_halfspace/io/results_output.h>
+#include <plate_on_halfspace/plate/generalized_inverse.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 #include <plate_on_halfspace/refinement/dual_weighted_residual.h>
 #include <plate_on_halfspace/refinement/goal.h>
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -109,9 +112,30 @@ namespace PlateOnHalfspace
     void
     make_mesh();
 
-    /** Distribute DoFs and assemble the plate's stiffness. */
+    /** Distribute DoFs and assemble the plate's stiffness, the latter
+     *  only if @p stiffness_needed (asked once the DoFs are there) says so
+     *  or is empty. */
     void
-    setup_plate();
+    setup_plate(const std::function<bool()> &stiffness_needed = {});
+
+    /** For setup_plate(): the stiffness unless the nested start is about
+     *  to coarsen the mesh. */
+    std::function<bool()>
+    stiffness_unless_coarsened() const;
+
+    /**
+     * Why solve_on_coarser_mesh() does not coarsen the present mesh: an
+     * empty text where Contact/Nested start leaves it alone without a
+     * word (false, or auto below its node count), else the reason that
+     * `true` warns of; nullopt where it coarsens. Reads the plate's
+     * foundation nodes (set up at least by MindlinPlate::setup_dofs()).
+     */
+    std::optional<std::string>
+    nested_start_obstacle() const;
+
+    /** The level of every active cell, or -1 if they differ. */
+    int
+    nested_start_level() const;
 
     /**
      * Refine for the next cycle, set up the plate anew and transfer the
@@ -319,6 +343,9 @@ namespace PlateOnHalfspace
     std::unique_ptr<MindlinPlate> mindlin_plate;
     /** The cycle's contact solver (the adjoint problem reuses it). */
     std::unique_ptr<ContactSolver> contact_solver;
+    /** The plate's K^+ analysed beside the operator's build, for the
+     *  iterative contact solver of the same cycle (nullptr otherwise). */
+    std::unique_ptr<PlateGeneralizedInverse> plate_inverse;
     /** Adaptivity/Goal (none: no estimate) and the cycle's estimate. */
     std::shared_ptr<const GoalFunctional> goal;
     GoalErrorEstimate                     goal_estimate;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <new>
 #include <numeric>
 #include <string>
@@ -23,6 +24,34 @@ namespace PlateOnHalfspace
     /** The analysed pattern (analyze()): column starts and row indices
      *  of the upper triangle, which factorize_as() must meet. */
     std::vector<int> analysed_starts, analysed_rows;
+
+    /** Whether @p a has the analysed pattern. */
+    bool
+    has_analysed_pattern(const cholmod_sparse *a) const
+    {
+      const unsigned int n       = a->ncol;
+      const int         *starts  = static_cast<const int *>(a->p);
+      const int         *indices = static_cast<const int *>(a->i);
+      return std::equal(starts,
+                        starts + n + 1,
+                        analysed_starts.begin(),
+                        analysed_starts.end()) &&
+             std::equal(indices,
+                        indices + starts[n],
+                        analysed_rows.begin(),
+                        analysed_rows.end());
+    }
+
+    /** Keep @p a's pattern as the analysed one. */
+    void
+    keep_pattern(const cholmod_sparse *a)
+    {
+      const unsigned int n       = a->ncol;
+      const int         *starts  = static_cast<const int *>(a->p);
+      const int         *indices = static_cast<const int *>(a->i);
+      analysed_starts.assign(starts, starts + n + 1);
+      analysed_rows.assign(indices, indices + starts[n]);
+    }
 
     void
     free_factor()
@@ -53,7 +82,8 @@ namespace PlateOnHalfspace
     upper_triangle(const SparseMatrix<double>                 &matrix,
                    const std::vector<types::global_dof_index> &rows,
                    const bool                                  keep_zeros,
-                   cholmod_common                             &common)
+                   cholmod_common                             &common,
+                   const bool                                  values = true)
     {
       const unsigned int n = rows.size();
       std::vector<int>   position(matrix.m(), -1);
@@ -75,14 +105,15 @@ namespace PlateOnHalfspace
       std::size_t nnz = 0;
       for (unsigned int j = 0; j < n; ++j)
         for_each_kept(j, [&](int, double) { ++nnz; });
-      cholmod_sparse *a = cholmod_allocate_sparse(n,
-                                                  n,
-                                                  nnz,
-                                                  /*sorted*/ 1,
-                                                  /*packed*/ 1,
-                                                  /*stype*/ 1,
-                                                  CHOLMOD_REAL,
-                                                  &common);
+      cholmod_sparse *a =
+        cholmod_allocate_sparse(n,
+                                n,
+                                nnz,
+                                /*sorted*/ 1,
+                                /*packed*/ 1,
+                                /*stype*/ 1,
+                                values ? CHOLMOD_REAL : CHOLMOD_PATTERN,
+                                &common);
       if (a == nullptr)
         return nullptr;
       int                                *p = static_cast<int *>(a->p);
@@ -101,7 +132,8 @@ namespace PlateOnHalfspace
           for (const auto &e : column)
             {
               r[k] = e.first;
-              x[k] = e.second;
+              if (x != nullptr)
+                x[k] = e.second;
               ++k;
             }
           p[j + 1] = k;
@@ -314,6 +346,13 @@ namespace PlateOnHalfspace
                                const std::vector<types::global_dof_index> &rows,
                                cholmod_common &common)
     {
+      // METIS draws from the C library's rand(), seeded by srand() at each
+      // call: two orderings side by side (the plate's beside the soil
+      // inverse's, doc/performance.md, "The plate's ordering beside the
+      // operator's build") would interleave their draws and depend on the
+      // timing. One at a time, each is the ordering it is alone.
+      static std::mutex                 one_ordering_at_a_time;
+      const std::lock_guard<std::mutex> lock(one_ordering_at_a_time);
       if (a->nrow < 10000)
         {
           common.nmethods = 0;
@@ -393,20 +432,63 @@ namespace PlateOnHalfspace
   }
 
   void
-  SparseCholesky::factorize(const SparseMatrix<double>                 &matrix,
-                            const std::vector<types::global_dof_index> &rows)
+  SparseCholesky::analyze(const SparseMatrix<double>                 &matrix,
+                          const std::vector<types::global_dof_index> &rows)
   {
     data->free_factor();
     const unsigned int n = rows.size();
     data->n              = n;
     if (n == 0)
       return;
-    cholmod_sparse *a = upper_triangle(matrix, rows, false, data->common);
+    // the pattern alone: a third of the matrix's bytes, beside whatever
+    // else runs
+    cholmod_sparse *a =
+      upper_triangle(matrix, rows, false, data->common, /*values*/ false);
     AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
+    data->keep_pattern(a);
     data->factor = analyze_with_best_ordering(a,
                                               matrix.get_sparsity_pattern(),
                                               rows,
                                               data->common);
+    // factorize() makes the matrix with its values
+    cholmod_free_sparse(&a, &data->common);
+    AssertThrow(data->factor != nullptr, ExcMessage(does_not_fit(what, n)));
+  }
+
+  void
+  SparseCholesky::factorize(const SparseMatrix<double>                 &matrix,
+                            const std::vector<types::global_dof_index> &rows)
+  {
+    const unsigned int n = rows.size();
+    // a numerical factor goes before the new matrix is made; a symbolic
+    // analysis waiting for its values stays
+    if (n == 0 ||
+        (data->factor != nullptr && data->factor->xtype != CHOLMOD_PATTERN))
+      data->free_factor();
+    if (n == 0)
+      {
+        data->n = 0;
+        return;
+      }
+    cholmod_sparse *a = upper_triangle(matrix, rows, false, data->common);
+    AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
+    // A symbolic analysis of this pattern (analyze()) is the one the
+    // ordering below would make: the symbolic stage depends on the
+    // pattern alone.
+    const bool analysed =
+      data->factor != nullptr && data->n == n && data->has_analysed_pattern(a);
+    if (!analysed)
+      {
+        data->free_factor();
+        data->n      = n;
+        data->factor = analyze_with_best_ordering(a,
+                                                  matrix.get_sparsity_pattern(),
+                                                  rows,
+                                                  data->common);
+      }
+    // a numerical factor serves no factorize_as()
+    std::vector<int>().swap(data->analysed_starts);
+    std::vector<int>().swap(data->analysed_rows);
     factorize_numerically(a);
   }
 
@@ -420,10 +502,7 @@ namespace PlateOnHalfspace
       return;
     cholmod_sparse *a = upper_triangle(matrix, all_rows(n), true, data->common);
     AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
-    const int *starts  = static_cast<const int *>(a->p);
-    const int *indices = static_cast<const int *>(a->i);
-    data->analysed_starts.assign(starts, starts + n + 1);
-    data->analysed_rows.assign(indices, indices + starts[n]);
+    data->keep_pattern(a);
     data->factor = analyze_with_best_ordering(a,
                                               matrix.get_sparsity_pattern(),
                                               all_rows(n),
@@ -446,17 +525,7 @@ namespace PlateOnHalfspace
     cholmod_sparse *a = upper_triangle(matrix, all_rows(n), true, data->common);
     AssertThrow(a != nullptr, ExcMessage(does_not_fit(what, n)));
     // An entry outside the analysed pattern would be dropped silently.
-    const int *starts  = static_cast<const int *>(a->p);
-    const int *indices = static_cast<const int *>(a->i);
-    const bool same_pattern =
-      std::equal(starts,
-                 starts + n + 1,
-                 analysed.data->analysed_starts.begin(),
-                 analysed.data->analysed_starts.end()) &&
-      std::equal(indices,
-                 indices + starts[n],
-                 analysed.data->analysed_rows.begin(),
-                 analysed.data->analysed_rows.end());
+    const bool same_pattern = analysed.data->has_analysed_pattern(a);
     if (!same_pattern)
       cholmod_free_sparse(&a, &data->common);
     AssertThrow(same_pattern,

@@ -508,6 +508,13 @@ namespace PlateOnHalfspace
   IterativeContactSolver::~IterativeContactSolver() = default;
 
   void
+  IterativeContactSolver::use_plate_inverse(
+    std::unique_ptr<PlateGeneralizedInverse> analysed)
+  {
+    given_inverse = std::move(analysed);
+  }
+
+  void
   IterativeContactSolver::prepare(MindlinPlate       &plate,
                                   FoundationOperator &foundation,
                                   ContactState       &state)
@@ -529,7 +536,12 @@ namespace PlateOnHalfspace
     // lowers the run's peak memory, and the soil inverse's check of the
     // memory left counts K^+ (doc/performance.md, "Where the resident
     // memory goes").
-    inverse = std::make_unique<PlateGeneralizedInverse>(plate);
+    AssertThrow(!given_inverse || given_inverse->is_of(plate),
+                ExcInternalError("IterativeContactSolver: the plate inverse "
+                                 "given is of another plate."));
+    inverse = given_inverse ? std::move(given_inverse) :
+                              std::make_unique<PlateGeneralizedInverse>(plate);
+    inverse->factorize();
     const SparseMatrix<double> &test_coupling = foundation.test_coupling();
     const auto                 &motions       = inverse->rigid_motions();
     tested_motions.clear();

@@ -588,12 +588,7 @@ namespace PlateOnHalfspace
     set_pressure_basis(space, true);
     space.assemble_laplace_matrix(mass_sparsity, laplace);
     plate_area = space.area() * space.symmetry.n_copies();
-    // The soil inverse's factors share this analysis; its factor size
-    // enters the memory estimate below. Without the soil inverse
-    // (plate on springs) there is nothing to analyse.
     inverse_analysis.reset();
-    if (soil_inverse_used)
-      analyze_inverse_pattern();
     const SurfaceKernel kernel = elastic->kernel(maximal_distance(space));
     AssertThrow(!kernel.remainder,
                 ExcMessage("Foundation operator/Storage = fft holds the "
@@ -771,6 +766,14 @@ namespace PlateOnHalfspace
     // graded mesh puts (cutoff / h)^2 cells into the reach of each cell of
     // size h below sigma.
     {
+      // The soil inverse's factors share this analysis, and its factor
+      // size enters the estimate. Without the soil inverse (plate on
+      // springs) there is nothing to analyse. Made this late, an ordering
+      // that runs beside the build (the plate's) has usually ended:
+      // sparse_cholesky.cc orders one matrix at a time, and this one
+      // would wait for it.
+      if (soil_inverse_used)
+        analyze_inverse_pattern();
       const NearFieldGraph near_graph(integrator,
                                       n_cells,
                                       terms,

@@ -149,8 +149,23 @@ namespace PlateOnHalfspace
     return motions;
   }
 
+  namespace
+  {
+    std::string
+    mechanism_of_its_own_message()
+    {
+      return "The plate stiffness with its rigid-body motions pinned is not "
+             "positive definite: the plate has a mechanism of its own.";
+    }
+  } // namespace
+
   PlateGeneralizedInverse::PlateGeneralizedInverse(const MindlinPlate &plate)
-    : foundation_dofs(plate.get_foundation_dofs())
+    : plate(plate)
+    // The plate's DoFs split over ranks; read without an MPI call, so
+    // that this can run beside collective work on another thread.
+    , distributed_factor(plate.locally_owned_dofs().n_elements() <
+                         plate.get_dof_handler().n_dofs())
+    , foundation_dofs(plate.get_foundation_dofs())
     , n_dofs(plate.get_dof_handler().n_dofs())
     , motions(rigid_body_motions(plate))
   {
@@ -196,10 +211,23 @@ namespace PlateOnHalfspace
     for (types::global_dof_index i = 0; i < n_dofs; ++i)
       if (!constraints.is_constrained(i) && !pinned[i])
         solved_dofs.push_back(i);
-    const MPI_Comm communicator = plate.get_communicator();
+    // The analysis fails only for want of memory, and says so; whether
+    // the plate has a mechanism shows in factorize().
+    if (distributed_factor)
+      return;
+    factor.analyze(stiffness, solved_dofs);
+  }
+
+  void
+  PlateGeneralizedInverse::factorize()
+  {
+    if (factorized)
+      return;
+    const SparseMatrix<double> &stiffness    = plate.get_stiffness_matrix();
+    const MPI_Comm              communicator = plate.get_communicator();
     try
       {
-        if (n_ranks(communicator) > 1)
+        if (distributed_factor)
           {
             std::vector<bool> solved(n_dofs, false);
             for (const auto i : solved_dofs)
@@ -215,11 +243,9 @@ namespace PlateOnHalfspace
       }
     catch (...)
       {
-        AssertThrow(false,
-                    ExcMessage("The plate stiffness with its rigid-body "
-                               "motions pinned is not positive definite: "
-                               "the plate has a mechanism of its own."));
+        AssertThrow(false, ExcMessage(mechanism_of_its_own_message()));
       }
+    factorized = true;
   }
 
   PlateGeneralizedInverse::~PlateGeneralizedInverse() = default;
@@ -228,6 +254,8 @@ namespace PlateOnHalfspace
   PlateGeneralizedInverse::solve(const Vector<double> &f,
                                  Vector<double>       &u) const
   {
+    Assert(factorized,
+           ExcMessage("PlateGeneralizedInverse::factorize() first."));
     if (distributed)
       {
         distributed->solve(f, u);

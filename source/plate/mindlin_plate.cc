@@ -57,6 +57,20 @@ namespace PlateOnHalfspace
     const std::function<void(const DoFHandler<2> &,
                              AffineConstraints<double> &)> &extra_constraints)
   {
+    setup_dofs(triangulation, extra_constraints);
+    complete_setup();
+  }
+
+  void
+  MindlinPlate::setup_dofs(
+    const Triangulation<2>                                 &triangulation,
+    const std::function<void(const DoFHandler<2> &,
+                             AffineConstraints<double> &)> &extra_constraints)
+  {
+    // the previous mesh's matrix goes at once: nothing may read it
+    setup_complete = false;
+    stiffness.clear();
+    sparsity.reinit(0, 0, 0);
     // Keep the DoFHandler attached across refinement cycles, so that a
     // SolutionTransfer prepared before refinement can interpolate.
     if (attached_triangulation != &triangulation)
@@ -100,15 +114,22 @@ namespace PlateOnHalfspace
       boxes->tree = pack_rtree(leaves);
       cell_boxes  = std::move(boxes);
     }
+    load.reinit(dof_handler.n_dofs());
+    total_load = 0;
+    foundation_space.rigid_motions.clear();
+  }
 
+  void
+  MindlinPlate::complete_setup()
+  {
+    if (setup_complete)
+      return;
     DynamicSparsityPattern dsp(dof_handler.n_dofs());
     DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
     if (slab_grid)
       joint_coupling.add_sparsity(constraints, dsp);
     sparsity.copy_from(dsp);
     stiffness.reinit(sparsity);
-    load.reinit(dof_handler.n_dofs());
-    total_load = 0;
     assemble_stiffness();
     if (slab_grid)
       joint_coupling.assemble(constraints, stiffness);
@@ -116,7 +137,19 @@ namespace PlateOnHalfspace
     // (orthonormal over the nodes: Gram-Schmidt, twice)
     auto &motions = foundation_space.rigid_motions;
     motions.clear();
-    for (const Vector<double> &motion : rigid_body_motions(*this))
+    // rigid_body_motions() reads the stiffness
+    setup_complete = true;
+    std::vector<Vector<double>> plate_motions;
+    try
+      {
+        plate_motions = rigid_body_motions(*this);
+      }
+    catch (...)
+      {
+        setup_complete = false;
+        throw;
+      }
+    for (const Vector<double> &motion : plate_motions)
       {
         Vector<double> r = restrict_to_foundation(motion);
         for (unsigned int pass = 0; pass < 2; ++pass)

@@ -43,13 +43,27 @@ namespace PlateOnHalfspace
 
     /**
      * Factorise A(rows, rows). @p rows lists global indices of @p matrix
-     * (symmetric storage, both triangles present). Throws if the submatrix
-     * is not positive definite, or naming the node-count entries if it
-     * does not fit the memory.
+     * (symmetric storage, both triangles present). Reuses a symbolic
+     * analysis of the same pattern (analyze()) if one is waiting. Throws
+     * if the submatrix is not positive definite, or naming the node-count
+     * entries if it does not fit the memory.
      */
     void
     factorize(const SparseMatrix<double>                 &matrix,
               const std::vector<types::global_dof_index> &rows);
+
+    /**
+     * The symbolic stage of factorize(@p matrix, @p rows) alone: the
+     * ordering and the factor's structure of A(rows, rows), its stored
+     * zeros dropped. It reads the pattern only and runs on one core (the
+     * ordering), so it may go beside other work; a later factorize() of a
+     * matrix with the same pattern then computes only the values, and
+     * gives the factor that factorize() alone gives. Throws naming the
+     * node-count entries if the analysis does not fit the memory.
+     */
+    void
+    analyze(const SparseMatrix<double>                 &matrix,
+            const std::vector<types::global_dof_index> &rows);
 
     /** factorize() of all rows. */
     void

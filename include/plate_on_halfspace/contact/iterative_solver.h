@@ -144,6 +144,16 @@ namespace PlateOnHalfspace
 
     ~IterativeContactSolver() override;
 
+    /**
+     * K^+ of the plate that the next solve() is given, made beforehand
+     * on the plate as it is set up then (its symbolic stage, beside the
+     * foundation operator's build: doc/performance.md, "The plate's
+     * ordering beside the operator's build"); that solve() completes it
+     * instead of making its own.
+     */
+    void
+    use_plate_inverse(std::unique_ptr<PlateGeneralizedInverse> analysed);
+
   protected:
     /** Throws ExcMessage unless the operator is symmetric. */
     void
@@ -191,6 +201,8 @@ namespace PlateOnHalfspace
     const ConjugateGradientControl           control;
     std::unique_ptr<PressurePreconditioner>  preconditioner;
     std::unique_ptr<PlateGeneralizedInverse> inverse;
+    /** use_plate_inverse()'s, until prepare() takes it. */
+    std::unique_ptr<PlateGeneralizedInverse> given_inverse;
     /** The load P of the current solve, B N K^+ P, the columns B N R,
      *  and R^T P (see the file doc). */
     Vector<double>              plate_load;

@@ -42,9 +42,31 @@ namespace PlateOnHalfspace
   class PlateGeneralizedInverse
   {
   public:
-    /** Throws ExcMessage if the plate has a mechanism of its own. */
+    /**
+     * The rigid motions, the pinned DoFs and, on one process, the factor's
+     * symbolic analysis: the stage that reads the plate alone and spends
+     * most of its time on one core (the ordering), so that it can go
+     * beside other work, such as the foundation operator's build
+     * (doc/performance.md, "The plate's ordering beside the operator's
+     * build"); it makes no MPI call. factorize() completes K^+. Throws
+     * ExcMessage if the motions cannot be pinned, or naming the
+     * node-count entries if the analysis does not fit the memory.
+     */
     explicit PlateGeneralizedInverse(const MindlinPlate &plate);
+
+    /** Whether this is K^+ of @p other (the same object). */
+    bool
+    is_of(const MindlinPlate &other) const
+    {
+      return &plate == &other;
+    }
     ~PlateGeneralizedInverse();
+
+    /** The numerical factorisation (on several processes the whole one,
+     *  which is collective), once, before solve(); throws ExcMessage if
+     *  the plate has a mechanism of its own. */
+    void
+    factorize();
 
     /** u = K^+ f (full DoF vectors; zero at constrained and pinned DoFs). */
     void
@@ -63,11 +85,15 @@ namespace PlateOnHalfspace
     }
 
   private:
+    const MindlinPlate &plate;
+    /** MUMPS over the plate's ranks (several processes), else CHOLMOD. */
+    const bool                                  distributed_factor;
     const std::vector<types::global_dof_index> &foundation_dofs;
     const unsigned int                          n_dofs;
     std::vector<Vector<double>>                 motions;
     std::vector<types::global_dof_index>        solved_dofs;
     SparseCholesky                              factor{"the plate's stiffness"};
+    bool                                        factorized = false;
     /** The factorisation on several processes (factor is then unused). */
     std::unique_ptr<DistributedSparseDirect> distributed;
   };

@@ -131,6 +131,25 @@ namespace PlateOnHalfspace
             &extra_constraints = {});
 
     /**
+     * setup() without the sparse stiffness and what is made from it (the
+     * foundation space's rigid motions): the DoFs, the constraints, the
+     * foundation space and the cells' search tree, enough to count the
+     * nodes and to assemble loads. complete_setup() adds the rest; a mesh
+     * that is only counted before it is coarsened (the nested start)
+     * needs no stiffness.
+     */
+    void
+    setup_dofs(const Triangulation<2> &triangulation,
+               const std::function<void(const DoFHandler<2> &,
+                                        AffineConstraints<double> &)>
+                 &extra_constraints = {});
+
+    /** The sparse stiffness and the rigid motions after setup_dofs();
+     *  nothing if they are made already. */
+    void
+    complete_setup();
+
+    /**
      * Solve the computed part of a symmetric scene (mirror_symmetry.h): the
      * mesh given to setup() is that part, its faces on the mirror planes
      * carry mirror_plane_x/y_boundary_id. Call before setup().
@@ -366,6 +385,8 @@ namespace PlateOnHalfspace
     const SparseMatrix<double> &
     get_stiffness_matrix() const
     {
+      Assert(setup_complete,
+             ExcMessage("MindlinPlate::complete_setup() first."));
       return stiffness;
     }
     const Vector<double> &
@@ -422,9 +443,11 @@ namespace PlateOnHalfspace
     AffineConstraints<double> constraints;
     SparsityPattern           sparsity;
     SparseMatrix<double>      stiffness;
-    Vector<double>            load;
-    double                    total_load = 0;
-    ThermalLoad               thermal;
+    /** Whether complete_setup() has run since setup_dofs(). */
+    bool           setup_complete = false;
+    Vector<double> load;
+    double         total_load = 0;
+    ThermalLoad    thermal;
 
     std::vector<types::global_dof_index> foundation_dofs;
     std::vector<int> foundation_index; ///< per DoF, -1 if none
