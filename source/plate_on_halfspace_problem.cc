@@ -692,15 +692,9 @@ namespace PlateOnHalfspace
   double
   PlateOnHalfspaceProblem::solve_on_coarser_mesh(const bool within_nested)
   {
-    using NestedStart           = Parameters::Contact::NestedStart;
-    const NestedStart choice    = parameters.contact.nested_start;
-    const auto        on_levels = [this](const int finest) {
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->level() != finest)
-          return false;
-      return true;
-    };
-    const auto not_applied = [&](const std::string &reason,
+    using NestedStart             = Parameters::Contact::NestedStart;
+    const NestedStart choice      = parameters.contact.nested_start;
+    const auto        not_applied = [&](const std::string &reason,
                                  const bool         after_first_solve = false) {
       if (choice != NestedStart::on || within_nested)
         return 0.;
@@ -749,7 +743,7 @@ namespace PlateOnHalfspace
         if (cell->level() < level)
           cell->set_refine_flag();
       triangulation.execute_coarsening_and_refinement();
-      AssertThrow(on_levels(level),
+      AssertThrow(nested_start_level() == level,
                   ExcInternalError("Contact/Nested start: the mesh was not "
                                    "restored."));
       setup_plate();
@@ -762,7 +756,7 @@ namespace PlateOnHalfspace
       cell->set_coarsen_flag();
     triangulation.execute_coarsening_and_refinement();
     // not every cell coarsened: the mesh smoothing refused some
-    if (!on_levels(level - 1))
+    if (nested_start_level() != level - 1)
       return start_without("deal.II's mesh smoothing kept cells from being "
                            "coarsened");
     setup_plate(stiffness_unless_coarsened());

@@ -149,16 +149,6 @@ namespace PlateOnHalfspace
     return motions;
   }
 
-  namespace
-  {
-    std::string
-    mechanism_of_its_own_message()
-    {
-      return "The plate stiffness with its rigid-body motions pinned is not "
-             "positive definite: the plate has a mechanism of its own.";
-    }
-  } // namespace
-
   PlateGeneralizedInverse::PlateGeneralizedInverse(const MindlinPlate &plate)
     : plate(plate)
     // The plate's DoFs split over ranks; read without an MPI call, so
@@ -243,7 +233,10 @@ namespace PlateOnHalfspace
       }
     catch (...)
       {
-        AssertThrow(false, ExcMessage(mechanism_of_its_own_message()));
+        AssertThrow(false,
+                    ExcMessage("The plate stiffness with its rigid-body "
+                               "motions pinned is not positive definite: "
+                               "the plate has a mechanism of its own."));
       }
     factorized = true;
   }
