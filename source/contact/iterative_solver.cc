@@ -539,8 +539,12 @@ namespace PlateOnHalfspace
     AssertThrow(!given_inverse || given_inverse->is_of(plate),
                 ExcInternalError("IterativeContactSolver: the plate inverse "
                                  "given is of another plate."));
-    inverse = given_inverse ? std::move(given_inverse) :
-                              std::make_unique<PlateGeneralizedInverse>(plate);
+    // K^+ holds while the plate keeps its setup: a load sweep's later
+    // solves reuse it.
+    if (given_inverse)
+      inverse = std::move(given_inverse);
+    else if (!inverse || !inverse->is_of(plate))
+      inverse = std::make_unique<PlateGeneralizedInverse>(plate);
     inverse->factorize();
     const SparseMatrix<double> &test_coupling = foundation.test_coupling();
     const auto                 &motions       = inverse->rigid_motions();
@@ -567,6 +571,10 @@ namespace PlateOnHalfspace
                 << " (soil inverse), " << estimate.plate_on_springs
                 << " (plate on springs)" << std::setprecision(6) << std::endl;
         }
+      // Only the plate on springs reads K after K^+; without it K leaves
+      // the solve's memory before the soil inverse's factors come.
+      if (choice == Choice::soil_inverse)
+        plate.release_stiffness();
       preconditioner =
         choice == Choice::plate_on_springs ?
           make_plate_on_springs_preconditioner(plate, foundation) :

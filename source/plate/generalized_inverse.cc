@@ -151,6 +151,7 @@ namespace PlateOnHalfspace
 
   PlateGeneralizedInverse::PlateGeneralizedInverse(const MindlinPlate &plate)
     : plate(plate)
+    , setup(plate.setup_id())
     // The plate's DoFs split over ranks; read without an MPI call, so
     // that this can run beside collective work on another thread.
     , distributed_factor(plate.locally_owned_dofs().n_elements() <

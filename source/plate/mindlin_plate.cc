@@ -21,6 +21,7 @@
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iterator>
 
@@ -71,6 +72,9 @@ namespace PlateOnHalfspace
     setup_complete = false;
     stiffness.clear();
     sparsity.reinit(0, 0, 0);
+    stiffness_released = false;
+    static std::atomic<unsigned long long> setups{0};
+    current_setup = ++setups;
     // Keep the DoFHandler attached across refinement cycles, so that a
     // SolutionTransfer prepared before refinement can interpolate.
     if (attached_triangulation != &triangulation)
@@ -124,15 +128,7 @@ namespace PlateOnHalfspace
   {
     if (setup_complete)
       return;
-    DynamicSparsityPattern dsp(dof_handler.n_dofs());
-    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
-    if (slab_grid)
-      joint_coupling.add_sparsity(constraints, dsp);
-    sparsity.copy_from(dsp);
-    stiffness.reinit(sparsity);
-    assemble_stiffness();
-    if (slab_grid)
-      joint_coupling.assemble(constraints, stiffness);
+    make_stiffness();
     // what the contact iteration's mechanism check needs of the plate
     // (orthonormal over the nodes: Gram-Schmidt, twice)
     auto &motions = foundation_space.rigid_motions;
@@ -297,7 +293,59 @@ namespace PlateOnHalfspace
   }
 
   void
-  MindlinPlate::assemble_stiffness()
+  MindlinPlate::make_stiffness() const
+  {
+    DynamicSparsityPattern dsp(dof_handler.n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    if (slab_grid)
+      joint_coupling.add_sparsity(constraints, dsp);
+    sparsity.copy_from(dsp);
+    stiffness.reinit(sparsity);
+    assemble_stiffness();
+    if (slab_grid)
+      joint_coupling.assemble(constraints, stiffness);
+  }
+
+  const SparseMatrix<double> &
+  MindlinPlate::get_stiffness_matrix() const
+  {
+    return assembled_stiffness();
+  }
+
+  const SparseMatrix<double> &
+  MindlinPlate::assembled_stiffness() const
+  {
+    AssertThrow(setup_complete,
+                ExcInternalError("MindlinPlate: complete_setup() first."));
+    const std::lock_guard<std::mutex> lock(stiffness_mutex);
+    if (stiffness_released)
+      {
+        make_stiffness();
+        stiffness_released = false;
+      }
+    return stiffness;
+  }
+
+  void
+  MindlinPlate::release_stiffness()
+  {
+    const std::lock_guard<std::mutex> lock(stiffness_mutex);
+    if (!setup_complete || stiffness_released)
+      return;
+    stiffness.clear();
+    sparsity.reinit(0, 0, 0);
+    stiffness_released = true;
+  }
+
+  bool
+  MindlinPlate::holds_stiffness() const
+  {
+    const std::lock_guard<std::mutex> lock(stiffness_mutex);
+    return setup_complete && !stiffness_released;
+  }
+
+  void
+  MindlinPlate::assemble_stiffness() const
   {
     using SI = Parameters::Discretization::ShearIntegration;
     const SI                         shear = discretization.shear_integration;
@@ -494,7 +542,7 @@ namespace PlateOnHalfspace
   MindlinPlate::solve_unsupported(Vector<double> &solution) const
   {
     SparseDirectUMFPACK solver;
-    solver.initialize(stiffness);
+    solver.initialize(assembled_stiffness());
     solution = load;
     solver.solve(solution);
     constraints.distribute(solution);
@@ -512,6 +560,7 @@ namespace PlateOnHalfspace
     std::vector<int> rest_position(dof_handler.n_dofs(), -1);
     for (unsigned int c = 0; c < rest_dofs.size(); ++c)
       rest_position[rest_dofs[c]] = c;
+    const SparseMatrix<double> &stiffness = assembled_stiffness();
     rest_factor.factorize(stiffness, rest_dofs);
 
     const unsigned int nf = foundation_dofs.size(), nr = rest_dofs.size();
@@ -582,7 +631,7 @@ namespace PlateOnHalfspace
       product(dof_handler.n_dofs());
     for (unsigned int c = 0; c < nr; ++c)
       rest_solution[rest_dofs[c]] = rest_load[c];
-    stiffness.vmult(product, rest_solution);
+    assembled_stiffness().vmult(product, rest_solution);
     Vector<double> condensed(nf);
     for (unsigned int i = 0; i < nf; ++i)
       condensed[i] = load[foundation_dofs[i]] - product[foundation_dofs[i]];
@@ -600,7 +649,7 @@ namespace PlateOnHalfspace
     for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
       known[foundation_dofs[i]] = foundation_w[i];
     // r = K_rr^{-1} (P_r - K_rf w_f)
-    stiffness.vmult(rhs, known);
+    assembled_stiffness().vmult(rhs, known);
     rhs.sadd(-1., 1., load);
     std::vector<double> rest(rest_dofs.size());
     for (unsigned int c = 0; c < rest_dofs.size(); ++c)

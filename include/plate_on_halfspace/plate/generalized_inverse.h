@@ -54,11 +54,12 @@ namespace PlateOnHalfspace
      */
     explicit PlateGeneralizedInverse(const MindlinPlate &plate);
 
-    /** Whether this is K^+ of @p other (the same object). */
+    /** Whether this is K^+ of @p other: the same object, not set up
+     *  again since. */
     bool
     is_of(const MindlinPlate &other) const
     {
-      return &plate == &other;
+      return &plate == &other && setup == other.setup_id();
     }
     ~PlateGeneralizedInverse();
 
@@ -86,6 +87,8 @@ namespace PlateOnHalfspace
 
   private:
     const MindlinPlate &plate;
+    /** The plate's setup_id() when this was made. */
+    const unsigned long long setup;
     /** MUMPS over the plate's ranks (several processes), else CHOLMOD. */
     const bool                                  distributed_factor;
     const std::vector<types::global_dof_index> &foundation_dofs;

@@ -37,6 +37,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -382,12 +383,28 @@ namespace PlateOnHalfspace
     {
       return foundation_space;
     }
+    /** The sparse stiffness K; assembled again (the same bits) if
+     *  release_stiffness() freed it. */
     const SparseMatrix<double> &
-    get_stiffness_matrix() const
+    get_stiffness_matrix() const;
+    /**
+     * Free K and its pattern (about 170 MB at 10^5 foundation nodes) once
+     * a factor of it is made and the solve reads K no more: the contact
+     * solve's peak memory then does not hold them (doc/performance.md,
+     * "The plate's stiffness after its factor"). Whatever reads K later
+     * gets it assembled again.
+     */
+    void
+    release_stiffness();
+    /** Whether K is in memory (not released since it was made). */
+    bool
+    holds_stiffness() const;
+    /** A number of each setup_dofs(), unique in the process: what was
+     *  made of the plate (K^+) holds for its mesh while this stays. */
+    unsigned long long
+    setup_id() const
     {
-      Assert(setup_complete,
-             ExcMessage("MindlinPlate::complete_setup() first."));
-      return stiffness;
+      return current_setup;
     }
     const Vector<double> &
     get_load_vector() const
@@ -425,8 +442,16 @@ namespace PlateOnHalfspace
     add_centre_constraints();
     void
     build_foundation_space();
+    /** The pattern and K from the cells (complete_setup(), and again
+     *  after release_stiffness()). */
     void
-    assemble_stiffness();
+    make_stiffness() const;
+    void
+    assemble_stiffness() const;
+    /** K, made again first if released; every reader inside goes through
+     *  here. */
+    const SparseMatrix<double> &
+    assembled_stiffness() const;
 
     const Parameters::Plate          plate;
     const Parameters::Discretization discretization;
@@ -441,8 +466,13 @@ namespace PlateOnHalfspace
     DoFHandler<2>             dof_handler;
     const Triangulation<2>   *attached_triangulation = nullptr;
     AffineConstraints<double> constraints;
-    SparsityPattern           sparsity;
-    SparseMatrix<double>      stiffness;
+    /** K and its pattern: mutable, as a reader may make them again
+     *  after release_stiffness(), under stiffness_mutex. */
+    mutable SparsityPattern      sparsity;
+    mutable SparseMatrix<double> stiffness;
+    mutable bool                 stiffness_released = false;
+    mutable std::mutex           stiffness_mutex;
+    unsigned long long           current_setup = 0;
     /** Whether complete_setup() has run since setup_dofs(). */
     bool           setup_complete = false;
     Vector<double> load;
