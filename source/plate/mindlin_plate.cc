@@ -320,7 +320,17 @@ namespace PlateOnHalfspace
     const std::lock_guard<std::mutex> lock(stiffness_mutex);
     if (stiffness_released)
       {
-        make_stiffness();
+        // a failed assembly (out of memory) leaves nothing half made
+        try
+          {
+            make_stiffness();
+          }
+        catch (...)
+          {
+            stiffness.clear();
+            sparsity.reinit(0, 0, 0);
+            throw;
+          }
         stiffness_released = false;
       }
     return stiffness;

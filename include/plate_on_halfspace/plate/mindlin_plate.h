@@ -384,7 +384,8 @@ namespace PlateOnHalfspace
       return foundation_space;
     }
     /** The sparse stiffness K; assembled again (the same bits) if
-     *  release_stiffness() freed it. */
+     *  release_stiffness() freed it. The reference lasts until the next
+     *  release_stiffness() or setup_dofs(). */
     const SparseMatrix<double> &
     get_stiffness_matrix() const;
     /**
@@ -392,7 +393,8 @@ namespace PlateOnHalfspace
      * a factor of it is made and the solve reads K no more: the contact
      * solve's peak memory then does not hold them (doc/performance.md,
      * "The plate's stiffness after its factor"). Whatever reads K later
-     * gets it assembled again.
+     * gets it assembled again. Call it only where no other thread reads
+     * K (the contact solve's own thread, after K^+).
      */
     void
     release_stiffness();
