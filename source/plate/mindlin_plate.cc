@@ -70,9 +70,7 @@ namespace PlateOnHalfspace
   {
     // the previous mesh's matrix goes at once: nothing may read it
     setup_complete = false;
-    stiffness.clear();
-    sparsity.reinit(0, 0, 0);
-    stiffness_released = false;
+    discard_stiffness();
     static std::atomic<unsigned long long> setups{0};
     current_setup = ++setups;
     // Keep the DoFHandler attached across refinement cycles, so that a
@@ -318,7 +316,8 @@ namespace PlateOnHalfspace
     AssertThrow(setup_complete,
                 ExcInternalError("MindlinPlate: complete_setup() first."));
     const std::lock_guard<std::mutex> lock(stiffness_mutex);
-    if (stiffness_released)
+    // empty once complete: released
+    if (stiffness.empty())
       {
         // a failed assembly (out of memory) leaves nothing half made
         try
@@ -327,11 +326,9 @@ namespace PlateOnHalfspace
           }
         catch (...)
           {
-            stiffness.clear();
-            sparsity.reinit(0, 0, 0);
+            discard_stiffness();
             throw;
           }
-        stiffness_released = false;
       }
     return stiffness;
   }
@@ -340,18 +337,23 @@ namespace PlateOnHalfspace
   MindlinPlate::release_stiffness()
   {
     const std::lock_guard<std::mutex> lock(stiffness_mutex);
-    if (!setup_complete || stiffness_released)
-      return;
+    if (setup_complete)
+      discard_stiffness();
+  }
+
+  void
+  MindlinPlate::discard_stiffness() const
+  {
+    // the matrix first: it refers to the pattern
     stiffness.clear();
     sparsity.reinit(0, 0, 0);
-    stiffness_released = true;
   }
 
   bool
   MindlinPlate::holds_stiffness() const
   {
     const std::lock_guard<std::mutex> lock(stiffness_mutex);
-    return setup_complete && !stiffness_released;
+    return setup_complete && !stiffness.empty();
   }
 
   void

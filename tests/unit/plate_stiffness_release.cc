@@ -50,13 +50,6 @@ namespace
     return true;
   }
 
-  void
-  verdict(const std::string &what, const bool ok)
-  {
-    deallog << what << ": " << (ok ? "ok" : "FAILED") << std::endl;
-    AssertThrow(ok, ExcMessage(what));
-  }
-
   ContactState
   solve_with(IterativeContactSolver &solver, PlateOnHalfspaceProblem &problem)
   {
@@ -91,15 +84,15 @@ main()
     copy.copy_from(alone.get_stiffness_matrix());
     const PlateGeneralizedInverse inverse(alone);
     alone.release_stiffness();
-    verdict("K released", !alone.holds_stiffness());
-    verdict("K read again after the release: the same pattern and values, "
+    require("K released", !alone.holds_stiffness());
+    require("K read again after the release: the same pattern and values, "
             "bit for bit",
             same_matrix(alone.get_stiffness_matrix(), copy) &&
               alone.holds_stiffness());
-    verdict("K^+ is the plate's after a release and a new read",
+    require("K^+ is the plate's after a release and a new read",
             inverse.is_of(alone));
     alone.setup(mesh);
-    verdict("K^+ is not the plate's after setup_dofs() of the same mesh",
+    require("K^+ is not the plate's after setup_dofs() of the same mesh",
             !inverse.is_of(alone));
   }
 
@@ -113,17 +106,17 @@ main()
   control.preconditioner = Parameters::Contact::Preconditioner::soil_inverse;
   IterativeContactSolver solver(contact, true, control, 0, log);
   const ContactState     first = solve_with(solver, *problem);
-  verdict("the iterative solve with the soil inverse released K",
+  require("the iterative solve with the soil inverse released K",
           first.converged && !plate.holds_stiffness());
   const ContactState second = solve_with(solver, *problem);
-  verdict("a second solve of the same solver: w and q bit for bit",
+  require("a second solve of the same solver: w and q bit for bit",
           second.converged && second.w == first.w && second.q == first.q);
 
   control.preconditioner =
     Parameters::Contact::Preconditioner::plate_on_springs;
   IterativeContactSolver on_springs(contact, true, control, 0, log);
   const ContactState     springs = solve_with(on_springs, *problem);
-  verdict("with the plate on springs K stays",
+  require("with the plate on springs K stays",
           springs.converged && plate.holds_stiffness());
 
   plate.release_stiffness();
@@ -137,7 +130,7 @@ main()
       ->solve(plate, problem->foundation(), plate.get_load_vector(), {});
   const double dw = relative_difference(direct.w, first.w, Norm::max);
   const double dq = relative_difference(direct.q, first.q, Norm::max);
-  verdict("the direct solver after the release: w and q as the iterative "
+  require("the direct solver after the release: w and q as the iterative "
           "solver's to 1e-8",
           direct.converged && dw <= 1e-8 && dq <= 1e-8);
 }

@@ -454,6 +454,9 @@ namespace PlateOnHalfspace
      *  here. */
     const SparseMatrix<double> &
     assembled_stiffness() const;
+    /** Free K and its pattern. */
+    void
+    discard_stiffness() const;
 
     const Parameters::Plate          plate;
     const Parameters::Discretization discretization;
@@ -469,10 +472,10 @@ namespace PlateOnHalfspace
     const Triangulation<2>   *attached_triangulation = nullptr;
     AffineConstraints<double> constraints;
     /** K and its pattern: mutable, as a reader may make them again
-     *  after release_stiffness(), under stiffness_mutex. */
+     *  after release_stiffness(), under stiffness_mutex. K is empty
+     *  after a complete setup only if released. */
     mutable SparsityPattern      sparsity;
     mutable SparseMatrix<double> stiffness;
-    mutable bool                 stiffness_released = false;
     mutable std::mutex           stiffness_mutex;
     unsigned long long           current_setup = 0;
     /** Whether complete_setup() has run since setup_dofs(). */
