@@ -79,11 +79,14 @@ namespace PlateOnHalfspace
        * The same product on every node, not only on C: y = (F + B N K^+
        * N^T M T) q and @p soil = F q with q the zero extension of @p x.
        * Off C, y - d - G alpha is the gap of the nodes out of contact.
+       * With @p plate_response, the plate's whole response K^+ N^T M T q
+       * to the pressures as well.
        */
       void
       vmult_on_all_nodes(Vector<double>       &y,
                          const Vector<double> &x,
-                         Vector<double>       &soil) const;
+                         Vector<double>       &soil,
+                         Vector<double>       *plate_response = nullptr) const;
 
       /** y = (P^{-1})_CC x (pressure_preconditioner.h). */
       void
@@ -102,15 +105,17 @@ namespace PlateOnHalfspace
       rigid_motion_amplitudes(const Vector<double> &hq) const;
 
       /**
-       * r = Pi (d - H q) and @p soil = (F q)_C; @p product_on_all_nodes
-       * and @p soil_on_all_nodes receive vmult_on_all_nodes() of q.
+       * r = Pi (d - H q) and @p soil = (F q)_C; @p product_on_all_nodes,
+       * @p soil_on_all_nodes and @p plate_response receive
+       * vmult_on_all_nodes() of q.
        */
       void
       projected_residual(const Vector<double> &q,
                          Vector<double>       &r,
                          Vector<double>       &soil,
                          Vector<double>       &product_on_all_nodes,
-                         Vector<double>       &soil_on_all_nodes) const;
+                         Vector<double>       &soil_on_all_nodes,
+                         Vector<double>       &plate_response) const;
 
       /** Zero extension of a vector on C to all nodes. */
       Vector<double>
@@ -224,7 +229,8 @@ namespace PlateOnHalfspace
     void
     ContactSetProblem::vmult_on_all_nodes(Vector<double>       &y,
                                           const Vector<double> &x,
-                                          Vector<double>       &soil) const
+                                          Vector<double>       &soil,
+                                          Vector<double> *plate_response) const
     {
       // F q + B N K^+ N^T M T q with q the zero extension of x (F = T^T A
       // T, B = T^T M in the positive basis).
@@ -233,7 +239,10 @@ namespace PlateOnHalfspace
       soil.reinit(q.size());
       const auto plate_part = [&]() {
         force_coupling.vmult(forces, q);
-        plate.foundation_flexibility(forces, plate_w);
+        if (plate_response)
+          plate.foundation_flexibility(forces, plate_w, *plate_response);
+        else
+          plate.foundation_flexibility(forces, plate_w);
         test_coupling.vmult(plate_settlement, plate_w);
       };
       // The soil's product and the plate's triangular solves are
@@ -327,14 +336,17 @@ namespace PlateOnHalfspace
     }
 
     void
-    ContactSetProblem::projected_residual(
-      const Vector<double> &q,
-      Vector<double>       &r,
-      Vector<double>       &soil,
-      Vector<double>       &product_on_all_nodes,
-      Vector<double>       &soil_on_all_nodes) const
+    ContactSetProblem::projected_residual(const Vector<double> &q,
+                                          Vector<double>       &r,
+                                          Vector<double>       &soil,
+                                          Vector<double> &product_on_all_nodes,
+                                          Vector<double> &soil_on_all_nodes,
+                                          Vector<double> &plate_response) const
     {
-      vmult_on_all_nodes(product_on_all_nodes, q, soil_on_all_nodes);
+      vmult_on_all_nodes(product_on_all_nodes,
+                         q,
+                         soil_on_all_nodes,
+                         &plate_response);
       soil = restrict_to_contact_set(soil_on_all_nodes);
       r    = restrict_to_contact_set(product_on_all_nodes);
       r.sadd(-1., 1., d);
@@ -355,8 +367,9 @@ namespace PlateOnHalfspace
       /** The residual that rounding allows, relative like
        *  relative_residual (see projected_conjugate_gradients()). */
       double rounding_floor = 0;
-      /** vmult_on_all_nodes() of the final q: H q and F q. */
-      Vector<double> product_on_all_nodes, soil_on_all_nodes;
+      /** vmult_on_all_nodes() of the final q: H q, F q and the plate's
+       *  response K^+ N^T M T q. */
+      Vector<double> product_on_all_nodes, soil_on_all_nodes, plate_response;
     };
 
     /**
@@ -389,8 +402,12 @@ namespace PlateOnHalfspace
       unsigned int restarts_after_convergence = 0;
       while (true)
         {
-          problem.projected_residual(
-            q, r, soil, result.product_on_all_nodes, result.soil_on_all_nodes);
+          problem.projected_residual(q,
+                                     r,
+                                     soil,
+                                     result.product_on_all_nodes,
+                                     result.soil_on_all_nodes,
+                                     result.plate_response);
           result.relative_residual =
             r.l2_norm() / std::max(soil.l2_norm(), 1e-300);
           // A set of no more nodes than the rigid motions it holds (three
@@ -592,12 +609,10 @@ namespace PlateOnHalfspace
   {
     // B N K^+ P and R^T P: the parts of the contact-set problem that
     // depend on the load.
-    plate_load = load;
-    Vector<double> plate_response;
-    inverse->solve(load, plate_response);
+    inverse->solve(load, plate_load_response);
     tested_plate_load.reinit(foundation->n_nodes());
     foundation->test_coupling().vmult(
-      tested_plate_load, plate->restrict_to_foundation(plate_response));
+      tested_plate_load, plate->restrict_to_foundation(plate_load_response));
     const auto &motions = inverse->rigid_motions();
     motion_loads.reinit(motions.size());
     for (unsigned int j = 0; j < motions.size(); ++j)
@@ -860,18 +875,15 @@ namespace PlateOnHalfspace
         throw ConjugateGradientsFailed(message.str());
       }
 
-    // u = K^+ (P - N^T M T q) + R alpha, w = N u.
-    const auto &foundation_dofs = plate->get_foundation_dofs();
-    const auto &motions         = inverse->rigid_motions();
-    // alpha and F q from the product the last stopping test made at q.
-    const Vector<double> alpha = problem.rigid_motion_amplitudes(
+    // u = K^+ P - K^+ N^T M T q + R alpha, w = N u: alpha, F q and the
+    // plate's response to q from the product the last stopping test made
+    // at q, so that no solve with K^+ is left for u.
+    const auto          &motions = inverse->rigid_motions();
+    const Vector<double> alpha   = problem.rigid_motion_amplitudes(
       problem.restrict_to_contact_set(cg.product_on_all_nodes));
-    state.q = problem.extend_by_zero(q);
-    Vector<double> forces(n), f(plate_load), u;
-    foundation->force_coupling().vmult(forces, state.q);
-    for (unsigned int i = 0; i < n; ++i)
-      f[foundation_dofs[i]] -= forces[i];
-    inverse->solve(f, u);
+    state.q          = problem.extend_by_zero(q);
+    Vector<double> u = plate_load_response;
+    u -= cg.plate_response;
     for (unsigned int j = 0; j < motions.size(); ++j)
       u.add(alpha[j], motions[j]);
     state.plate_solution = u;

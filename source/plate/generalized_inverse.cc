@@ -268,7 +268,16 @@ namespace PlateOnHalfspace
   PlateGeneralizedInverse::foundation_flexibility(const Vector<double> &x,
                                                   Vector<double>       &y) const
   {
-    Vector<double> f(n_dofs), u;
+    Vector<double> u;
+    foundation_flexibility(x, y, u);
+  }
+
+  void
+  PlateGeneralizedInverse::foundation_flexibility(const Vector<double> &x,
+                                                  Vector<double>       &y,
+                                                  Vector<double>       &u) const
+  {
+    Vector<double> f(n_dofs);
     for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
       f[foundation_dofs[i]] = x[i];
     solve(f, u);

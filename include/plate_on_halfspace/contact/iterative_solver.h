@@ -203,9 +203,9 @@ namespace PlateOnHalfspace
     std::unique_ptr<PlateGeneralizedInverse> inverse;
     /** use_plate_inverse()'s, until prepare() takes it. */
     std::unique_ptr<PlateGeneralizedInverse> given_inverse;
-    /** The load P of the current solve, B N K^+ P, the columns B N R,
-     *  and R^T P (see the file doc). */
-    Vector<double>              plate_load;
+    /** The plate's response K^+ P to the load P of the current solve,
+     *  B N K^+ P, the columns B N R, and R^T P (see the file doc). */
+    Vector<double>              plate_load_response;
     Vector<double>              tested_plate_load;
     std::vector<Vector<double>> tested_motions;
     Vector<double>              motion_loads;

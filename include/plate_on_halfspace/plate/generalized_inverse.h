@@ -78,6 +78,12 @@ namespace PlateOnHalfspace
     void
     foundation_flexibility(const Vector<double> &x, Vector<double> &y) const;
 
+    /** The same, keeping the whole response u = K^+ N^T x in @p u. */
+    void
+    foundation_flexibility(const Vector<double> &x,
+                           Vector<double>       &y,
+                           Vector<double>       &u) const;
+
     /** rigid_body_motions() of the plate. */
     const std::vector<Vector<double>> &
     rigid_motions() const
