@@ -237,12 +237,11 @@ namespace PlateOnHalfspace
       const Vector<double> q = extend_by_zero(x);
       Vector<double> forces(q.size()), plate_w, plate_settlement(q.size());
       soil.reinit(q.size());
-      const auto plate_part = [&]() {
+      Vector<double> unkept_response;
+      const auto     plate_part = [&]() {
         force_coupling.vmult(forces, q);
-        if (plate_response)
-          plate.foundation_flexibility(forces, plate_w, *plate_response);
-        else
-          plate.foundation_flexibility(forces, plate_w);
+        plate.foundation_flexibility(
+          forces, plate_w, plate_response ? *plate_response : unkept_response);
         test_coupling.vmult(plate_settlement, plate_w);
       };
       // The soil's product and the plate's triangular solves are

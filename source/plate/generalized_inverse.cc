@@ -266,14 +266,6 @@ namespace PlateOnHalfspace
 
   void
   PlateGeneralizedInverse::foundation_flexibility(const Vector<double> &x,
-                                                  Vector<double>       &y) const
-  {
-    Vector<double> u;
-    foundation_flexibility(x, y, u);
-  }
-
-  void
-  PlateGeneralizedInverse::foundation_flexibility(const Vector<double> &x,
                                                   Vector<double>       &y,
                                                   Vector<double>       &u) const
   {

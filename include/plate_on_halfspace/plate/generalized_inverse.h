@@ -74,11 +74,7 @@ namespace PlateOnHalfspace
     solve(const Vector<double> &f, Vector<double> &u) const;
 
     /** y = N K^+ N^T x: deflections at the foundation nodes from nodal
-     *  forces there. */
-    void
-    foundation_flexibility(const Vector<double> &x, Vector<double> &y) const;
-
-    /** The same, keeping the whole response u = K^+ N^T x in @p u. */
+     *  forces there, and @p u = K^+ N^T x, the plate's whole response. */
     void
     foundation_flexibility(const Vector<double> &x,
                            Vector<double>       &y,
