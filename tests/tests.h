@@ -18,15 +18,29 @@
 
 using namespace dealii;
 
-std::ofstream logfile("output");
+/** "output", opened by initlog(): a test on several processes opens it on
+ *  rank 0 only. */
+std::ofstream logfile;
 
 /** Send deallog to "output" only, with a fixed number of digits. */
 inline void
 initlog()
 {
+  logfile.open("output");
   deallog.attach(logfile, /*print_job_id=*/false); // no date in the output
   deallog.depth_console(0);
   deallog << std::setprecision(10);
+}
+
+/** initlog() on @p is_first_rank; the other ranks of a test on several
+ *  processes write nothing (deal.II's NAME.mpirun=N.output is rank 0's). */
+inline void
+initlog_on_first_rank(const bool is_first_rank)
+{
+  if (is_first_rank)
+    initlog();
+  else
+    deallog.depth_console(0);
 }
 
 /**

@@ -1,12 +1,21 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/index_set.h>
 #include <deal.II/base/multithread_info.h>
+#include <deal.II/base/partitioner.h>
 
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/halfspace/grid_convolution.h>
 
 #include <fftw3.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <mutex>
+#include <tuple>
 
 namespace PlateOnHalfspace
 {
@@ -95,6 +104,20 @@ namespace PlateOnHalfspace
       fftw_destroy_plan(plan);
     }
 
+    /** An FFTW buffer of @p n entries of type T, freed with its owner
+     *  (fftw_malloc's alignment: the kernel's transforms are planned on
+     *  such buffers on one process as on several). */
+    template <typename T>
+    std::unique_ptr<T[], void (*)(void *)>
+    fftw_buffer(const std::size_t n)
+    {
+      std::unique_ptr<T[], void (*)(void *)> buffer(
+        static_cast<T *>(fftw_malloc(n * sizeof(T))), fftw_free);
+      AssertThrow(buffer,
+                  ExcMessage("GridConvolution: out of memory for the FFT."));
+      return buffer;
+    }
+
     /**
      * The index on the half of a direction of 2 @p half nodes mirrored
      * about its centre: the nodes half + a and half - 1 - a (a charge and
@@ -141,60 +164,240 @@ namespace PlateOnHalfspace
    * The transforms of convolve(), pruned to the rows that hold data: the
    * rows' transforms over the grid's rows only (the padding rows are zero
    * going in and not wanted coming out), the columns' over all padded
-   * rows. @p real holds the folded charges in rows along x (padded[0] to
+   * rows. @p real holds the folded charges in rows along x (row_length to
    * a row), except on the half mirrored in x: there along y. The whole
    * grid's are real-to-complex ones (real rows, complex columns); the
-   * quarter's cosine transforms in place on @p real; the half's a real
-   * FFT along its rows (the free direction) and cosine transforms along
-   * the columns (the mirrored one) on the spectrum's real and imaginary
-   * parts alike.
+   * quarter's cosine transforms in place; the half's a real FFT along its
+   * rows (the free direction) and cosine transforms along the columns (the
+   * mirrored one) on the spectrum's real and imaginary parts alike.
+   *
+   * On one rank the rows' transforms write into the first rows of the
+   * columns' buffer. On several, rank r transforms the data rows
+   * row_starts[r] … row_starts[r + 1] - 1 and the spectrum's columns
+   * column_starts[r] … column_starts[r + 1] - 1, and two all-to-all
+   * exchanges move the rows' spectra to the columns' owners and back.
    */
   struct GridConvolution::Plans
   {
-    double       *real         = nullptr;
-    fftw_complex *spectrum     = nullptr;
-    fftw_plan     rows_forward = nullptr, columns_forward = nullptr,
-              columns_backward = nullptr, rows_backward = nullptr;
-    std::size_t n_real = 0, n_spectrum = 0;
-    std::mutex  mutex; ///< the buffers serve one convolution at a time
+    /** Rows that hold data, reals to a row, spectrum entries to a row
+     *  (the columns), doubles to an entry (2: complex), and the columns'
+     *  transform length. */
+    unsigned int rows = 0, row_length = 0, columns = 0, width = 1,
+                 column_length     = 0;
+    unsigned int              rank = 0, n_ranks = 1;
+    std::vector<unsigned int> row_starts, column_starts;
 
-    /** The buffers: @p reals doubles and @p complexes complex numbers
-     *  (none: no spectrum). */
-    void
-    allocate(const std::size_t reals, const std::size_t complexes)
+    /** This rank's rows × row_length reals. */
+    double *real = nullptr;
+    /** This rank's rows of the spectrum (columns × width doubles each);
+     *  on one rank the first rows of @p column_data, in the quarter
+     *  @p real itself. */
+    double *row_spectrum = nullptr;
+    /** column_length rows of this rank's columns × width doubles. */
+    double   *column_data  = nullptr;
+    fftw_plan rows_forward = nullptr, columns_forward = nullptr,
+              columns_backward = nullptr, rows_backward = nullptr;
+    std::size_t n_real = 0, n_row_spectrum = 0, n_column_data = 0;
+    /** The transposes' counts and offsets (doubles), per rank: rows to
+     *  columns (send, receive), the way back swaps them. */
+    std::vector<int> to_columns_send_counts, to_columns_send_offsets,
+      to_columns_receive_counts, to_columns_receive_offsets;
+    std::vector<double> exchange;
+    /** The footprint's places in @p folded (its local indices), whose
+     *  owned part is this rank's data rows. */
+    std::vector<unsigned int>                          footprint;
+    bool                                               footprint_set = false;
+    std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
+    LinearAlgebra::distributed::Vector<double>         folded;
+    std::mutex mutex; ///< the buffers serve one convolution at a time
+
+    unsigned int
+    my_rows() const
     {
-      n_real     = reals;
-      n_spectrum = complexes;
-      real       = fftw_alloc_real(n_real);
-      if (n_spectrum > 0)
-        spectrum = fftw_alloc_complex(n_spectrum);
-      AssertThrow(real && (spectrum || n_spectrum == 0),
+      return row_starts[rank + 1] - row_starts[rank];
+    }
+
+    unsigned int
+    my_columns() const
+    {
+      return column_starts[rank + 1] - column_starts[rank];
+    }
+
+    bool
+    split() const
+    {
+      return n_ranks > 1;
+    }
+
+    /** The layout and this rank's share of it. */
+    void
+    set_layout(const MPI_Comm     communicator,
+               const unsigned int data_rows,
+               const unsigned int length,
+               const unsigned int spectrum_columns,
+               const unsigned int entry_width,
+               const unsigned int transform_length)
+    {
+      rows          = data_rows;
+      row_length    = length;
+      columns       = spectrum_columns;
+      width         = entry_width;
+      column_length = transform_length;
+      n_ranks       = PlateOnHalfspace::n_ranks(communicator);
+      rank          = rank_in(communicator);
+      row_starts.resize(n_ranks + 1);
+      column_starts.resize(n_ranks + 1);
+      for (unsigned int r = 0; r <= n_ranks; ++r)
+        {
+          row_starts[r]    = (std::uint64_t(rows) * r) / n_ranks;
+          column_starts[r] = (std::uint64_t(columns) * r) / n_ranks;
+        }
+    }
+
+    /** The buffers of set_layout()'s share. */
+    void
+    allocate()
+    {
+      n_column_data = std::size_t(column_length) * my_columns() * width;
+      column_data   = fftw_alloc_real(std::max<std::size_t>(n_column_data, 1));
+      if (!split())
+        {
+          row_spectrum = column_data;
+          n_real       = std::size_t(rows) * row_length;
+          real         = width == 1 ? column_data :
+                                      fftw_alloc_real(std::max<std::size_t>(n_real, 1));
+        }
+      else
+        {
+          n_real         = std::size_t(my_rows()) * row_length;
+          real           = fftw_alloc_real(std::max<std::size_t>(n_real, 1));
+          n_row_spectrum = std::size_t(my_rows()) * columns * width;
+          row_spectrum =
+            width == 1 ?
+              real :
+              fftw_alloc_real(std::max<std::size_t>(n_row_spectrum, 1));
+          make_exchange_layout();
+        }
+      AssertThrow(column_data && real && row_spectrum,
                   ExcMessage("GridConvolution: out of memory for the FFT."));
     }
 
-    /** The real FFTs of @p rows contiguous rows of @p length, forward
-     *  from @p real and back to it (the spectrum's rows length / 2 + 1
-     *  apart); under the planner's lock. */
+    /** The transposes' counts: my rows × each rank's columns out, each
+     *  rank's rows × my columns in, straight into column_data's rows. */
     void
-    make_row_ffts(int length, const int rows)
+    make_exchange_layout()
     {
+      const auto as_int = [](const std::size_t n) {
+        AssertThrow(n <= std::size_t(std::numeric_limits<int>::max()),
+                    ExcMessage("GridConvolution: a slab exchange larger "
+                               "than one MPI message holds; run on more "
+                               "processes."));
+        return static_cast<int>(n);
+      };
+      to_columns_send_counts.resize(n_ranks);
+      to_columns_send_offsets.resize(n_ranks);
+      to_columns_receive_counts.resize(n_ranks);
+      to_columns_receive_offsets.resize(n_ranks);
+      std::size_t at = 0;
+      for (unsigned int t = 0; t < n_ranks; ++t)
+        {
+          const std::size_t n = std::size_t(my_rows()) *
+                                (column_starts[t + 1] - column_starts[t]) *
+                                width;
+          to_columns_send_offsets[t] = as_int(at);
+          to_columns_send_counts[t]  = as_int(n);
+          at += n;
+          to_columns_receive_offsets[t] =
+            as_int(std::size_t(row_starts[t]) * my_columns() * width);
+          to_columns_receive_counts[t] =
+            as_int(std::size_t(row_starts[t + 1] - row_starts[t]) *
+                   my_columns() * width);
+        }
+      exchange.resize(at);
+    }
+
+    /** The rows' spectra to the columns' owners (data rows only; the
+     *  padding rows are zeroed by the caller). */
+    void
+    transpose_to_columns(const MPI_Comm communicator)
+    {
+      const std::size_t stride = std::size_t(columns) * width;
+      for (unsigned int t = 0; t < n_ranks; ++t)
+        {
+          const std::size_t n =
+            std::size_t(column_starts[t + 1] - column_starts[t]) * width;
+          double *out = exchange.data() + to_columns_send_offsets[t];
+          for (unsigned int r = 0; r < my_rows(); ++r, out += n)
+            std::copy_n(row_spectrum + r * stride +
+                          std::size_t(column_starts[t]) * width,
+                        n,
+                        out);
+        }
+      const int error = MPI_Alltoallv(exchange.data(),
+                                      to_columns_send_counts.data(),
+                                      to_columns_send_offsets.data(),
+                                      MPI_DOUBLE,
+                                      column_data,
+                                      to_columns_receive_counts.data(),
+                                      to_columns_receive_offsets.data(),
+                                      MPI_DOUBLE,
+                                      communicator);
+      AssertThrowMPI(error);
+    }
+
+    /** The data rows of this rank's columns back to the rows' owners. */
+    void
+    transpose_to_rows(const MPI_Comm communicator)
+    {
+      const int error = MPI_Alltoallv(column_data,
+                                      to_columns_receive_counts.data(),
+                                      to_columns_receive_offsets.data(),
+                                      MPI_DOUBLE,
+                                      exchange.data(),
+                                      to_columns_send_counts.data(),
+                                      to_columns_send_offsets.data(),
+                                      MPI_DOUBLE,
+                                      communicator);
+      AssertThrowMPI(error);
+      const std::size_t stride = std::size_t(columns) * width;
+      for (unsigned int t = 0; t < n_ranks; ++t)
+        {
+          const std::size_t n =
+            std::size_t(column_starts[t + 1] - column_starts[t]) * width;
+          const double *in = exchange.data() + to_columns_send_offsets[t];
+          for (unsigned int r = 0; r < my_rows(); ++r, in += n)
+            std::copy_n(in,
+                        n,
+                        row_spectrum + r * stride +
+                          std::size_t(column_starts[t]) * width);
+        }
+    }
+
+    /** The real FFTs of this rank's rows of @p length, forward from
+     *  @p real into @p row_spectrum and back; under the planner's lock. */
+    void
+    make_row_ffts(int length)
+    {
+      if (my_rows() == 0)
+        return;
       const int s   = length / 2 + 1;
+      auto     *out = reinterpret_cast<fftw_complex *>(row_spectrum);
       rows_forward  = fftw_plan_many_dft_r2c(1,
                                             &length,
-                                            rows,
+                                            my_rows(),
                                             real,
                                             nullptr,
                                             1,
                                             length,
-                                            spectrum,
+                                            out,
                                             nullptr,
                                             1,
                                             s,
                                             FFTW_ESTIMATE);
       rows_backward = fftw_plan_many_dft_c2r(1,
                                              &length,
-                                             rows,
-                                             spectrum,
+                                             my_rows(),
+                                             out,
                                              nullptr,
                                              1,
                                              s,
@@ -205,6 +408,46 @@ namespace PlateOnHalfspace
                                              FFTW_ESTIMATE);
     }
 
+    /** @p count in-place cosine transforms of @p length on @p data, the
+     *  entries @p stride apart, the transforms @p distance apart, each
+     *  way; under the planner's lock. */
+    static std::pair<fftw_plan, fftw_plan>
+    cosine_pair(double   *data,
+                int       length,
+                const int count,
+                const int stride,
+                const int distance)
+    {
+      if (count == 0)
+        return {nullptr, nullptr};
+      const auto in_place = [&](const fftw_r2r_kind kind) {
+        return fftw_plan_many_r2r(1,
+                                  &length,
+                                  count,
+                                  data,
+                                  nullptr,
+                                  stride,
+                                  distance,
+                                  data,
+                                  nullptr,
+                                  stride,
+                                  distance,
+                                  &kind,
+                                  FFTW_ESTIMATE);
+      };
+      return {in_place(FFTW_REDFT10), in_place(FFTW_REDFT01)};
+    }
+
+    /** Every plan that this rank's share needs was made. */
+    void
+    check_plans() const
+    {
+      AssertThrow((my_rows() == 0 || (rows_forward && rows_backward)) &&
+                    (my_columns() == 0 ||
+                     (columns_forward && columns_backward)),
+                  ExcMessage("GridConvolution: FFTW made no plan."));
+    }
+
     ~Plans()
     {
       const std::lock_guard<std::mutex> lock(planner_mutex());
@@ -212,8 +455,11 @@ namespace PlateOnHalfspace
            {rows_forward, columns_forward, columns_backward, rows_backward})
         if (plan)
           fftw_destroy_plan(plan);
-      fftw_free(real);
-      fftw_free(spectrum);
+      if (row_spectrum != column_data && row_spectrum != real)
+        fftw_free(row_spectrum);
+      if (real != column_data)
+        fftw_free(real);
+      fftw_free(column_data);
     }
   };
 
@@ -222,10 +468,12 @@ namespace PlateOnHalfspace
                                    const std::array<double, 2> &half_widths,
                                    const unsigned int           order,
                                    const std::function<double(double)> &kernel,
-                                   const std::array<bool, 2> &mirror_images)
+                                   const std::array<bool, 2> &mirror_images,
+                                   const MPI_Comm             communicator)
     : spline_order(order)
     , h(spacing)
     , mirrored(mirror_images)
+    , communicator(communicator)
     , plans(std::make_unique<Plans>())
   {
     AssertThrow(order >= 4 && order <= max_order && order % 2 == 0,
@@ -276,61 +524,71 @@ namespace PlateOnHalfspace
   {
     // FFTW's row-major 2D layout: y the slow index, x the fast one.
     const unsigned int px = padded[0], py = padded[1], sx = px / 2 + 1;
-    plans->allocate(std::size_t(px) * py, std::size_t(sx) * py);
-    // FFTW_ESTIMATE: the same plans, so the same rounding, on every run
-    // with the same number of threads.
-    {
-      const std::lock_guard<std::mutex> lock(planner_mutex());
-      plan_with_deal_ii_threads();
-      int       length_y = py;
-      const int columns  = sx;
-      plans->make_row_ffts(px, n[1]);
-      const auto columns_plan = [&](const int direction) {
-        return fftw_plan_many_dft(1,
-                                  &length_y,
-                                  columns,
-                                  plans->spectrum,
-                                  nullptr,
-                                  sx,
-                                  1,
-                                  plans->spectrum,
-                                  nullptr,
-                                  sx,
-                                  1,
-                                  direction,
-                                  FFTW_ESTIMATE);
-      };
-      plans->columns_forward  = columns_plan(FFTW_FORWARD);
-      plans->columns_backward = columns_plan(FFTW_BACKWARD);
-      AssertThrow(plans->rows_forward && plans->columns_forward &&
-                    plans->columns_backward && plans->rows_backward,
-                  ExcMessage("GridConvolution: FFTW made no plan."));
-    }
+    plans->set_layout(communicator, n[1], px, sx, 2, py);
+    const unsigned int columns = plans->my_columns(),
+                       first   = plans->column_starts[plans->rank];
 
     // The kernel's samples at the circular offsets, transformed once over
-    // all rows (the samples fill them).
-    for (unsigned int j = 0; j < py; ++j)
-      for (unsigned int i = 0; i < px; ++i)
-        {
-          const double dx = (i <= px / 2) ? double(i) : double(i) - px;
-          const double dy = (j <= py / 2) ? double(j) : double(j) - py;
-          plans->real[std::size_t(j) * px + i] = kernel(h * std::hypot(dx, dy));
-        }
-    execute_once([&]() {
-      return fftw_plan_dft_r2c_2d(
-        py, px, plans->real, plans->spectrum, FFTW_ESTIMATE);
-    });
-    kernel_transform.resize(plans->n_spectrum);
-    const std::vector<double> bx = spline_symbols(sx, px),
-                              by = spline_symbols(py, py);
-    const double scale = 1. / (double(px) * py); // FFTW's unnormalised pair
-    for (unsigned int j = 0; j < py; ++j)
-      for (unsigned int i = 0; i < sx; ++i)
-        {
-          const std::size_t k = std::size_t(j) * sx + i;
-          const double      b = bx[i] * by[j];
-          kernel_transform[k] = scale * plans->spectrum[k][0] / (b * b);
-        }
+    // all rows (the samples fill them); every rank transforms them whole
+    // and keeps its columns. Before the convolutions' buffers exist, so
+    // that the two do not add up.
+    {
+      const auto samples  = fftw_buffer<double>(std::size_t(px) * py);
+      const auto spectrum = fftw_buffer<fftw_complex>(std::size_t(sx) * py);
+      for (unsigned int j = 0; j < py; ++j)
+        for (unsigned int i = 0; i < px; ++i)
+          {
+            const double dx = (i <= px / 2) ? double(i) : double(i) - px;
+            const double dy = (j <= py / 2) ? double(j) : double(j) - py;
+            samples[std::size_t(j) * px + i] = kernel(h * std::hypot(dx, dy));
+          }
+      execute_once([&]() {
+        return fftw_plan_dft_r2c_2d(
+          py, px, samples.get(), spectrum.get(), FFTW_ESTIMATE);
+      });
+      const std::vector<double> bx = spline_symbols(sx, px),
+                                by = spline_symbols(py, py);
+      const double scale = 1. / (double(px) * py); // FFTW's unnormalised pair
+      kernel_transform.resize(std::size_t(py) * columns);
+      for (unsigned int j = 0; j < py; ++j)
+        for (unsigned int c = 0; c < columns; ++c)
+          {
+            const unsigned int i = first + c;
+            const double       b = bx[i] * by[j];
+            kernel_transform[std::size_t(j) * columns + c] =
+              scale * spectrum[std::size_t(j) * sx + i][0] / (b * b);
+          }
+    }
+
+    plans->allocate();
+    // FFTW_ESTIMATE: the same plans, so the same rounding, on every run
+    // with the same number of threads.
+    const std::lock_guard<std::mutex> lock(planner_mutex());
+    plan_with_deal_ii_threads();
+    int length_y = py;
+    plans->make_row_ffts(px);
+    auto *const data = reinterpret_cast<fftw_complex *>(plans->column_data);
+    const auto  columns_plan = [&](const int direction) {
+      return fftw_plan_many_dft(1,
+                                &length_y,
+                                columns,
+                                data,
+                                nullptr,
+                                columns,
+                                1,
+                                data,
+                                nullptr,
+                                columns,
+                                1,
+                                direction,
+                                FFTW_ESTIMATE);
+    };
+    if (columns > 0)
+      {
+        plans->columns_forward  = columns_plan(FFTW_FORWARD);
+        plans->columns_backward = columns_plan(FFTW_BACKWARD);
+      }
+    plans->check_plans();
   }
 
   void
@@ -340,71 +598,51 @@ namespace PlateOnHalfspace
     // The quarter of nodes nx/2 + a, ny/2 + b, padded to the transforms'
     // lengths; y the slow index, x the fast one.
     const unsigned int mx = padded[0], my = padded[1];
-    plans->allocate(std::size_t(mx) * my, 0);
-    {
-      const std::lock_guard<std::mutex> lock(planner_mutex());
-      plan_with_deal_ii_threads();
-      const fftw_r2r_kind even = FFTW_REDFT10, inverse = FFTW_REDFT01;
-      // @p count transforms of @p length in place on the quarter, the
-      // entries @p stride apart, the transforms @p distance apart
-      const auto in_place = [&](int                  length,
-                                const int            count,
-                                const int            stride,
-                                const int            distance,
-                                const fftw_r2r_kind &kind) {
-        return fftw_plan_many_r2r(1,
-                                  &length,
-                                  count,
-                                  plans->real,
-                                  nullptr,
-                                  stride,
-                                  distance,
-                                  plans->real,
-                                  nullptr,
-                                  stride,
-                                  distance,
-                                  &kind,
-                                  FFTW_ESTIMATE);
-      };
-      // the rows that hold the quarter's nodes; all columns
-      const int rows          = n[1] / 2;
-      plans->rows_forward     = in_place(mx, rows, 1, mx, even);
-      plans->columns_forward  = in_place(my, mx, mx, 1, even);
-      plans->columns_backward = in_place(my, mx, mx, 1, inverse);
-      plans->rows_backward    = in_place(mx, rows, 1, mx, inverse);
-      AssertThrow(plans->rows_forward && plans->columns_forward &&
-                    plans->columns_backward && plans->rows_backward,
-                  ExcMessage("GridConvolution: FFTW made no plan."));
-    }
+    plans->set_layout(communicator, n[1] / 2, mx, mx, 1, my);
+    const unsigned int columns = plans->my_columns(),
+                       first   = plans->column_starts[plans->rank];
 
     // The DFT of the kernel's samples over the period 2 m is, the samples
     // being even, the type-I cosine transform (REDFT00) of offsets 0 … m.
-    std::vector<double> samples(std::size_t(mx + 1) * (my + 1));
-    for (unsigned int j = 0; j <= my; ++j)
-      for (unsigned int i = 0; i <= mx; ++i)
-        samples[std::size_t(j) * (mx + 1) + i] =
-          kernel(h * std::hypot(double(i), double(j)));
-    execute_once([&]() {
-      return fftw_plan_r2r_2d(my + 1,
-                              mx + 1,
-                              samples.data(),
-                              samples.data(),
-                              FFTW_REDFT00,
-                              FFTW_REDFT00,
-                              FFTW_ESTIMATE);
-    });
-    kernel_transform.resize(plans->n_real);
-    const std::vector<double> bx = spline_symbols(mx, 2 * mx),
-                              by = spline_symbols(my, 2 * my);
-    // REDFT10 then REDFT01 multiply by twice the length each way
-    const double scale = 1. / (4. * double(mx) * my);
-    for (unsigned int j = 0; j < my; ++j)
-      for (unsigned int i = 0; i < mx; ++i)
-        {
-          const double b = bx[i] * by[j];
-          kernel_transform[std::size_t(j) * mx + i] =
-            scale * samples[std::size_t(j) * (mx + 1) + i] / (b * b);
-        }
+    {
+      std::vector<double> samples(std::size_t(mx + 1) * (my + 1));
+      for (unsigned int j = 0; j <= my; ++j)
+        for (unsigned int i = 0; i <= mx; ++i)
+          samples[std::size_t(j) * (mx + 1) + i] =
+            kernel(h * std::hypot(double(i), double(j)));
+      execute_once([&]() {
+        return fftw_plan_r2r_2d(my + 1,
+                                mx + 1,
+                                samples.data(),
+                                samples.data(),
+                                FFTW_REDFT00,
+                                FFTW_REDFT00,
+                                FFTW_ESTIMATE);
+      });
+      const std::vector<double> bx = spline_symbols(mx, 2 * mx),
+                                by = spline_symbols(my, 2 * my);
+      // REDFT10 then REDFT01 multiply by twice the length each way
+      const double scale = 1. / (4. * double(mx) * my);
+      kernel_transform.resize(std::size_t(my) * columns);
+      for (unsigned int j = 0; j < my; ++j)
+        for (unsigned int c = 0; c < columns; ++c)
+          {
+            const unsigned int i = first + c;
+            const double       b = bx[i] * by[j];
+            kernel_transform[std::size_t(j) * columns + c] =
+              scale * samples[std::size_t(j) * (mx + 1) + i] / (b * b);
+          }
+    }
+
+    plans->allocate();
+    const std::lock_guard<std::mutex> lock(planner_mutex());
+    plan_with_deal_ii_threads();
+    // the rows that hold the quarter's nodes; all columns
+    std::tie(plans->rows_forward, plans->rows_backward) =
+      Plans::cosine_pair(plans->real, mx, plans->my_rows(), 1, mx);
+    std::tie(plans->columns_forward, plans->columns_backward) =
+      Plans::cosine_pair(plans->column_data, my, columns, columns, 1);
+    plans->check_plans();
   }
 
   void
@@ -416,95 +654,80 @@ namespace PlateOnHalfspace
     // FFTs are contiguous: real rows x p, the spectrum m x s.
     const unsigned int e = mirrored[0] ? 0 : 1, f = 1 - e;
     const unsigned int m = padded[e], p = padded[f], s = p / 2 + 1;
-    const int          rows = n[e] / 2;
-    plans->allocate(std::size_t(rows) * p, std::size_t(m) * s);
-    {
-      const std::lock_guard<std::mutex> lock(planner_mutex());
-      plan_with_deal_ii_threads();
-      int           length_m = m;
-      double *const parts    = &plans->spectrum[0][0];
-      // rows: real FFTs of the half's rows; columns: cosine transforms of
-      // the spectrum's real and imaginary parts (2 s sequences)
-      plans->make_row_ffts(p, rows);
-      const auto columns_plan = [&](const fftw_r2r_kind &kind) {
-        return fftw_plan_many_r2r(1,
-                                  &length_m,
-                                  2 * s,
-                                  parts,
-                                  nullptr,
-                                  2 * s,
-                                  1,
-                                  parts,
-                                  nullptr,
-                                  2 * s,
-                                  1,
-                                  &kind,
-                                  FFTW_ESTIMATE);
-      };
-      plans->columns_forward  = columns_plan(FFTW_REDFT10);
-      plans->columns_backward = columns_plan(FFTW_REDFT01);
-      AssertThrow(plans->rows_forward && plans->columns_forward &&
-                    plans->columns_backward && plans->rows_backward,
-                  ExcMessage("GridConvolution: FFTW made no plan."));
-    }
+    plans->set_layout(communicator, n[e] / 2, p, s, 2, m);
+    const unsigned int columns = plans->my_columns(),
+                       first   = plans->column_starts[plans->rank];
 
     // The kernel's samples at offsets 0 … m along e (their DFT over the
     // period 2 m is the type-I cosine transform) and at the circular
     // offsets along f (an even sequence: its DFT is real), rows along f.
-    std::vector<double> samples(std::size_t(m + 1) * p);
-    for (unsigned int a = 0; a <= m; ++a)
-      for (unsigned int k = 0; k < p; ++k)
-        {
-          const double offset = (k <= p / 2) ? double(k) : double(k) - p;
-          samples[std::size_t(a) * p + k] =
-            kernel(h * std::hypot(double(a), offset));
-        }
-    execute_once([&]() {
-      int                 length = m + 1;
-      const fftw_r2r_kind kind   = FFTW_REDFT00;
-      return fftw_plan_many_r2r(1,
-                                &length,
-                                p,
-                                samples.data(),
-                                nullptr,
-                                p,
-                                1,
-                                samples.data(),
-                                nullptr,
-                                p,
-                                1,
-                                &kind,
-                                FFTW_ESTIMATE);
-    });
-    // The real FFTs of the m rows used, into the plans' spectrum, which
-    // the convolutions overwrite.
-    execute_once([&]() {
-      int length = p;
-      return fftw_plan_many_dft_r2c(1,
-                                    &length,
-                                    m,
-                                    samples.data(),
-                                    nullptr,
-                                    1,
-                                    p,
-                                    plans->spectrum,
-                                    nullptr,
-                                    1,
-                                    s,
-                                    FFTW_ESTIMATE);
-    });
-    kernel_transform.resize(plans->n_spectrum);
-    const std::vector<double> b_e = spline_symbols(m, 2 * m),
-                              b_f = spline_symbols(s, p);
-    // REDFT10 then REDFT01 multiply by 2 m, the real FFT's pair by p
-    const double scale = 1. / (2. * double(m) * p);
-    for (unsigned int a = 0; a < m; ++a)
-      for (unsigned int k = 0; k < s; ++k)
-        {
-          const std::size_t entry = std::size_t(a) * s + k;
-          const double      b     = b_e[a] * b_f[k];
-          kernel_transform[entry] = scale * plans->spectrum[entry][0] / (b * b);
-        }
+    {
+      std::vector<double> samples(std::size_t(m + 1) * p);
+      for (unsigned int a = 0; a <= m; ++a)
+        for (unsigned int k = 0; k < p; ++k)
+          {
+            const double offset = (k <= p / 2) ? double(k) : double(k) - p;
+            samples[std::size_t(a) * p + k] =
+              kernel(h * std::hypot(double(a), offset));
+          }
+      execute_once([&]() {
+        int                 length = m + 1;
+        const fftw_r2r_kind kind   = FFTW_REDFT00;
+        return fftw_plan_many_r2r(1,
+                                  &length,
+                                  p,
+                                  samples.data(),
+                                  nullptr,
+                                  p,
+                                  1,
+                                  samples.data(),
+                                  nullptr,
+                                  p,
+                                  1,
+                                  &kind,
+                                  FFTW_ESTIMATE);
+      });
+      // The real FFTs of the m rows used.
+      const auto spectrum = fftw_buffer<fftw_complex>(std::size_t(m) * s);
+      execute_once([&]() {
+        int length = p;
+        return fftw_plan_many_dft_r2c(1,
+                                      &length,
+                                      m,
+                                      samples.data(),
+                                      nullptr,
+                                      1,
+                                      p,
+                                      spectrum.get(),
+                                      nullptr,
+                                      1,
+                                      s,
+                                      FFTW_ESTIMATE);
+      });
+      const std::vector<double> b_e = spline_symbols(m, 2 * m),
+                                b_f = spline_symbols(s, p);
+      // REDFT10 then REDFT01 multiply by 2 m, the real FFT's pair by p
+      const double scale = 1. / (2. * double(m) * p);
+      kernel_transform.resize(std::size_t(m) * columns);
+      for (unsigned int a = 0; a < m; ++a)
+        for (unsigned int c = 0; c < columns; ++c)
+          {
+            const unsigned int k = first + c;
+            const double       b = b_e[a] * b_f[k];
+            kernel_transform[std::size_t(a) * columns + c] =
+              scale * spectrum[std::size_t(a) * s + k][0] / (b * b);
+          }
+    }
+
+    plans->allocate();
+    const std::lock_guard<std::mutex> lock(planner_mutex());
+    plan_with_deal_ii_threads();
+    // rows: real FFTs of the half's rows; columns: cosine transforms of
+    // the spectrum's real and imaginary parts (2 s sequences)
+    plans->make_row_ffts(p);
+    std::tie(plans->columns_forward, plans->columns_backward) =
+      Plans::cosine_pair(plans->column_data, m, 2 * columns, 2 * columns, 1);
+    plans->check_plans();
   }
 
   std::vector<double>
@@ -593,64 +816,171 @@ namespace PlateOnHalfspace
     return s;
   }
 
+  bool
+  GridConvolution::split() const
+  {
+    return plans->split();
+  }
+
+  std::size_t
+  GridConvolution::place(const unsigned int i, const unsigned int j) const
+  {
+    // The buffer's rows run along x, except on the half mirrored in x
+    // (make_half_plans()): there along y. A grid node's place in it lies
+    // on the half in a mirrored direction, where a charge meets its image.
+    const unsigned int hx = n[0] / 2, hy = n[1] / 2;
+    const unsigned int a = mirrored[0] ? half_index(i, hx) : i,
+                       b = mirrored[1] ? half_index(j, hy) : j;
+    return mirrored[0] && !mirrored[1] ?
+             std::size_t(a) * plans->row_length + b :
+             std::size_t(b) * plans->row_length + a;
+  }
+
+  std::array<unsigned int, 2>
+  GridConvolution::slab_sizes() const
+  {
+    return {{plans->my_rows(), plans->my_columns()}};
+  }
+
+  void
+  GridConvolution::set_footprint(const std::vector<unsigned int> &grid_nodes)
+  {
+    AssertThrow(!plans->footprint_set,
+                ExcMessage("GridConvolution: the footprint is set once."));
+    AssertThrow(std::adjacent_find(grid_nodes.begin(),
+                                   grid_nodes.end(),
+                                   std::greater_equal<unsigned int>()) ==
+                    grid_nodes.end() &&
+                  (grid_nodes.empty() || grid_nodes.back() < n_grid_nodes()),
+                ExcMessage("GridConvolution: a footprint lists distinct grid "
+                           "nodes in increasing order."));
+    plans->footprint_set = true;
+    if (!split())
+      return;
+    const std::size_t             row_length = plans->row_length;
+    const types::global_dof_index size = static_cast<types::global_dof_index>(
+      std::size_t(plans->rows) * row_length);
+    AssertThrow(std::size_t(size) == std::size_t(plans->rows) * row_length,
+                ExcMessage("GridConvolution: the grid has more nodes than "
+                           "deal.II's indices count."));
+    IndexSet owned(size);
+    owned.add_range(plans->row_starts[plans->rank] * row_length,
+                    plans->row_starts[plans->rank + 1] * row_length);
+    std::vector<types::global_dof_index> places;
+    places.reserve(grid_nodes.size());
+    for (const unsigned int g : grid_nodes)
+      places.push_back(place(g % n[0], g / n[0]));
+    std::vector<types::global_dof_index> ghosts(places);
+    std::sort(ghosts.begin(), ghosts.end());
+    ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+    ghosts.erase(std::remove_if(ghosts.begin(),
+                                ghosts.end(),
+                                [&](const types::global_dof_index k) {
+                                  return owned.is_element(k);
+                                }),
+                 ghosts.end());
+    IndexSet ghost_set(size);
+    ghost_set.add_indices(ghosts.begin(), ghosts.end());
+    plans->partitioner =
+      std::make_shared<Utilities::MPI::Partitioner>(owned,
+                                                    ghost_set,
+                                                    communicator);
+    plans->folded.reinit(plans->partitioner);
+    plans->footprint.resize(grid_nodes.size());
+    for (std::size_t k = 0; k < grid_nodes.size(); ++k)
+      plans->footprint[k] = plans->partitioner->global_to_local(places[k]);
+  }
+
   void
   GridConvolution::convolve(const Vector<double> &charges,
                             Vector<double>       &potentials) const
   {
-    AssertDimension(charges.size(), n_grid_nodes());
     const std::lock_guard<std::mutex> lock(plans->mutex);
-    const unsigned int                hx = n[0] / 2, hy = n[1] / 2;
-    // The buffer's rows run along x, except on the half mirrored in x
-    // (make_half_plans()): there along y. A grid node's place in it lies
-    // on the half in a mirrored direction, where a charge meets its image.
-    const bool         along_y    = mirrored[0] && !mirrored[1];
-    const unsigned int row_length = padded[along_y ? 1 : 0];
-    const unsigned int rows       = along_y ? hx : (mirrored[1] ? hy : n[1]);
-    const auto         place = [&](const unsigned int i, const unsigned int j) {
-      const unsigned int a = mirrored[0] ? half_index(i, hx) : i,
-                         b = mirrored[1] ? half_index(j, hy) : j;
-      return along_y ? std::size_t(a) * row_length + b :
-                               std::size_t(b) * row_length + a;
-    };
-    std::fill(plans->real, plans->real + std::size_t(rows) * row_length, 0.);
-    for (unsigned int j = 0; j < n[1]; ++j)
-      for (unsigned int i = 0; i < n[0]; ++i)
-        plans->real[place(i, j)] += charges[std::size_t(j) * n[0] + i];
-    fftw_execute(plans->rows_forward);
-    // The padding rows going into the columns' transforms are zero: the
-    // spectrum's rows, or on the quarter the real rows.
-    if (plans->spectrum)
-      std::fill(&plans->spectrum[std::size_t(rows) * (row_length / 2 + 1)][0],
-                &plans->spectrum[0][0] + 2 * plans->n_spectrum,
-                0.);
+    Plans                            &p          = *plans;
+    const std::size_t                 row_length = p.row_length;
+    const std::size_t my_reals = std::size_t(p.my_rows()) * row_length;
+    if (!p.split())
+      {
+        AssertDimension(charges.size(), n_grid_nodes());
+        std::fill(p.real, p.real + my_reals, 0.);
+        for (unsigned int j = 0; j < n[1]; ++j)
+          for (unsigned int i = 0; i < n[0]; ++i)
+            p.real[place(i, j)] += charges[std::size_t(j) * n[0] + i];
+      }
     else
-      std::fill(plans->real + std::size_t(rows) * row_length,
-                plans->real + plans->n_real,
-                0.);
-    fftw_execute(plans->columns_forward);
-    if (plans->spectrum)
-      for (std::size_t k = 0; k < plans->n_spectrum; ++k)
-        {
-          plans->spectrum[k][0] *= kernel_transform[k];
-          plans->spectrum[k][1] *= kernel_transform[k];
-        }
+      {
+        // Every rank must take part, so that none waits in the exchanges.
+        AssertThrow(p.footprint_set,
+                    ExcMessage("GridConvolution: a split grid convolves "
+                               "only after set_footprint()."));
+        AssertDimension(charges.size(), p.footprint.size());
+        // each rank's charges to the owners of their rows, summed there
+        p.folded = 0.;
+        for (std::size_t k = 0; k < p.footprint.size(); ++k)
+          p.folded.local_element(p.footprint[k]) += charges[k];
+        p.folded.compress(VectorOperation::add);
+        std::copy_n(p.folded.begin(), my_reals, p.real);
+      }
+    if (p.rows_forward)
+      fftw_execute(p.rows_forward);
+    // The padding rows going into the columns' transforms are zero.
+    const std::size_t column_row = std::size_t(p.my_columns()) * p.width;
+    if (p.split())
+      p.transpose_to_columns(communicator);
+    std::fill(p.column_data + std::size_t(p.rows) * column_row,
+              p.column_data + p.n_column_data,
+              0.);
+    if (p.columns_forward)
+      {
+        fftw_execute(p.columns_forward);
+        if (p.width == 2)
+          for (std::size_t k = 0; k < kernel_transform.size(); ++k)
+            {
+              p.column_data[2 * k] *= kernel_transform[k];
+              p.column_data[2 * k + 1] *= kernel_transform[k];
+            }
+        else
+          for (std::size_t k = 0; k < kernel_transform.size(); ++k)
+            p.column_data[k] *= kernel_transform[k];
+        fftw_execute(p.columns_backward);
+      }
+    if (p.split())
+      p.transpose_to_rows(communicator);
+    if (p.rows_backward)
+      fftw_execute(p.rows_backward);
+    if (!p.split())
+      {
+        if (potentials.size() != n_grid_nodes())
+          potentials.reinit(n_grid_nodes(), true);
+        for (unsigned int j = 0; j < n[1]; ++j)
+          for (unsigned int i = 0; i < n[0]; ++i)
+            potentials[std::size_t(j) * n[0] + i] = p.real[place(i, j)];
+      }
     else
-      for (std::size_t k = 0; k < plans->n_real; ++k)
-        plans->real[k] *= kernel_transform[k];
-    fftw_execute(plans->columns_backward);
-    fftw_execute(plans->rows_backward);
-    if (potentials.size() != n_grid_nodes())
-      potentials.reinit(n_grid_nodes(), true);
-    for (unsigned int j = 0; j < n[1]; ++j)
-      for (unsigned int i = 0; i < n[0]; ++i)
-        potentials[std::size_t(j) * n[0] + i] = plans->real[place(i, j)];
+      {
+        // the rows' owners' potentials to the footprints that read them
+        std::copy_n(p.real, my_reals, p.folded.begin());
+        p.folded.update_ghost_values();
+        if (potentials.size() != p.footprint.size())
+          potentials.reinit(p.footprint.size(), true);
+        for (std::size_t k = 0; k < p.footprint.size(); ++k)
+          potentials[k] = p.folded.local_element(p.footprint[k]);
+        p.folded.zero_out_ghost_values();
+      }
   }
 
   std::size_t
   GridConvolution::memory_consumption() const
   {
+    const Plans &p = *plans;
     return kernel_transform.size() * sizeof(double) +
-           plans->n_real * sizeof(double) +
-           plans->n_spectrum * sizeof(fftw_complex);
+           ((p.real != p.column_data ? p.n_real : 0) +
+            (p.row_spectrum != p.column_data && p.row_spectrum != p.real ?
+               p.n_row_spectrum :
+               0) +
+            p.n_column_data + p.exchange.size()) *
+             sizeof(double) +
+           p.folded.memory_consumption() +
+           p.footprint.size() * sizeof(unsigned int);
   }
 } // namespace PlateOnHalfspace

@@ -297,6 +297,50 @@ namespace PlateOnHalfspace
     matrix.vmult_add(tests, potentials);
   }
 
+  std::vector<unsigned int>
+  GridProjection::keep_reached_columns()
+  {
+    Assert(grid == nullptr, ExcMessage("GridProjection: assemble() first."));
+    // A square P also stores a zero diagonal (deal.II's convention for
+    // square patterns): only nonzero entries count as reached.
+    std::vector<unsigned int> column_of(pattern.n_cols(),
+                                        numbers::invalid_unsigned_int);
+    for (auto entry = matrix.begin(); entry != matrix.end(); ++entry)
+      if (entry->value() != 0.)
+        column_of[entry->column()] = 0;
+    std::vector<unsigned int> reached;
+    for (unsigned int g = 0; g < column_of.size(); ++g)
+      if (column_of[g] == 0)
+        {
+          column_of[g] = reached.size();
+          reached.push_back(g);
+        }
+    // each row's kept entries, by their new columns
+    const unsigned int n_rows = pattern.n_rows();
+    std::vector<std::vector<std::pair<unsigned int, double>>> kept(n_rows);
+    for (unsigned int j = 0; j < n_rows; ++j)
+      {
+        for (auto entry = matrix.begin(j); entry != matrix.end(j); ++entry)
+          if (entry->value() != 0.)
+            kept[j].emplace_back(column_of[entry->column()], entry->value());
+        std::sort(kept[j].begin(), kept[j].end());
+      }
+    matrix.clear();
+    {
+      std::vector<std::vector<unsigned int>> columns(n_rows);
+      for (unsigned int j = 0; j < n_rows; ++j)
+        for (const auto &[column, value] : kept[j])
+          columns[j].push_back(column);
+      pattern.copy_from(n_rows, reached.size(), columns.begin(), columns.end());
+    }
+    matrix.reinit(pattern);
+    for (unsigned int j = 0; j < n_rows; ++j)
+      for (const auto &[column, value] : kept[j])
+        matrix.set(j, column, value);
+    entries = pattern.n_nonzero_elements();
+    return reached;
+  }
+
   std::size_t
   GridProjection::memory_consumption() const
   {

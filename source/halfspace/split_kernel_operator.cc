@@ -750,7 +750,8 @@ namespace PlateOnHalfspace
                 std::max(high[1] - centre[1], centre[1] - low[1]) + spacing}},
       settings.spline_order,
       [a = alpha, sigma](const double r) { return far_kernel(a, sigma, r); },
-      std::array<bool, 2>{{space.symmetry.x, space.symmetry.y}});
+      std::array<bool, 2>{{space.symmetry.x, space.symmetry.y}},
+      communicator);
     // made in place only once whole: it calls back into this function's
     // integrator until assemble()
     auto gridding = std::make_unique<GridProjection>(
@@ -831,6 +832,9 @@ namespace PlateOnHalfspace
       near_graph.make_pattern(near_sparsity);
     }
     gridding->assemble();
+    // a split grid reads and writes only the nodes this rank's cells reach
+    if (grid->split())
+      grid->set_footprint(gridding->keep_reached_columns());
     projection                = std::move(gridding);
     const auto near_remainder = std::make_shared<MinusFarField>(alpha, sigma);
     const SurfaceKernel near_kernel(alpha, near_remainder);
@@ -1008,12 +1012,11 @@ namespace PlateOnHalfspace
   SplitKernelFftOperator::apply_far_field(const Vector<double> &values,
                                           Vector<double> &settlement) const
   {
-    Vector<double> charges(grid->n_grid_nodes()), potentials;
+    Vector<double> charges(projection->n_columns()), potentials;
     projection->spread(values, charges);
-    // the other ranks' cells' charges
-    sum_shared_entries_over_ranks(make_array_view(charges), communicator);
-    // with the mirror images, which carry the same pressure at the
-    // reflected points (doc/formulation.md, "Symmetry")
+    // with the other ranks' cells' charges (the grid's slabs sum them) and
+    // the mirror images, which carry the same pressure at the reflected
+    // points (doc/formulation.md, "Symmetry")
     grid->convolve(charges, potentials);
     projection->add_tests(potentials, settlement);
   }
@@ -1239,7 +1242,8 @@ namespace PlateOnHalfspace
     if (n_ranks(communicator) > 1)
       text << "; on " << n_ranks(communicator)
            << " processes, each holding the near pairs and far-field "
-              "charges of its own cells (the entries: the most any holds)";
+              "charges of its own cells (the entries: the most any holds) "
+              "and a slab of the grid's transforms";
     return text.str();
   }
 

@@ -24,13 +24,28 @@
  * images in both lines the quarter of the points and no complex
  * arithmetic, with images in one line half of the points, the other
  * direction by the real FFT.
+ *
+ * On several processes the transformed grid is split (doc/parallel.md,
+ * "The grid by slabs"): each rank owns a slab of the rows that hold data
+ * for the first direction's transforms and a slab of the spectrum's
+ * columns for the second's, and two all-to-all exchanges transpose
+ * between them. A rank sends the charges of its footprint (the grid
+ * nodes its points spread to, set_footprint()) to the rows' owners, which
+ * sum them, and receives the potentials there back: in a convolution no
+ * rank touches the whole grid, and no whole grid is summed over the ranks.
+ * The kernel's transform is made whole on every rank once, in the
+ * constructor, and each keeps its columns.
  */
 #ifndef plate_on_halfspace_halfspace_grid_convolution_h
 #define plate_on_halfspace_halfspace_grid_convolution_h
 
+#include <deal.II/base/config.h>
+
 #include <deal.II/base/point.h>
 
 #include <deal.II/lac/vector.h>
+
+#include <mpi.h>
 
 #include <array>
 #include <complex>
@@ -67,14 +82,17 @@ namespace PlateOnHalfspace
      * @param mirror_images whether convolve() adds the charges' mirror
      *   images in the grid's centre line x = centre[0] (first) and
      *   y = centre[1] (second).
+     * @param communicator the ranks that split the grid (see the file
+     *   documentation); collective on it, every rank with the same
+     *   arguments.
      */
     GridConvolution(const Point<2>                      &centre,
                     const double                         spacing,
                     const std::array<double, 2>         &half_widths,
                     const unsigned int                   order,
                     const std::function<double(double)> &kernel,
-                    const std::array<bool, 2>           &mirror_images = {
-                                {false, false}});
+                    const std::array<bool, 2> &mirror_images = {{false, false}},
+                    const MPI_Comm             communicator  = MPI_COMM_SELF);
     ~GridConvolution();
     GridConvolution(const GridConvolution &) = delete;
     GridConvolution &
@@ -120,19 +138,47 @@ namespace PlateOnHalfspace
       return mirrored;
     }
 
+    /** Whether the grid is split over more than one rank. */
+    bool
+    split() const;
+
+    /** This rank's data rows of the first direction's transforms and
+     *  spectrum columns of the second's (all of them on one rank; none
+     *  on a rank beyond their number). */
+    std::array<unsigned int, 2>
+    slab_sizes() const;
+
+    /**
+     * This rank's footprint: the grid nodes (numbered as in grid_sizes(),
+     * distinct and in increasing order) whose charges it adds and whose
+     * potentials it reads in convolve(). Collective on a split grid, and
+     * needed there before the first convolve(); called once.
+     */
+    void
+    set_footprint(const std::vector<unsigned int> &grid_nodes);
+
     /**
      * @p potentials = G * (@p charges and their mirror images) on the
      * grid (in place allowed); the potentials are mirror symmetric where
-     * the images are.
+     * the images are. On one rank both vectors hold every grid node. On a
+     * split grid, collective: both hold this rank's footprint, in its
+     * order, and the charges convolved are every rank's summed.
      */
     void
     convolve(const Vector<double> &charges, Vector<double> &potentials) const;
 
-    /** Bytes held (grids, transform of the kernel). */
+    /** Bytes held by this rank (its slabs, its part of the kernel's
+     *  transform, the exchanges' buffers). */
     std::size_t
     memory_consumption() const;
 
   private:
+    /** Grid node (@p i, @p j)'s place in the rows of the first
+     *  direction's transforms (row times the row length plus position;
+     *  a node and its mirror images share one). */
+    std::size_t
+    place(const unsigned int i, const unsigned int j) const;
+
     /** Stencil of coordinate @p x in direction @p d: its first grid
      *  index, and its weights into @p weights (spline_order of them). */
     int
@@ -169,8 +215,10 @@ namespace PlateOnHalfspace
     /** The filtered kernel's transform, real, laid out as the transformed
      *  grid: rows along x (along y on the half mirrored in x),
      *  padded[d] / 2 + 1 entries in a direction of the real FFT,
-     *  padded[d] in one of cosine transforms. */
+     *  padded[d] in one of cosine transforms; on a split grid this rank's
+     *  columns of each row. */
     std::vector<double> kernel_transform;
+    MPI_Comm            communicator;
     struct Plans;
     std::unique_ptr<Plans> plans;
   };

@@ -87,6 +87,24 @@ namespace PlateOnHalfspace
     void
     add_tests(const Vector<double> &potentials, Vector<double> &tests) const;
 
+    /**
+     * Keeps only P's columns with a nonzero entry, numbered in increasing
+     * order of their grid nodes, and returns those grid nodes: spread()
+     * and add_tests() then work on vectors of the nodes this rank's cells
+     * reach (a split grid's footprint, GridConvolution::set_footprint()),
+     * not of the whole grid. After assemble().
+     */
+    std::vector<unsigned int>
+    keep_reached_columns();
+
+    /** The length of the grid vectors spread() and add_tests() take: the
+     *  grid's nodes, or those keep_reached_columns() kept. */
+    unsigned int
+    n_columns() const
+    {
+      return pattern.n_cols();
+    }
+
     std::size_t
     n_entries() const
     {

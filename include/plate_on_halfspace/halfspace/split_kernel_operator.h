@@ -31,9 +31,10 @@
  *
  * On several processes each rank integrates and holds the near field of
  * its own cells' pairs and spreads and tests the far field on its own
- * cells; a product sums the ranks' grid charges and their settlements
- * (doc/parallel.md, "The fft storage on several processes"). The grid's
- * convolution and the approximate inverse are whole on every rank.
+ * cells; the grid's convolution is split by slabs (GridConvolution), and
+ * a product sums the ranks' settlements (doc/parallel.md, "The fft
+ * storage on several processes"). The approximate inverse is whole on
+ * every rank.
  */
 #ifndef plate_on_halfspace_halfspace_split_kernel_operator_h
 #define plate_on_halfspace_halfspace_split_kernel_operator_h
