@@ -303,14 +303,14 @@ namespace PlateOnHalfspace
     Assert(grid == nullptr, ExcMessage("GridProjection: assemble() first."));
     // A square P also stores a zero diagonal (deal.II's convention for
     // square patterns): only nonzero entries count as reached.
-    std::vector<unsigned int> column_of(pattern.n_cols(),
-                                        numbers::invalid_unsigned_int);
+    std::vector<bool> is_reached(pattern.n_cols(), false);
     for (auto entry = matrix.begin(); entry != matrix.end(); ++entry)
       if (entry->value() != 0.)
-        column_of[entry->column()] = 0;
-    std::vector<unsigned int> reached;
-    for (unsigned int g = 0; g < column_of.size(); ++g)
-      if (column_of[g] == 0)
+        is_reached[entry->column()] = true;
+    // the new number of each reached grid node
+    std::vector<unsigned int> reached, column_of(pattern.n_cols());
+    for (unsigned int g = 0; g < is_reached.size(); ++g)
+      if (is_reached[g])
         {
           column_of[g] = reached.size();
           reached.push_back(g);
