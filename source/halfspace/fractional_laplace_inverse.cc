@@ -5,6 +5,7 @@
 
 #include <plate_on_halfspace/base/single_threaded_blas.h>
 #include <plate_on_halfspace/base/sparse_cholesky.h>
+#include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/base/tasks.h>
 #include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
@@ -153,6 +154,50 @@ namespace PlateOnHalfspace
     return zolotarev_rule(c, largest_eigenvalue + c).t.size() + 1;
   }
 
+  std::vector<unsigned int>
+  FractionalLaplaceInverse::part_owners(const unsigned int n_poles,
+                                        const unsigned int n_ranks)
+  {
+    AssertThrow(n_ranks > 0, ExcMessage("part_owners: no ranks."));
+    std::vector<unsigned int> owners(n_poles + 1);
+    std::vector<unsigned int> solves(n_ranks, 0);
+    const auto                least_busy = [&solves]() {
+      return static_cast<unsigned int>(
+        std::min_element(solves.begin(), solves.end()) - solves.begin());
+    };
+    // the chain's two solves first, then the poles in order
+    owners[n_poles] = least_busy();
+    solves[owners[n_poles]] += 2;
+    for (unsigned int l = 0; l < n_poles; ++l)
+      {
+        owners[l] = least_busy();
+        solves[owners[l]] += 1;
+      }
+    return owners;
+  }
+
+  unsigned int
+  FractionalLaplaceInverse::n_factors_on_a_rank(const double area,
+                                                const double largest_eigenvalue,
+                                                const unsigned int n_ranks)
+  {
+    const unsigned int        n_poles = n_factors(area, largest_eigenvalue) - 1;
+    std::vector<unsigned int> factors(n_ranks, 0);
+    // one factor per part: a pole's, or M's for the chain
+    for (const unsigned int owner : part_owners(n_poles, n_ranks))
+      ++factors[owner];
+    return *std::max_element(factors.begin(), factors.end());
+  }
+
+  unsigned int
+  FractionalLaplaceInverse::n_factors_here() const
+  {
+    unsigned int held = mass_factor ? 1 : 0;
+    for (const Pole &pole : poles)
+      held += pole.factor ? 1 : 0;
+    return held;
+  }
+
   double
   FractionalLaplaceInverse::largest_eigenvalue_estimate(
     const FoundationSpace &space)
@@ -172,7 +217,8 @@ namespace PlateOnHalfspace
     const double                area,
     const SparseCholesky       &analysis,
     const MPI_Comm              communicator)
-    : shifted(mass.get_sparsity_pattern())
+    : communicator(communicator)
+    , shifted(mass.get_sparsity_pattern())
     , mass_factor(std::make_unique<SparseCholesky>(
         "the mass matrix of the pressure nodes"))
     , scale(1. / (M_PI * M_PI * alpha))
@@ -215,12 +261,21 @@ namespace PlateOnHalfspace
     const Rule rule = zolotarev_rule(c, largest);
     identity_weight = rule.identity_weight;
     top_weight      = rule.top_weight;
+    // Every rank has made M's factor for the power steps; only the chain's
+    // rank keeps it.
+    const unsigned int              rank = rank_in(communicator);
+    const std::vector<unsigned int> owners =
+      part_owners(rule.t.size(), n_ranks(communicator));
+    if (owners.back() != rank)
+      mass_factor.reset();
+    unsigned int own_poles = 0;
+    for (unsigned int j = 0; j < rule.t.size(); ++j)
+      own_poles += owners[j] == rank ? 1 : 0;
     // The poles' factors are the preconditioner's memory: refuse before
     // allocating them rather than be stopped by the system halfway.
     {
       const MemoryOnMachine memory =
-        memory_on_machine(rule.t.size() * analysis.factor_bytes(),
-                          communicator);
+        memory_on_machine(own_poles * analysis.factor_bytes(), communicator);
       if (!memory.fits)
         {
           std::ostringstream text;
@@ -244,6 +299,8 @@ namespace PlateOnHalfspace
         Pole &pole  = poles.emplace_back();
         pole.t      = rule.t[j];
         pole.weight = rule.weight[j];
+        if (owners[j] != rank)
+          continue;
         matrix.copy_from(shifted);
         matrix.add(pole.t * pole.t, mass);
         pole.factor = std::make_unique<SparseCholesky>(
@@ -260,16 +317,25 @@ namespace PlateOnHalfspace
   {
     // (M^{-1}A)^{1/2} M^{-1} s = (2/pi) [ identity_weight M^{-1} s
     //   - sum w_j t_j^2 (A + t_j^2 M)^{-1} s + top_weight M^{-1} A M^{-1} s ]
-    // The mass chain and the poles' solves are independent. With the BLAS
-    // on one thread (the contact solve's guard) they run as tasks side by
-    // side, each with its own factor and CHOLMOD workspace; with the BLAS's
-    // own threads, concurrent solves were 2.6 times slower than these one
+    // The mass chain and the poles' solves are independent: each rank
+    // applies the parts whose factors it holds. With the BLAS on one
+    // thread (the contact solve's guard) they run as tasks side by side,
+    // each with its own factor and CHOLMOD workspace; with the BLAS's own
+    // threads, concurrent solves were 2.6 times slower than these one
     // after the other (doc/performance.md, "With the fractional soil
-    // inverse"). Either way the parts are added in one fixed order, so the
-    // result has the same bits.
+    // inverse"). Either way a rank adds its parts in one fixed order, and
+    // the ranks' sums are joined on one rank and sent to all
+    // (sum_shared_entries_over_ranks()), so every rank has the same bits.
+    std::vector<unsigned int> own_parts;
+    for (unsigned int j = 0; j < poles.size(); ++j)
+      if (poles[j].factor)
+        own_parts.push_back(j);
+    if (mass_factor)
+      own_parts.push_back(poles.size());
     Vector<double>              inverse_mass, top;
     std::vector<Vector<double>> pole_solutions(poles.size());
-    const auto                  solve_part = [&](const unsigned int part) {
+    const auto                  solve_part = [&](const unsigned int k) {
+      const unsigned int part = own_parts[k];
       if (part < poles.size())
         solve_with(*poles[part].factor, s, pole_solutions[part]);
       else
@@ -280,28 +346,31 @@ namespace PlateOnHalfspace
           solve_with(*mass_factor, a_times, top);
         }
     };
-    const unsigned int n_parts = poles.size() + 1;
+    const unsigned int n_parts = own_parts.size();
     if (MultithreadInfo::n_threads() > 1 && SingleThreadedBlas::in_effect())
       {
         run_tasks(n_parts, solve_part);
       }
     else
-      for (unsigned int part = 0; part < n_parts; ++part)
-        solve_part(part);
+      for (unsigned int k = 0; k < n_parts; ++k)
+        solve_part(k);
     q.reinit(s.size());
-    q.add(identity_weight, inverse_mass, top_weight, top);
+    if (mass_factor)
+      q.add(identity_weight, inverse_mass, top_weight, top);
     for (unsigned int j = 0; j < poles.size(); ++j)
-      q.add(-poles[j].weight * poles[j].t * poles[j].t, pole_solutions[j]);
+      if (poles[j].factor)
+        q.add(-poles[j].weight * poles[j].t * poles[j].t, pole_solutions[j]);
+    sum_shared_entries_over_ranks(make_array_view(q), communicator);
     q *= scale;
   }
 
   std::size_t
   FractionalLaplaceInverse::memory_consumption() const
   {
-    std::size_t bytes =
-      shifted.memory_consumption() + mass_factor->memory_consumption();
+    std::size_t bytes = shifted.memory_consumption() +
+                        (mass_factor ? mass_factor->memory_consumption() : 0);
     for (const Pole &pole : poles)
-      bytes += pole.factor->memory_consumption();
+      bytes += pole.factor ? pole.factor->memory_consumption() : 0;
     return bytes;
   }
 } // namespace PlateOnHalfspace

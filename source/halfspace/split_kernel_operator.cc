@@ -784,13 +784,14 @@ namespace PlateOnHalfspace
       // index, and the column lists the pattern is copied from
       const std::size_t near_bytes =
         entries * (sizeof(double) + 2 * sizeof(unsigned int));
-      // The soil inverse: one factor per node of its rule and M's, and
-      // the shifted Laplacian.
+      // The soil inverse: one factor per node of its rule and M's, shared
+      // out over the ranks, and the shifted Laplacian.
       const std::size_t inverse_bytes =
         soil_inverse_used ?
-          FractionalLaplaceInverse::n_factors(
+          FractionalLaplaceInverse::n_factors_on_a_rank(
             plate_area,
-            FractionalLaplaceInverse::largest_eigenvalue_estimate(space)) *
+            FractionalLaplaceInverse::largest_eigenvalue_estimate(space),
+            n_ranks(communicator)) *
               inverse_analysis->factor_bytes() +
             laplace.memory_consumption() :
           0;

@@ -20,6 +20,11 @@
  * Cholesky factor of A + t^2 M; the fewest poles that keep the
  * approximation within about 7 % of the power at every eigenvalue
  * (fractional_laplace_inverse.cc, doc/formulation.md).
+ *
+ * On several processes the rule's parts (each pole's solve, and the two
+ * solves with M) are shared out over the ranks: each rank holds and
+ * applies the factors of its own parts only, and one sum over the ranks
+ * joins them (doc/parallel.md, "The soil inverse by its poles").
  */
 #ifndef plate_on_halfspace_halfspace_fractional_laplace_inverse_h
 #define plate_on_halfspace_halfspace_fractional_laplace_inverse_h
@@ -47,9 +52,10 @@ namespace PlateOnHalfspace
      * (SparseCholesky::analyze()), which every factor shares. Throws
      * StorageDoesNotFit (halfspace/memory_guard.h) before the poles'
      * factors are allocated if they need more than
-     * available_memory_bytes(); on several processes, each holding the
-     * whole inverse, the ranks of @p communicator decide that together
-     * (memory_on_machine()), and the constructor is collective.
+     * available_memory_bytes(); on several processes the ranks of
+     * @p communicator share the parts (part_owners()) and decide that
+     * together, each for its own factors (memory_on_machine()). The
+     * constructor and vmult() are collective.
      */
     FractionalLaplaceInverse(const SparseMatrix<double> &mass,
                              const SparseMatrix<double> &laplace,
@@ -75,6 +81,27 @@ namespace PlateOnHalfspace
     n_factors(const double area, const double largest_eigenvalue);
 
     /**
+     * The most sparse factors one of @p n_ranks ranks holds (n_factors()
+     * on one rank): what a storage's memory estimate per rank multiplies
+     * SparseCholesky::factor_bytes() by.
+     */
+    static unsigned int
+    n_factors_on_a_rank(const double       area,
+                        const double       largest_eigenvalue,
+                        const unsigned int n_ranks);
+
+    /**
+     * The rank that applies each part of a rule of @p n_poles poles on
+     * @p n_ranks ranks: entry l < n_poles for pole l's solve, entry
+     * n_poles for the mass chain M^{-1} s, M^{-1} A M^{-1} s. Each part
+     * goes to the rank with the least work so far (a pole one solve, the
+     * chain two), the lowest such rank on a tie: the ranks' shares of
+     * the solves differ by at most two.
+     */
+    static std::vector<unsigned int>
+    part_owners(const unsigned int n_poles, const unsigned int n_ranks);
+
+    /**
      * An estimate from above of the largest eigenvalue of M^{-1} L on
      * @p space, from its cells alone: twice the largest of a Q2 cell's
      * own, 60 (1/a^2 + 1/b^2) = 60 d^2 / area^2 on an a x b rectangle of
@@ -90,14 +117,23 @@ namespace PlateOnHalfspace
       return poles.size();
     }
 
+    /** The sparse factors this rank holds: its poles', and M's if it
+     *  applies the mass chain. */
+    unsigned int
+    n_factors_here() const;
+
   private:
+    /** One pole of the rule; its factor only on the rank that applies
+     *  it (nullptr elsewhere). */
     struct Pole
     {
       double                          t, weight;
       std::unique_ptr<SparseCholesky> factor;
     };
 
-    SparseMatrix<double>            shifted; ///< A = L + c M
+    MPI_Comm             communicator;
+    SparseMatrix<double> shifted; ///< A = L + c M
+    /** M's factor, kept only on the rank that applies the mass chain. */
     std::unique_ptr<SparseCholesky> mass_factor;
     std::vector<Pole>               poles;
     /** The weights of M^{-1} s and of M^{-1} A M^{-1} s (the tails). */
