@@ -64,8 +64,9 @@ namespace PlateOnHalfspace
   }
 
   void
-  DistributedSparseDirect::solve(const Vector<double> &f,
-                                 Vector<double>       &u) const
+  DistributedSparseDirect::solve_owned_rows(
+    const Vector<double> &f,
+    std::vector<double>  &owned_values) const
   {
     Assert(data != nullptr, ExcMessage("solve() before factorize()."));
     AssertDimension(f.size(), data->solved.size());
@@ -75,9 +76,39 @@ namespace PlateOnHalfspace
       rhs[i] = data->solved[i] ? f[i] : 0.;
     rhs.compress(VectorOperation::insert);
     data->solver.solve(solution, rhs);
-    u.reinit(f.size());
+    owned_values.resize(data->owned_rows.n_elements());
+    unsigned int k = 0;
     for (const auto i : data->owned_rows)
-      u[i] = data->solved[i] ? double(solution[i]) : 0.;
+      owned_values[k++] = data->solved[i] ? double(solution[i]) : 0.;
+  }
+
+  void
+  DistributedSparseDirect::solve(const Vector<double> &f,
+                                 Vector<double>       &u) const
+  {
+    std::vector<double> owned_values;
+    solve_owned_rows(f, owned_values);
+    u.reinit(f.size());
+    unsigned int k = 0;
+    for (const auto i : data->owned_rows)
+      u[i] = owned_values[k++];
     sum_over_ranks(u, data->communicator);
+  }
+
+  void
+  DistributedSparseDirect::solve_at(
+    const Vector<double>                       &f,
+    const std::vector<types::global_dof_index> &rows,
+    Vector<double>                             &values) const
+  {
+    std::vector<double> owned_values;
+    solve_owned_rows(f, owned_values);
+    values.reinit(rows.size());
+    for (unsigned int k = 0; k < rows.size(); ++k)
+      if (data->owned_rows.is_element(rows[k]))
+        values[k] = owned_values[data->owned_rows.index_within_set(rows[k])];
+    // each entry from its row's one owner and zeros: the same bits on
+    // every rank
+    sum_over_ranks(values, data->communicator);
   }
 } // namespace PlateOnHalfspace

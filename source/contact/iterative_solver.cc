@@ -237,11 +237,12 @@ namespace PlateOnHalfspace
       const Vector<double> q = extend_by_zero(x);
       Vector<double> forces(q.size()), plate_w, plate_settlement(q.size());
       soil.reinit(q.size());
-      Vector<double> unkept_response;
-      const auto     plate_part = [&]() {
+      const auto plate_part = [&]() {
         force_coupling.vmult(forces, q);
-        plate.foundation_flexibility(
-          forces, plate_w, plate_response ? *plate_response : unkept_response);
+        if (plate_response)
+          plate.foundation_flexibility(forces, plate_w, *plate_response);
+        else
+          plate.foundation_flexibility(forces, plate_w);
         test_coupling.vmult(plate_settlement, plate_w);
       };
       // The soil's product and the plate's triangular solves are

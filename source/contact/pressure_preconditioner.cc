@@ -244,23 +244,27 @@ namespace PlateOnHalfspace
       // y = D^{-1} (x - U (K + U^T D^{-1} U)^{-1} U^T D^{-1} x); off the
       // factored set only the springs, y = D^{-1} x.
       const unsigned int n = soil_diagonal.size();
-      Vector<double>     scaled(n), f, u;
+      Vector<double>     scaled(n), f, deflections;
       for (unsigned int i = 0; i < n; ++i)
         scaled[i] = x[i] * inverse_springs[i];
       spring_forces(scaled, f);
+      const auto &foundation_dofs = plate.get_foundation_dofs();
+      // the deflections at the foundation nodes: all that U needs
       if (distributed)
-        distributed->solve(f, u);
+        distributed->solve_at(f, foundation_dofs, deflections);
       else
         {
           std::vector<double> block(solved_dofs.size());
           for (unsigned int c = 0; c < solved_dofs.size(); ++c)
             block[c] = f[solved_dofs[c]];
           factor.solve(block, 1);
-          u.reinit(f.size());
+          Vector<double> u(f.size());
           for (unsigned int c = 0; c < solved_dofs.size(); ++c)
             u[solved_dofs[c]] = block[c];
+          deflections.reinit(foundation_dofs.size());
+          for (unsigned int j = 0; j < foundation_dofs.size(); ++j)
+            deflections[j] = u[foundation_dofs[j]];
         }
-      const auto &foundation_dofs = plate.get_foundation_dofs();
       y.reinit(n);
       for (unsigned int i = 0; i < n; ++i)
         {
@@ -268,7 +272,7 @@ namespace PlateOnHalfspace
           if (factored_set[i])
             for (auto b = test_coupling.begin(i); b != test_coupling.end(i);
                  ++b)
-              tested_deflection += b->value() * u[foundation_dofs[b->column()]];
+              tested_deflection += b->value() * deflections[b->column()];
           y[i] = (x[i] - tested_deflection) / soil_diagonal[i];
         }
     }

@@ -277,4 +277,22 @@ namespace PlateOnHalfspace
     for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
       y[i] = u[foundation_dofs[i]];
   }
+
+  void
+  PlateGeneralizedInverse::foundation_flexibility(const Vector<double> &x,
+                                                  Vector<double>       &y) const
+  {
+    if (!distributed)
+      {
+        Vector<double> u;
+        foundation_flexibility(x, y, u);
+        return;
+      }
+    Assert(factorized,
+           ExcMessage("PlateGeneralizedInverse::factorize() first."));
+    Vector<double> f(n_dofs);
+    for (unsigned int i = 0; i < foundation_dofs.size(); ++i)
+      f[foundation_dofs[i]] = x[i];
+    distributed->solve_at(f, foundation_dofs, y);
+  }
 } // namespace PlateOnHalfspace

@@ -70,8 +70,7 @@ namespace
                           2;
         }
     require("part_owners: every part on one rank of the range", one_owner);
-    require("part_owners: the ranks' solves differ by at most two",
-            balanced);
+    require("part_owners: the ranks' solves differ by at most two", balanced);
   }
 
   /** Three test vectors on @p n nodes. */
@@ -107,7 +106,7 @@ namespace
     deallog << name << ": " << n << " nodes on " << n_ranks << " ranks"
             << std::endl;
 
-    const unsigned int held = shared.n_factors_here();
+    const unsigned int held  = shared.n_factors_here();
     const unsigned int bound = FractionalLaplaceInverse::n_factors_on_a_rank(
       plate_area(scene),
       FractionalLaplaceInverse::largest_eigenvalue_estimate(scene.space),
@@ -134,8 +133,8 @@ namespace
         shared.vmult(q_shared, s);
         Vector<double> difference(q_shared);
         difference -= q_whole;
-        worst = std::max(worst,
-                         difference.linfty_norm() / q_whole.linfty_norm());
+        worst =
+          std::max(worst, difference.linfty_norm() / q_whole.linfty_norm());
         Vector<double> first_rank(q_shared);
         Utilities::MPI::broadcast(first_rank.data(), n, 0, world);
         first_rank -= q_shared;

@@ -7,7 +7,9 @@
  * Vectors in and out are whole on every rank, as the contact solvers hold
  * them: each rank hands MUMPS its own rows of the right-hand side, and the
  * solution's rows are summed over the ranks (each row comes from one rank
- * and zeros from the others, so every rank gets the same bits).
+ * and zeros from the others, so every rank gets the same bits). Where a
+ * caller needs a few rows of the solution only (the plate's deflections at
+ * the foundation nodes), solve_at() sums only those.
  */
 #ifndef plate_on_halfspace_base_distributed_sparse_direct_h
 #define plate_on_halfspace_base_distributed_sparse_direct_h
@@ -53,9 +55,22 @@ namespace PlateOnHalfspace
     void
     solve(const Vector<double> &f, Vector<double> &u) const;
 
+    /** @p values[k] = (A^{-1} f)[@p rows[k]], the same as solve()'s;
+     *  collective, and only these entries are summed over the ranks. */
+    void
+    solve_at(const Vector<double>                       &f,
+             const std::vector<types::global_dof_index> &rows,
+             Vector<double>                             &values) const;
+
   private:
     struct Data;
     std::unique_ptr<Data> data;
+
+    /** MUMPS's solution of f, each rank's own rows (zero off the solved
+     *  indices); collective. */
+    void
+    solve_owned_rows(const Vector<double> &f,
+                     std::vector<double>  &owned_values) const;
   };
 } // namespace PlateOnHalfspace
 

@@ -80,6 +80,11 @@ namespace PlateOnHalfspace
                            Vector<double>       &y,
                            Vector<double>       &u) const;
 
+    /** y = N K^+ N^T x alone: on several processes only the foundation
+     *  nodes' deflections are summed over the ranks, not the whole u. */
+    void
+    foundation_flexibility(const Vector<double> &x, Vector<double> &y) const;
+
     /** rigid_body_motions() of the plate. */
     const std::vector<Vector<double>> &
     rigid_motions() const
