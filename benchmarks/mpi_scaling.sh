@@ -22,7 +22,8 @@
 # With PARTS (numbers of processes, e.g. 1 2 4 8), one run per number, the
 # processes sharing the cores (--oversubscribe): how the block-Jacobi
 # preconditioner's conjugate gradient iterations grow with the number of
-# METIS parts, and each rank's memory with it. Its wall times mean nothing.
+# METIS parts, and each rank's memory with it. Its wall times mean nothing
+# where the processes outnumber the cores.
 # usage: [STORAGE=fft] bash benchmarks/mpi_scaling.sh [build/plate-on-halfspace] [N] [PARTS...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -102,12 +103,14 @@ if runs[0] != "serial":
     first = rows[runs[0]]
     print("| P | n | nodes per rank | active-set steps | CG its per step "
           "| CG its in all | last step | in all against P = %s "
+          "| wall [s] | factorisation [s] | contact solve [s] "
           "| largest rank's peak memory [MB] |" % runs[0])
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for p, r in rows.items():
         print(f"| {p} | {r['n']} | {min(r['split'])}–{max(r['split'])} "
               f"| {r['steps']} | {', '.join(map(str, r['cg']))} | {sum(r['cg'])} "
               f"| {r['cg'][-1]} | {sum(r['cg']) / sum(first['cg']):.2f} "
+              f"| {r['wall']:.1f} | {r['factorization']:.2f} | {r['solve']:.1f} "
               f"| {max(r['peaks']):.0f} |")
     sys.exit(0)
 print("| run | n | nodes per rank | wall [s] | integration [s] | compression [s] "
