@@ -19,8 +19,11 @@ namespace PlateOnHalfspace
     MPI_Comm                       communicator = MPI_COMM_SELF;
     std::vector<bool>              solved;
 
+    // the control neither logs its history nor its result: a direct
+    // solve's "convergence" would only fill deallog
     Data()
-      : solver(control,
+      : control(100, 1e-10, false, false)
+      , solver(control,
                TrilinosWrappers::SolverDirect::AdditionalData(false,
                                                               "Amesos_Mumps"))
     {}

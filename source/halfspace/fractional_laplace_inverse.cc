@@ -240,7 +240,7 @@ namespace PlateOnHalfspace
     // margin covers.
     double largest = c;
     {
-      Vector<double> v(n), av(n), next;
+      Vector<double> v(n), av(n), mv(n), next;
       for (unsigned int i = 0; i < n; ++i)
         v[i] = std::cos(0.37 * i) + 0.3 * std::sin(2.1 * double(i) * i);
       shifted.vmult(av, v);
@@ -254,9 +254,17 @@ namespace PlateOnHalfspace
           v = next;
           v /= norm;
           shifted.vmult(av, v);
-          largest = std::max(largest, (v * av) / mass.matrix_norm_square(v));
+          // v^T M v through a product and a Vector dot product, whose sums
+          // run in a fixed order (SparseMatrix::matrix_norm_square's
+          // parallel reduction does not)
+          mass.vmult(mv, v);
+          largest = std::max(largest, (v * av) / (v * mv));
         }
     }
+    // The ranks share out the rule's parts (part_owners()), so they must
+    // find the same rule: the same bound on every rank.
+    if (n_ranks(communicator) > 1)
+      largest = Utilities::MPI::max(largest, communicator);
 
     const Rule rule = zolotarev_rule(c, largest);
     identity_weight = rule.identity_weight;
@@ -283,9 +291,12 @@ namespace PlateOnHalfspace
                << "Contact/Preconditioner = soil inverse with Foundation "
                   "operator/Storage = fft: the fractional soil inverse's "
                << rule.t.size() << " sparse factors on " << n
-               << " pressure nodes need about "
-               << rule.t.size() * analysis.factor_bytes() / 1073741824.
-               << " GiB" << machine_shortfall_text(memory) << ' ';
+               << " pressure nodes";
+          if (n_ranks(communicator) > 1)
+            text << " (" << own_poles << " of them on this process)";
+          text << " need about "
+               << own_poles * analysis.factor_bytes() / 1073741824. << " GiB"
+               << machine_shortfall_text(memory) << ' ';
           throw StorageDoesNotFit(
             text.str(),
             "Use Contact/Preconditioner = plate on springs, or reduce the "
