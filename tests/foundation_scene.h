@@ -6,6 +6,10 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+#include <plate_on_halfspace/base/sparse_cholesky.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
@@ -74,6 +78,43 @@ namespace TestTools
                                       parameters.foundation.poissons_ratio),
       parameters.discretization.singular_quadrature_order};
   }
+
+  /** The quarter of parameters/flexible-square.prm (Galerkin, mirror
+   *  images in both centre lines) with @p cells x @p cells subdivisions. */
+  inline FoundationScene
+  flexible_square_quarter(const unsigned int cells)
+  {
+    return make_foundation_scene(
+      "flexible-square.prm",
+      "subsection Discretization\n set Flexibility = galerkin\n"
+      " set Subdivisions x = " +
+        std::to_string(cells) + "\n set Subdivisions y = " +
+        std::to_string(cells) + "\n set Symmetry = xy\nend\n");
+  }
+
+  /** The plate's area with its mirror images, as the soil inverse takes
+   *  it. */
+  inline double
+  area_with_images(const FoundationScene &scene)
+  {
+    return scene.space.area() * scene.space.symmetry.n_copies();
+  }
+
+  /** The soil inverse's matrices on a scene's nodes: M and L on one
+   *  pattern, and the symbolic analysis its factors share. */
+  struct PressureSpaceMatrices
+  {
+    explicit PressureSpaceMatrices(const FoundationScene &scene)
+    {
+      scene.space.assemble_mass_matrix({}, sparsity, mass);
+      scene.space.assemble_laplace_matrix(sparsity, laplace);
+      analysis.analyze(mass);
+    }
+
+    SparsityPattern      sparsity;
+    SparseMatrix<double> mass, laplace;
+    SparseCholesky       analysis{"L + c M"};
+  };
 } // namespace TestTools
 
 #endif

@@ -45,27 +45,22 @@ namespace
 {
   using Scene = TestTools::FoundationScene;
 
-  double
-  plate_area(const Scene &scene)
-  {
-    return scene.space.area() * scene.space.symmetry.n_copies();
-  }
+  using TestTools::area_with_images;
+  using TestTools::flexible_square_quarter;
 
   /** M and L on the scene's nodes, and B from them. */
-  struct Setup
+  struct Setup : TestTools::PressureSpaceMatrices
   {
     explicit Setup(const Scene &scene)
-    {
-      scene.space.assemble_mass_matrix({}, sparsity, mass);
-      scene.space.assemble_laplace_matrix(sparsity, laplace);
-      analysis.analyze(mass);
-      inverse = std::make_unique<FractionalLaplaceInverse>(
-        mass, laplace, scene.alpha, plate_area(scene), analysis);
-    }
+      : PressureSpaceMatrices(scene)
+      , inverse(
+          std::make_unique<FractionalLaplaceInverse>(mass,
+                                                     laplace,
+                                                     scene.alpha,
+                                                     area_with_images(scene),
+                                                     analysis))
+    {}
 
-    SparsityPattern                           sparsity;
-    SparseMatrix<double>                      mass, laplace;
-    SparseCholesky                            analysis{"L + c M"};
     std::unique_ptr<FractionalLaplaceInverse> inverse;
   };
 
@@ -103,7 +98,7 @@ namespace
     const unsigned int              n       = m.mass.m();
     const FractionalLaplaceInverse &inverse = *m.inverse;
     // A = L + c M with the class's c: the shift only moves the spectrum.
-    const double             c = 16. / (M_PI * plate_area(scene));
+    const double             c = 16. / (M_PI * area_with_images(scene));
     LAPACKFullMatrix<double> a = dense(m.laplace), mass = dense(m.mass);
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
@@ -145,7 +140,8 @@ namespace
                    "of M^-1 L and within 4 times it",
             estimate >= largest && estimate <= 4 * largest);
     require(name + ": the memory estimate counts at least the factors made",
-            FractionalLaplaceInverse::n_factors(plate_area(scene), estimate) >=
+            FractionalLaplaceInverse::n_factors(area_with_images(scene),
+                                                estimate) >=
               inverse.n_poles() + 1);
   }
 
@@ -204,18 +200,13 @@ namespace
   void
   check_memory_guard(const Scene &scene)
   {
-    SparsityPattern      sparsity;
-    SparseMatrix<double> mass, laplace;
-    scene.space.assemble_mass_matrix({}, sparsity, mass);
-    scene.space.assemble_laplace_matrix(sparsity, laplace);
-    SparseCholesky analysis("L + c M");
-    analysis.analyze(mass);
+    const TestTools::PressureSpaceMatrices m(scene);
     setenv("PLATE_ON_HALFSPACE_MEMORY_LIMIT", "1K", 1);
     std::string message;
     try
       {
         FractionalLaplaceInverse(
-          mass, laplace, scene.alpha, plate_area(scene), analysis);
+          m.mass, m.laplace, scene.alpha, area_with_images(scene), m.analysis);
       }
     catch (const StorageDoesNotFit &shortfall)
       {
@@ -297,23 +288,13 @@ namespace
         "\n set Symmetry = none\nend\n");
   }
 
-  Scene
-  quarter_square(const unsigned int cells)
-  {
-    return TestTools::make_foundation_scene(
-      "flexible-square.prm",
-      "subsection Discretization\n set Flexibility = galerkin\n"
-      " set Subdivisions x = " +
-        std::to_string(cells) + "\n set Subdivisions y = " +
-        std::to_string(cells) + "\n set Symmetry = xy\nend\n");
-  }
 } // namespace
 
 int
 main()
 {
   initlog();
-  check_rule("quarter square", quarter_square(32));
+  check_rule("quarter square", flexible_square_quarter(32));
   check_rule("graded rectangle",
              TestTools::make_foundation_scene(
                "example2-bonded.prm",
@@ -321,7 +302,9 @@ main()
                " set Subdivisions y = 8\n set Symmetry = none\nend\n",
                4.));
   check_growth("rectangle", rectangle(12, 8), rectangle(24, 16));
-  check_growth("quarter square", quarter_square(16), quarter_square(32));
-  check_memory_guard(quarter_square(8));
+  check_growth("quarter square",
+               flexible_square_quarter(16),
+               flexible_square_quarter(32));
+  check_memory_guard(flexible_square_quarter(8));
   check_shared_analysis();
 }

@@ -39,11 +39,8 @@ namespace
 {
   using Scene = TestTools::FoundationScene;
 
-  double
-  plate_area(const Scene &scene)
-  {
-    return scene.space.area() * scene.space.symmetry.n_copies();
-  }
+  using TestTools::area_with_images;
+  using TestTools::flexible_square_quarter;
 
   void
   check_part_owners()
@@ -90,25 +87,28 @@ namespace
   void
   check_scene(const std::string &name, const Scene &scene)
   {
-    const MPI_Comm       world   = MPI_COMM_WORLD;
-    const unsigned int   n_ranks = Utilities::MPI::n_mpi_processes(world);
-    SparsityPattern      sparsity;
-    SparseMatrix<double> mass, laplace;
-    scene.space.assemble_mass_matrix({}, sparsity, mass);
-    scene.space.assemble_laplace_matrix(sparsity, laplace);
-    SparseCholesky analysis("L + c M");
-    analysis.analyze(mass);
-    const FractionalLaplaceInverse whole(
-      mass, laplace, scene.alpha, plate_area(scene), analysis, MPI_COMM_SELF);
-    const FractionalLaplaceInverse shared(
-      mass, laplace, scene.alpha, plate_area(scene), analysis, world);
-    const unsigned int n = mass.m();
+    const MPI_Comm     world   = MPI_COMM_WORLD;
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(world);
+    const TestTools::PressureSpaceMatrices m(scene);
+    const FractionalLaplaceInverse         whole(m.mass,
+                                         m.laplace,
+                                         scene.alpha,
+                                         area_with_images(scene),
+                                         m.analysis,
+                                         MPI_COMM_SELF);
+    const FractionalLaplaceInverse         shared(m.mass,
+                                          m.laplace,
+                                          scene.alpha,
+                                          area_with_images(scene),
+                                          m.analysis,
+                                          world);
+    const unsigned int                     n = m.mass.m();
     deallog << name << ": " << n << " nodes on " << n_ranks << " ranks"
             << std::endl;
 
     const unsigned int held  = shared.n_factors_here();
     const unsigned int bound = FractionalLaplaceInverse::n_factors_on_a_rank(
-      plate_area(scene),
+      area_with_images(scene),
       FractionalLaplaceInverse::largest_eigenvalue_estimate(scene.space),
       n_ranks);
     require(name + ": the factors held over the ranks sum to one "
@@ -150,21 +150,16 @@ namespace
   void
   check_memory_guard(const Scene &scene)
   {
-    SparsityPattern      sparsity;
-    SparseMatrix<double> mass, laplace;
-    scene.space.assemble_mass_matrix({}, sparsity, mass);
-    scene.space.assemble_laplace_matrix(sparsity, laplace);
-    SparseCholesky analysis("L + c M");
-    analysis.analyze(mass);
+    const TestTools::PressureSpaceMatrices m(scene);
     setenv("PLATE_ON_HALFSPACE_MEMORY_LIMIT", "1K", 1);
     unsigned int refused = 0;
     try
       {
-        FractionalLaplaceInverse(mass,
-                                 laplace,
+        FractionalLaplaceInverse(m.mass,
+                                 m.laplace,
                                  scene.alpha,
-                                 plate_area(scene),
-                                 analysis,
+                                 area_with_images(scene),
+                                 m.analysis,
                                  MPI_COMM_WORLD);
       }
     catch (const StorageDoesNotFit &)
@@ -177,16 +172,6 @@ namespace
             Utilities::MPI::min(refused, MPI_COMM_WORLD) == 1u);
   }
 
-  Scene
-  quarter_square(const unsigned int cells)
-  {
-    return TestTools::make_foundation_scene(
-      "flexible-square.prm",
-      "subsection Discretization\n set Flexibility = galerkin\n"
-      " set Subdivisions x = " +
-        std::to_string(cells) + "\n set Subdivisions y = " +
-        std::to_string(cells) + "\n set Symmetry = xy\nend\n");
-  }
 } // namespace
 
 int
@@ -195,12 +180,12 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog_on_first_rank(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
   check_part_owners();
-  check_scene("quarter square", quarter_square(32));
+  check_scene("quarter square", flexible_square_quarter(32));
   check_scene("graded rectangle",
               TestTools::make_foundation_scene(
                 "example2-bonded.prm",
                 "subsection Discretization\n set Subdivisions x = 12\n"
                 " set Subdivisions y = 8\n set Symmetry = none\nend\n",
                 4.));
-  check_memory_guard(quarter_square(8));
+  check_memory_guard(flexible_square_quarter(8));
 }
