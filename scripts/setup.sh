@@ -11,10 +11,10 @@ cd "$(dirname "$0")/.."
 # deal.II 9.4 (with Trilinos, UMFPACK, LAPACK), OpenBLAS (not optional: the
 # reference BLAS makes every dense factorisation ~20x slower), hmat-oss (the
 # hierarchical-matrix flexibility), FFTW (the split-kernel storage's far
-# field), numdiff (the deal.II test macros need
-# it), nlohmann-json (summary.json), gnuplot (plots).
+# field), MUMPS (the plate on several processes), numdiff (the deal.II
+# test macros need it), nlohmann-json (summary.json), gnuplot (plots).
 packages="cmake make g++ perl libdeal.ii-dev libopenblas0-pthread
-          libhmat-oss-dev libfftw3-dev numdiff nlohmann-json3-dev
+          libhmat-oss-dev libfftw3-dev libmumps-dev numdiff nlohmann-json3-dev
           gnuplot-nox python3"
 missing=""
 for p in $packages; do

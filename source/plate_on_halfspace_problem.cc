@@ -154,8 +154,7 @@ namespace PlateOnHalfspace
         "bytes",
         "memory held by the half-space operator's matrices and by the "
         "contact solver's factor of the flexibility, or of the plate on "
-        "springs (on several processes: rank 0's share; the springs' MUMPS "
-        "factor is not counted)",
+        "springs (on several processes: rank 0's share)",
         ResultKind::count},
        {{"foundation_nodes_per_rank"},
         "–",

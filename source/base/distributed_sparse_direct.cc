@@ -1,32 +1,77 @@
 #include <deal.II/base/exceptions.h>
 
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/trilinos_solver.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/trilinos_vector.h>
-
 #include <plate_on_halfspace/base/distributed_sparse_direct.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 
+#include <dmumps_c.h>
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
 namespace PlateOnHalfspace
 {
+  namespace
+  {
+    // MUMPS's job codes and its one-based control arrays (its user guide)
+    constexpr MUMPS_INT initialise_job = -1, end_job = -2, analyse_job = 1,
+                        factorise_job = 2, solve_job = 3;
+
+    MUMPS_INT &
+    icntl(DMUMPS_STRUC_C &id, const unsigned int i)
+    {
+      return id.icntl[i - 1];
+    }
+
+    MUMPS_INT
+    infog(const DMUMPS_STRUC_C &id, const unsigned int i)
+    {
+      return id.infog[i - 1];
+    }
+  } // namespace
+
+  /**
+   * MUMPS called directly rather than through Amesos: Amesos_Mumps always
+   * factorises LU (its SYM is fixed at 0) and scatters the solution over
+   * the ranks' rows after every solve, which solve_at() would then gather
+   * again (doc/parallel.md, "The plate").
+   */
   struct DistributedSparseDirect::Data
   {
-    TrilinosWrappers::SparseMatrix matrix;
-    SolverControl                  control;
-    TrilinosWrappers::SolverDirect solver;
-    IndexSet                       owned_rows;
-    MPI_Comm                       communicator = MPI_COMM_SELF;
-    std::vector<bool>              solved;
+    DMUMPS_STRUC_C    id{};
+    bool              initialised  = false;
+    MPI_Comm          communicator = MPI_COMM_SELF;
+    unsigned int      rank         = 0;
+    std::vector<bool> solved;
+    // this rank's entries of the upper triangle, one-based, which MUMPS
+    // reads again in the factorisation
+    std::vector<MUMPS_INT> rows, columns;
+    std::vector<double>    values;
+    // the right-hand side and then the solution, whole on rank 0 only
+    mutable std::vector<double> rhs;
 
-    // the control neither logs its history nor its result: a direct
-    // solve's "convergence" would only fill deallog
-    Data()
-      : control(100, 1e-10, false, false)
-      , solver(control,
-               TrilinosWrappers::SolverDirect::AdditionalData(false,
-                                                              "Amesos_Mumps"))
-    {}
+    ~Data()
+    {
+      if (initialised)
+        {
+          id.job = end_job;
+          dmumps_c(&id);
+        }
+    }
+
+    /** Runs @p job; throws on every rank (MUMPS's INFOG is global) if it
+     *  failed. */
+    void
+    run(const MUMPS_INT job, const char *what)
+    {
+      id.job = job;
+      dmumps_c(&id);
+      AssertThrow(infog(id, 1) >= 0,
+                  ExcMessage(
+                    std::string("MUMPS could not ") + what +
+                    " the plate (INFOG(1) = " + std::to_string(infog(id, 1)) +
+                    ", INFOG(2) = " + std::to_string(infog(id, 2)) + ")."));
+    }
   };
 
   DistributedSparseDirect::DistributedSparseDirect() = default;
@@ -41,61 +86,123 @@ namespace PlateOnHalfspace
   {
     AssertDimension(solved.size(), matrix.m());
     AssertDimension(owned_rows.size(), matrix.m());
+    AssertThrow(matrix.m() < static_cast<std::size_t>(
+                               std::numeric_limits<MUMPS_INT>::max()),
+                ExcMessage("The plate has more unknowns than MUMPS's "
+                           "integers count."));
     data               = std::make_unique<Data>();
-    data->owned_rows   = owned_rows;
     data->communicator = communicator;
+    data->rank         = rank_in(communicator);
     data->solved       = solved;
-    // Every stored entry is kept (no drop tolerance): the same matrix as
-    // the one process's factorisation.
-    data->matrix.reinit(owned_rows, owned_rows, matrix, communicator, 0.);
-    std::vector<TrilinosWrappers::SparseMatrix::size_type> removed;
+
+    // The upper triangle of the rows and columns solved, every stored
+    // entry kept (the one process's CHOLMOD factor takes the same); an
+    // identity row for each index not solved, so that its solution is
+    // zero. Each rank gives its own rows.
     for (const auto i : owned_rows)
-      if (!solved[i])
-        removed.push_back(i);
-    data->matrix.clear_rows(removed, 1.);
-    try
       {
-        data->solver.initialize(data->matrix);
+        if (!solved[i])
+          {
+            data->rows.push_back(i + 1);
+            data->columns.push_back(i + 1);
+            data->values.push_back(1.);
+            continue;
+          }
+        for (auto entry = matrix.begin(i); entry != matrix.end(i); ++entry)
+          if (entry->column() >= i && solved[entry->column()])
+            {
+              data->rows.push_back(i + 1);
+              data->columns.push_back(entry->column() + 1);
+              data->values.push_back(entry->value());
+            }
       }
-    catch (const std::exception &e)
+
+    DMUMPS_STRUC_C &id = data->id;
+    id.comm_fortran    = static_cast<MUMPS_INT>(MPI_Comm_c2f(communicator));
+    id.par             = 1; // rank 0 takes part in the work
+    id.sym             = 1; // symmetric positive definite: LDL^T, no pivoting
+    data->run(initialise_job, "start for");
+    data->initialised = true;
+    // silent: failures come back through INFOG and become exceptions
+    for (unsigned int i = 1; i <= 3; ++i)
+      icntl(id, i) = -1;
+    icntl(id, 4)  = 0;
+    icntl(id, 5)  = 0; // assembled entries
+    icntl(id, 18) = 3; // each rank gives its own entries
+    icntl(id, 20) = 0; // dense right-hand side on rank 0
+    icntl(id, 21) = 0; // the solution gathered on rank 0
+    id.n          = matrix.m();
+    id.nnz_loc    = data->rows.size();
+    id.irn_loc    = data->rows.data();
+    id.jcn_loc    = data->columns.data();
+    id.a_loc      = data->values.data();
+    data->run(analyse_job, "analyse");
+    // MUMPS sizes its workspace from the analysis and asks for more when
+    // the factorisation needs it (INFOG(1) = -9): a few tries, each with
+    // twice the margin
+    for (unsigned int attempt = 0;; ++attempt)
       {
-        AssertThrow(false,
-                    ExcMessage(std::string("MUMPS (Trilinos Amesos) could "
-                                           "not factorise the plate: ") +
-                               e.what()));
+        id.job = factorise_job;
+        dmumps_c(&id);
+        if (infog(id, 1) != -9 || attempt == 3)
+          break;
+        icntl(id, 14) = 2 * std::max<MUMPS_INT>(icntl(id, 14), 20);
       }
+    AssertThrow(infog(id, 1) >= 0,
+                ExcMessage("MUMPS could not factorise the plate (INFOG(1) = " +
+                           std::to_string(infog(id, 1)) + ", INFOG(2) = " +
+                           std::to_string(infog(id, 2)) + ")."));
+    // without pivoting a matrix that is not positive definite shows as
+    // negative pivots rather than as a failure
+    AssertThrow(infog(id, 12) == 0,
+                ExcMessage("MUMPS met " + std::to_string(infog(id, 12)) +
+                           " negative pivots: the matrix is not positive "
+                           "definite."));
+  }
+
+  std::size_t
+  DistributedSparseDirect::memory_consumption() const
+  {
+    if (data == nullptr)
+      return 0;
+    // MUMPS gives a count above 2^31 as minus its millions
+    const auto entries = [](const MUMPS_INT count) -> std::size_t {
+      return count >= 0 ? std::size_t(count) : std::size_t(-count) * 1000000;
+    };
+    return entries(data->id.info[8]) * sizeof(double) +
+           entries(data->id.info[9]) * sizeof(MUMPS_INT) +
+           data->values.size() * (sizeof(double) + 2 * sizeof(MUMPS_INT));
   }
 
   void
-  DistributedSparseDirect::solve_owned_rows(
-    const Vector<double> &f,
-    std::vector<double>  &owned_values) const
+  DistributedSparseDirect::solve_on_first_rank(const Vector<double> &f) const
   {
     Assert(data != nullptr, ExcMessage("solve() before factorize()."));
     AssertDimension(f.size(), data->solved.size());
-    TrilinosWrappers::MPI::Vector rhs(data->owned_rows, data->communicator),
-      solution(data->owned_rows, data->communicator);
-    for (const auto i : data->owned_rows)
-      rhs[i] = data->solved[i] ? f[i] : 0.;
-    rhs.compress(VectorOperation::insert);
-    data->solver.solve(solution, rhs);
-    owned_values.resize(data->owned_rows.n_elements());
-    unsigned int k = 0;
-    for (const auto i : data->owned_rows)
-      owned_values[k++] = data->solved[i] ? double(solution[i]) : 0.;
+    DMUMPS_STRUC_C &id = data->id;
+    if (data->rank == 0)
+      {
+        data->rhs.resize(f.size());
+        for (unsigned int i = 0; i < f.size(); ++i)
+          data->rhs[i] = data->solved[i] ? f[i] : 0.;
+        id.rhs  = data->rhs.data();
+        id.nrhs = 1;
+        id.lrhs = f.size();
+      }
+    data->run(solve_job, "solve for");
   }
 
   void
   DistributedSparseDirect::solve(const Vector<double> &f,
                                  Vector<double>       &u) const
   {
-    std::vector<double> owned_values;
-    solve_owned_rows(f, owned_values);
+    solve_on_first_rank(f);
     u.reinit(f.size());
-    unsigned int k = 0;
-    for (const auto i : data->owned_rows)
-      u[i] = owned_values[k++];
-    sum_over_ranks(u, data->communicator);
+    if (data->rank == 0)
+      for (unsigned int i = 0; i < f.size(); ++i)
+        u[i] = data->solved[i] ? data->rhs[i] : 0.;
+    // rank 0's bits on every rank
+    broadcast_from_first_rank(make_array_view(u), data->communicator);
   }
 
   void
@@ -104,14 +211,11 @@ namespace PlateOnHalfspace
     const std::vector<types::global_dof_index> &rows,
     Vector<double>                             &values) const
   {
-    std::vector<double> owned_values;
-    solve_owned_rows(f, owned_values);
+    solve_on_first_rank(f);
     values.reinit(rows.size());
-    for (unsigned int k = 0; k < rows.size(); ++k)
-      if (data->owned_rows.is_element(rows[k]))
-        values[k] = owned_values[data->owned_rows.index_within_set(rows[k])];
-    // each entry from its row's one owner and zeros: the same bits on
-    // every rank
-    sum_over_ranks(values, data->communicator);
+    if (data->rank == 0)
+      for (unsigned int k = 0; k < rows.size(); ++k)
+        values[k] = data->solved[rows[k]] ? data->rhs[rows[k]] : 0.;
+    broadcast_from_first_rank(make_array_view(values), data->communicator);
   }
 } // namespace PlateOnHalfspace

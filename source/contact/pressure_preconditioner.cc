@@ -88,9 +88,10 @@ namespace PlateOnHalfspace
       std::size_t
       memory_consumption() const override
       {
-        // MUMPS's factor on several processes is not counted (its size is
-        // not exposed through Amesos)
-        return factor.memory_consumption() + sparsity.memory_consumption() +
+        // on several processes this rank's share of MUMPS's factor
+        return factor.memory_consumption() +
+               (distributed ? distributed->memory_consumption() : 0) +
+               sparsity.memory_consumption() +
                supported_plate.memory_consumption() +
                soil_diagonal.memory_consumption() *
                  3; // the diagonal, D^{-1} and the set

@@ -1,5 +1,5 @@
 // The distributed sparse direct solver (base/distributed_sparse_direct.h:
-// MUMPS through Trilinos Amesos) on 3 processes, on a symmetric positive
+// MUMPS's LDL^T) on 3 processes, on a symmetric positive
 // definite band matrix of 300 rows split in three unequal blocks of rows,
 // with every 37th row not solved (its row removed, as the plate's pinned
 // DoFs are):
@@ -8,7 +8,12 @@
 //    rows not solved, and the same bits on every rank;
 //  - solve_at() on rows of every rank, a row asked for twice, rows not
 //    solved and the first and last rows: the same bits as solve() at
-//    those rows, on every rank; and on no rows at all, an empty result.
+//    those rows, on every rank; and on no rows at all, an empty result;
+//  - memory_consumption() over the ranks between the upper triangle's
+//    values and a dense factor's;
+//  - all rows on the last rank and none on the others: the same solution;
+//  - a diagonal entry made negative: every rank refuses the matrix as not
+//    positive definite.
 // The verdicts only are printed.
 
 #include <deal.II/base/mpi.h>
@@ -20,6 +25,7 @@
 #include <plate_on_halfspace/base/distributed_sparse_direct.h>
 
 #include <cmath>
+#include <string>
 
 #include "../tests.h"
 
@@ -111,4 +117,51 @@ main(int argc, char **argv)
   solver.solve_at(f, {}, none);
   require("solve_at: no rows, no values",
           Utilities::MPI::max(none.size(), world) == 0u);
+
+  // The factor holds at least the solved rows' upper triangle (no
+  // cancellation fills a band matrix's factor with zeros), and not more
+  // than a dense one with its indices.
+  std::size_t upper = 0;
+  for (unsigned int i = 0; i < n; ++i)
+    if (solved[i])
+      for (auto e = matrix.begin(i); e != matrix.end(i); ++e)
+        upper += e->column() >= i && solved[e->column()];
+  const std::size_t held =
+    Utilities::MPI::sum(solver.memory_consumption(), world);
+  require("memory_consumption: over the ranks, at least the upper triangle's "
+          "values and at most a dense factor's",
+          held >= upper * sizeof(double) && held <= 3 * n * n * sizeof(double));
+
+  // every row on the last rank, none on the others: the same solution
+  IndexSet all_on_last(n);
+  if (rank + 1 == n_ranks)
+    all_on_last.add_range(0, n);
+  DistributedSparseDirect on_last;
+  on_last.factorize(matrix, solved, all_on_last, world);
+  Vector<double> u_on_last;
+  on_last.solve(f, u_on_last);
+  u_on_last -= u;
+  require("ranks without rows: the solution within 1e-14 of |u| of the split "
+          "rows'",
+          Utilities::MPI::max(u_on_last.linfty_norm(), world) <=
+            1e-14 * u.linfty_norm());
+
+  // one diagonal entry made negative: an indefinite matrix, which every
+  // rank refuses
+  SparseMatrix<double> indefinite(pattern);
+  indefinite.copy_from(matrix);
+  indefinite.set(150, 150, -4.);
+  bool refused = false;
+  try
+    {
+      DistributedSparseDirect rejecting;
+      rejecting.factorize(indefinite, solved, owned, world);
+    }
+  catch (const ExceptionBase &e)
+    {
+      refused = std::string(e.what()).find("not positive definite") !=
+                std::string::npos;
+    }
+  require("an indefinite matrix: refused on every rank, saying so",
+          Utilities::MPI::min(refused ? 1u : 0u, world) == 1u);
 }

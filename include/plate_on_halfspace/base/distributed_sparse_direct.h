@@ -1,15 +1,15 @@
 /**
- * A distributed sparse direct solver: MUMPS through Trilinos' Amesos, on a
- * matrix split by rows over the ranks of a communicator (doc/parallel.md,
- * "The plate"). The plate's stiffness of a run on several processes is
- * factorised here; one process keeps CHOLMOD (sparse_cholesky.h).
+ * A distributed sparse direct solver: MUMPS's LDL^T factorisation of a
+ * symmetric positive definite matrix split by rows over the ranks of a
+ * communicator (doc/parallel.md, "The plate"). The plate's stiffness of a
+ * run on several processes is factorised here; one process keeps CHOLMOD
+ * (sparse_cholesky.h).
  *
  * Vectors in and out are whole on every rank, as the contact solvers hold
- * them: each rank hands MUMPS its own rows of the right-hand side, and the
- * solution's rows are summed over the ranks (each row comes from one rank
- * and zeros from the others, so every rank gets the same bits). Where a
- * caller needs a few rows of the solution only (the plate's deflections at
- * the foundation nodes), solve_at() sums only those.
+ * them: MUMPS takes the right-hand side on rank 0 and gathers the solution
+ * there, and rank 0 sends it to the others, so every rank gets the same
+ * bits. Where a caller needs a few rows of the solution only (the plate's
+ * deflections at the foundation nodes), solve_at() sends only those.
  */
 #ifndef plate_on_halfspace_base_distributed_sparse_direct_h
 #define plate_on_halfspace_base_distributed_sparse_direct_h
@@ -43,7 +43,7 @@ namespace PlateOnHalfspace
      * rows and their right-hand side zero, so their solution is zero. Each
      * rank contributes the rows @p owned_rows (a partition of all rows
      * over @p communicator). Collective; throws ExcMessage if MUMPS fails
-     * (a singular matrix).
+     * (a matrix that is not positive definite: a negative pivot).
      */
     void
     factorize(const SparseMatrix<double> &matrix,
@@ -56,21 +56,25 @@ namespace PlateOnHalfspace
     solve(const Vector<double> &f, Vector<double> &u) const;
 
     /** @p values[k] = (A^{-1} f)[@p rows[k]], the same as solve()'s;
-     *  collective, and only these entries are summed over the ranks. */
+     *  collective, and only these entries are sent to the other ranks. */
     void
     solve_at(const Vector<double>                       &f,
              const std::vector<types::global_dof_index> &rows,
              Vector<double>                             &values) const;
 
+    /** Bytes of this rank's share of the factor (MUMPS's INFO(9) and
+     *  INFO(10)) and of the entries it gave MUMPS; 0 before factorize(). */
+    std::size_t
+    memory_consumption() const;
+
   private:
     struct Data;
     std::unique_ptr<Data> data;
 
-    /** MUMPS's solution of f, each rank's own rows (zero off the solved
-     *  indices); collective. */
+    /** MUMPS's solution of f, zero off the solved indices, on rank 0
+     *  (Data::rhs); collective. */
     void
-    solve_owned_rows(const Vector<double> &f,
-                     std::vector<double>  &owned_values) const;
+    solve_on_first_rank(const Vector<double> &f) const;
   };
 } // namespace PlateOnHalfspace
 

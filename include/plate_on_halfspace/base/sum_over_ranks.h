@@ -49,6 +49,21 @@ namespace PlateOnHalfspace
                                 view);
   }
 
+  /** Rank 0's @p v on every rank of @p communicator, in place. */
+  inline void
+  broadcast_from_first_rank(const dealii::ArrayView<double> &v,
+                            const MPI_Comm                   communicator)
+  {
+    if (n_ranks(communicator) == 1 || v.size() == 0)
+      return;
+    const int count = static_cast<int>(v.size());
+    AssertThrow(static_cast<std::size_t>(count) == v.size(),
+                dealii::ExcMessage("broadcast_from_first_rank: more "
+                                   "entries than one MPI message holds"));
+    const int error = MPI_Bcast(v.data(), count, MPI_DOUBLE, 0, communicator);
+    AssertThrowMPI(error);
+  }
+
   /**
    * @p v summed over the ranks of @p communicator, in place, where
    * several ranks hold parts of one entry: summed on rank 0 and broadcast,
@@ -74,8 +89,7 @@ namespace PlateOnHalfspace
                            0,
                            communicator);
     AssertThrowMPI(error);
-    error = MPI_Bcast(v.data(), count, MPI_DOUBLE, 0, communicator);
-    AssertThrowMPI(error);
+    broadcast_from_first_rank(v, communicator);
   }
 } // namespace PlateOnHalfspace
 
