@@ -6,6 +6,7 @@
 #include <dmumps_c.h>
 
 #include <algorithm>
+#include <exception>
 #include <limits>
 #include <string>
 
@@ -52,7 +53,11 @@ namespace PlateOnHalfspace
 
     ~Data()
     {
-      if (initialised)
+      // Ending MUMPS is collective. A rank that unwinds alone is on its
+      // way to MPI_Abort (doc/parallel.md, "Choices and their reasons"),
+      // where waiting for the others would hang it: it leaves MUMPS's
+      // memory to the end of the process instead.
+      if (initialised && std::uncaught_exceptions() == 0)
         {
           id.job = end_job;
           dmumps_c(&id);
@@ -138,26 +143,36 @@ namespace PlateOnHalfspace
     id.a_loc      = data->values.data();
     data->run(analyse_job, "analyse");
     // MUMPS sizes its workspace from the analysis and asks for more when
-    // the factorisation needs it (INFOG(1) = -9): a few tries, each with
-    // twice the margin
+    // the factorisation needs it (INFOG(1) = -8, -9: its integer and real
+    // workspace; -17, -20: its send and receive buffers): a few tries,
+    // each with twice the margin
+    const auto needs_more_workspace = [&id]() {
+      const MUMPS_INT error = infog(id, 1);
+      return error == -8 || error == -9 || error == -17 || error == -20;
+    };
     for (unsigned int attempt = 0;; ++attempt)
       {
         id.job = factorise_job;
         dmumps_c(&id);
-        if (infog(id, 1) != -9 || attempt == 3)
+        if (!needs_more_workspace() || attempt == 3)
           break;
         icntl(id, 14) = 2 * std::max<MUMPS_INT>(icntl(id, 14), 20);
       }
-    AssertThrow(infog(id, 1) >= 0,
+    // Without pivoting, a matrix that is not positive definite shows as
+    // negative pivots (INFOG(12)), as a zero pivot (INFOG(1) = -10), or, in
+    // the root front that ScaLAPACK factorises on several ranks, as its
+    // Cholesky's failure (INFOG(1) = -40).
+    const MUMPS_INT error = infog(id, 1);
+    AssertThrow(error != -10 && error != -40 && infog(id, 12) == 0,
+                ExcMessage("MUMPS found the matrix not positive definite (" +
+                           (error < 0 ? "INFOG(1) = " + std::to_string(error) :
+                                        std::to_string(infog(id, 12)) +
+                                          " negative pivots") +
+                           ")."));
+    AssertThrow(error >= 0,
                 ExcMessage("MUMPS could not factorise the plate (INFOG(1) = " +
-                           std::to_string(infog(id, 1)) + ", INFOG(2) = " +
+                           std::to_string(error) + ", INFOG(2) = " +
                            std::to_string(infog(id, 2)) + ")."));
-    // without pivoting a matrix that is not positive definite shows as
-    // negative pivots rather than as a failure
-    AssertThrow(infog(id, 12) == 0,
-                ExcMessage("MUMPS met " + std::to_string(infog(id, 12)) +
-                           " negative pivots: the matrix is not positive "
-                           "definite."));
   }
 
   std::size_t

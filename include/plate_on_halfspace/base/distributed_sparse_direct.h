@@ -43,7 +43,7 @@ namespace PlateOnHalfspace
      * rows and their right-hand side zero, so their solution is zero. Each
      * rank contributes the rows @p owned_rows (a partition of all rows
      * over @p communicator). Collective; throws ExcMessage if MUMPS fails
-     * (a matrix that is not positive definite: a negative pivot).
+     * (a matrix that is not positive definite, or MUMPS out of memory).
      */
     void
     factorize(const SparseMatrix<double> &matrix,
