@@ -64,13 +64,20 @@ namespace PlateOnHalfspace
         }
     }
 
-    /** Runs @p job; throws on every rank (MUMPS's INFOG is global) if it
-     *  failed. */
+    /** Runs @p job; throws (throw_if_failed()) if it failed. */
     void
     run(const MUMPS_INT job, const char *what)
     {
       id.job = job;
       dmumps_c(&id);
+      throw_if_failed(what);
+    }
+
+    /** Throws on every rank (MUMPS's INFOG is global) if the last job
+     *  failed, saying that MUMPS could not @p what the plate. */
+    void
+    throw_if_failed(const char *what) const
+    {
       AssertThrow(infog(id, 1) >= 0,
                   ExcMessage(
                     std::string("MUMPS could not ") + what +
@@ -169,10 +176,7 @@ namespace PlateOnHalfspace
                                         std::to_string(infog(id, 12)) +
                                           " negative pivots") +
                            ")."));
-    AssertThrow(error >= 0,
-                ExcMessage("MUMPS could not factorise the plate (INFOG(1) = " +
-                           std::to_string(error) + ", INFOG(2) = " +
-                           std::to_string(infog(id, 2)) + ")."));
+    data->throw_if_failed("factorise");
   }
 
   std::size_t

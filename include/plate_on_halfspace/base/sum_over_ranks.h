@@ -15,6 +15,8 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <string>
+
 namespace PlateOnHalfspace
 {
   /** The number of ranks of @p communicator; 1 where MPI is not
@@ -49,6 +51,19 @@ namespace PlateOnHalfspace
                                 view);
   }
 
+  /** The entries of @p v as the count of one MPI message; throws, naming
+   *  @p caller, where an int cannot count them. */
+  inline int
+  message_count(const dealii::ArrayView<double> &v, const char *caller)
+  {
+    const int count = static_cast<int>(v.size());
+    AssertThrow(static_cast<std::size_t>(count) == v.size(),
+                dealii::ExcMessage(std::string(caller) +
+                                   ": more entries than one MPI message "
+                                   "holds"));
+    return count;
+  }
+
   /** Rank 0's @p v on every rank of @p communicator, in place. */
   inline void
   broadcast_from_first_rank(const dealii::ArrayView<double> &v,
@@ -56,10 +71,7 @@ namespace PlateOnHalfspace
   {
     if (n_ranks(communicator) == 1 || v.size() == 0)
       return;
-    const int count = static_cast<int>(v.size());
-    AssertThrow(static_cast<std::size_t>(count) == v.size(),
-                dealii::ExcMessage("broadcast_from_first_rank: more "
-                                   "entries than one MPI message holds"));
+    const int count = message_count(v, "broadcast_from_first_rank");
     const int error = MPI_Bcast(v.data(), count, MPI_DOUBLE, 0, communicator);
     AssertThrowMPI(error);
   }
@@ -76,10 +88,7 @@ namespace PlateOnHalfspace
   {
     if (n_ranks(communicator) == 1 || v.size() == 0)
       return;
-    const int count = static_cast<int>(v.size());
-    AssertThrow(static_cast<std::size_t>(count) == v.size(),
-                dealii::ExcMessage("sum_shared_entries_over_ranks: more "
-                                   "entries than one MPI message holds"));
+    const int  count = message_count(v, "sum_shared_entries_over_ranks");
     const bool root  = rank_in(communicator) == 0;
     int        error = MPI_Reduce(root ? MPI_IN_PLACE : v.data(),
                            v.data(),
