@@ -31,6 +31,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 
@@ -654,8 +655,7 @@ namespace PlateOnHalfspace
          n < Parameters::Contact::nested_start_nodes))
       return std::string();
     // The coarser mesh is the initial refinements' last but one: every
-    // cell one level up. The mesh and plate are replicated on several
-    // processes, but the coarse solve is not worth their collectives.
+    // cell one level up.
     const int level = nested_start_level();
     // Adaptivity/Refinement = goal keeps every cell's siblings as a patch
     // (make_mesh()): deal.II then coarsens no cell to the coarse mesh's
@@ -667,8 +667,6 @@ namespace PlateOnHalfspace
     if (parameters.contact.method != Parameters::Contact::Method::active_set)
       return std::string("Contact/Method = element exclusion does not start "
                          "from a seed");
-    if (n_ranks(communicator) > 1)
-      return std::string("the run has several processes");
     if (level < 1)
       return std::string("the first mesh has no coarser level (it needs "
                          "Discretization/Initial refinements of at least 1)");
@@ -758,7 +756,17 @@ namespace PlateOnHalfspace
     if (nested_start_level() != level - 1)
       return start_without("deal.II's mesh smoothing kept cells from being "
                            "coarsened");
-    setup_plate(stiffness_unless_coarsened());
+    // On several processes the coarser mesh may have too few cells for
+    // them, which every rank finds alike (setup_plate()).
+    try
+      {
+        setup_plate(stiffness_unless_coarsened());
+      }
+    catch (const ErrorOnEveryRank &)
+      {
+        return start_without("the mesh one refinement coarser has too few "
+                             "cells for the processes");
+      }
     // the coarser mesh's own solve seeded from one coarser still, where
     // that applies in turn
     solve_on_coarser_mesh(true);
@@ -795,8 +803,30 @@ namespace PlateOnHalfspace
         restore();
         throw;
       }
+    catch (const ErrorOnEveryRank &error)
+      {
+        restore();
+        return start_without(
+          "the solve on the mesh one refinement coarser stopped (" +
+            one_line_message(error) + ")",
+          true);
+      }
     catch (const std::exception &error)
       {
+        // On several processes one rank may fail while the others wait in
+        // a collective step: it cannot start again without them, so it
+        // stops the run as in any solve (doc/parallel.md), naming the
+        // coarse solve and the way around it.
+        if (n_ranks(communicator) > 1)
+          {
+            restore();
+            throw std::runtime_error(
+              "Contact/Nested start: the solve on the mesh one refinement "
+              "coarser stopped (" +
+              one_line_message(error) +
+              "); on several processes the run cannot go on without it. "
+              "Set Contact/Nested start = false.");
+          }
         // The coarse mesh is not the scene's: a load in the sliver its
         // chords cut off a disk, or a layer too thin for its wider cells,
         // may fail there and not on the mesh as given, which decides.

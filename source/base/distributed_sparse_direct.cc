@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <plate_on_halfspace/base/distributed_sparse_direct.h>
+#include <plate_on_halfspace/base/nested_dissection.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 
 #include <dmumps_c.h>
@@ -8,6 +9,8 @@
 #include <algorithm>
 #include <exception>
 #include <limits>
+#include <mutex>
+#include <new>
 #include <string>
 
 namespace PlateOnHalfspace
@@ -28,6 +31,42 @@ namespace PlateOnHalfspace
     infog(const DMUMPS_STRUC_C &id, const unsigned int i)
     {
       return id.infog[i - 1];
+    }
+
+    /**
+     * MUMPS's PERM_IN for @p pattern's unknowns: the one-based position of
+     * each in the pivot order, the unknowns not @p solved (identity rows,
+     * no fill) first, then the solved ones in nested_dissection()'s order;
+     * empty where that ordering fails, and MUMPS then orders by itself.
+     */
+    std::vector<MUMPS_INT>
+    pivot_positions(const SparsityPattern   &pattern,
+                    const std::vector<bool> &solved)
+    {
+      std::vector<types::global_dof_index> rows;
+      for (types::global_dof_index i = 0; i < solved.size(); ++i)
+        if (solved[i])
+          rows.push_back(i);
+      std::vector<int> order;
+      try
+        {
+          const std::lock_guard<std::mutex> lock(metis_ordering_lock());
+          order = nested_dissection(pattern, rows);
+        }
+      catch (const std::bad_alloc &)
+        {
+          return {};
+        }
+      if (order.size() != rows.size())
+        return {};
+      std::vector<MUMPS_INT> position(solved.size());
+      MUMPS_INT              next = 1;
+      for (types::global_dof_index i = 0; i < solved.size(); ++i)
+        if (!solved[i])
+          position[i] = next++;
+      for (const int k : order)
+        position[rows[k]] = next++;
+      return position;
     }
   } // namespace
 
@@ -148,7 +187,21 @@ namespace PlateOnHalfspace
     id.irn_loc    = data->rows.data();
     id.jcn_loc    = data->columns.data();
     id.a_loc      = data->values.data();
+    // MUMPS's own ordering is PORD here (Debian's MUMPS has neither METIS
+    // nor SCOTCH), on rank 0 alone while the others wait, and it took
+    // most of the factorisation's time; the nested dissection that CHOLMOD
+    // takes on one process instead (doc/performance.md, "The plate's
+    // LDL^T through MUMPS"). Only the host reads it.
+    std::vector<MUMPS_INT> order;
+    if (data->rank == 0)
+      order = pivot_positions(matrix.get_sparsity_pattern(), solved);
+    if (!order.empty())
+      {
+        icntl(id, 7) = 1; // the ordering given in PERM_IN
+        id.perm_in   = order.data();
+      }
     data->run(analyse_job, "analyse");
+    id.perm_in = nullptr;
     // MUMPS sizes its workspace from the analysis and asks for more when
     // the factorisation needs it (INFOG(1) = -8, -9: its integer and real
     // workspace; -17, -20: its send and receive buffers): a few tries,

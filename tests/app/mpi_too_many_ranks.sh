@@ -5,7 +5,9 @@
 # output directory stay as they were. Scenes: one cell on 2 and 4
 # processes, 2 x 1 cells (one cell of the quarter computed) on 4
 # (rectangle, dense liquid, hierarchical storage), and a disk (3 cells of
-# the quarter computed) on 16 processes (--oversubscribe).
+# the quarter computed) on 16 processes (--oversubscribe). Then
+# Contact/Nested start on 2 processes, where the mesh one refinement
+# coarser has cells enough and where it has not.
 # usage: mpi_too_many_ranks.sh PROGRAM TESTS_APP_DIRECTORY
 set -u
 program=$1
@@ -82,6 +84,35 @@ if mpirun -np 2 "$program" two_cells_whole.prm >stdout 2>stderr; then
   passed=$((passed + 1))
 else
   fail "two_cells on 2 processes must run"; cat stderr
+fi
+
+# Contact/Nested start on several processes: it applies where the mesh
+# one refinement coarser has cells enough for them, and where it has not
+# (one cell on 2 processes) the run starts without it, with a warning.
+nested() { # name, subdivisions, initial refinements
+  scene "$1" "subsection Foundation" "set Contact = tensionless" "end" \
+    "subsection Contact" "set Method = active set" "set Nested start = true" \
+    "end" "subsection Discretization" "set Subdivisions x = $2" \
+    "set Subdivisions y = $2" "set Initial refinements = $3" \
+    "set Symmetry = none" "end" "subsection Output" "set Verbosity = 1" "end"
+}
+nested nested_applies 2 2
+nested nested_too_coarse 1 1
+if mpirun -np 2 "$program" nested_applies.prm >stdout 2>stderr &&
+   grep -q '^Contact/Nested start: 65 foundation nodes one refinement coarser (seeded in turn)' stdout &&
+   ! grep -q 'Warning' stderr; then
+  echo "nested start on 2 processes: applied"
+  passed=$((passed + 1))
+else
+  fail "nested_applies on 2 processes: no nested start"; cat stdout stderr
+fi
+if mpirun -np 2 "$program" nested_too_coarse.prm >stdout 2>stderr &&
+   grep -q '^Warning: Contact/Nested start = true: the mesh one refinement coarser has too few cells for the processes; the first cycle starts without it' stderr &&
+   ! grep -q '^Contact/Nested start: ' stdout; then
+  echo "nested start on 2 processes, one coarse cell: $(grep Warning stderr)"
+  passed=$((passed + 1))
+else
+  fail "nested_too_coarse on 2 processes: no warning"; cat stdout stderr
 fi
 
 echo "$passed passed, $failed failed"
