@@ -36,6 +36,7 @@ main(int argc, char **argv)
   // Each rank takes its share of the cores for deal.II's threads.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   dealii::deal_II_exceptions::disable_abort_on_exception();
+  begin_failure_agreement();
   // SIGINT and SIGTERM stop the run at a safe point with its earlier
   // results restored (base/interruption.h, doc/outputs.md).
   Interruption::catch_signals();
@@ -112,10 +113,11 @@ main(int argc, char **argv)
           // why and stops them all (doc/parallel.md). Its earlier results
           // are already restored (ResultsOutput).
           out.flush();
-          // An error all ranks meet alike (too many ranks for the mesh)
-          // is reported once, like a bad scene.
+          // An error all ranks meet alike (too many ranks for the mesh, a
+          // load off the plate) is reported once, like a bad scene.
           if (n_ranks(MPI_COMM_WORLD) == 1 ||
-              dynamic_cast<const ErrorOnEveryRank *>(&e) != nullptr)
+              dynamic_cast<const ErrorOnEveryRank *>(&e) != nullptr ||
+              every_rank_fails_alike(failure_agreement_seconds))
             throw;
           std::cerr << "Error (rank " << rank_in(MPI_COMM_WORLD) << " of "
                     << n_ranks(MPI_COMM_WORLD)

@@ -39,6 +39,15 @@ namespace PlateOnHalfspace
 {
   namespace
   {
+    /** @p message without its final full stop, to stand in parentheses. */
+    std::string
+    without_final_period(std::string message)
+    {
+      if (!message.empty() && message.back() == '.')
+        message.pop_back();
+      return message;
+    }
+
     /** A convergence.txt column of a count or a time of the record. */
     ConvergenceColumn
     column(const std::string &name,
@@ -765,7 +774,8 @@ namespace PlateOnHalfspace
     catch (const ErrorOnEveryRank &)
       {
         return start_without("the mesh one refinement coarser has too few "
-                             "cells for the processes");
+                             "cells for the processes",
+                             true);
       }
     // the coarser mesh's own solve seeded from one coarser still, where
     // that applies in turn
@@ -803,29 +813,25 @@ namespace PlateOnHalfspace
         restore();
         throw;
       }
-    catch (const ErrorOnEveryRank &error)
-      {
-        restore();
-        return start_without(
-          "the solve on the mesh one refinement coarser stopped (" +
-            one_line_message(error) + ")",
-          true);
-      }
     catch (const std::exception &error)
       {
         // On several processes one rank may fail while the others wait in
         // a collective step: it cannot start again without them, so it
         // stops the run as in any solve (doc/parallel.md), naming the
-        // coarse solve and the way around it.
-        if (n_ranks(communicator) > 1)
+        // coarse solve and the way around it. An error that every rank
+        // meets alike (most are: they are decided from what all ranks hold
+        // the same) falls back as on one process.
+        if (n_ranks(communicator) > 1 &&
+            dynamic_cast<const ErrorOnEveryRank *>(&error) == nullptr &&
+            !every_rank_fails_alike(failure_agreement_seconds))
           {
             restore();
             throw std::runtime_error(
               "Contact/Nested start: the solve on the mesh one refinement "
-              "coarser stopped (" +
-              one_line_message(error) +
-              "); on several processes the run cannot go on without it. "
-              "Set Contact/Nested start = false.");
+              "coarser stopped on this process alone (" +
+              without_final_period(one_line_message(error)) +
+              "), and the run cannot go on without it. Set Contact/Nested "
+              "start = false.");
           }
         // The coarse mesh is not the scene's: a load in the sliver its
         // chords cut off a disk, or a layer too thin for its wider cells,
@@ -835,7 +841,7 @@ namespace PlateOnHalfspace
         restore();
         return start_without(
           "the solve on the mesh one refinement coarser stopped (" +
-            one_line_message(error) + ")",
+            without_final_period(one_line_message(error)) + ")",
           true);
       }
     restore();

@@ -315,6 +315,11 @@ namespace PlateOnHalfspace
           column_of[g] = reached.size();
           reached.push_back(g);
         }
+    // A rank whose cells' charges all vanish on the grid (a few cells
+    // shared by several ranks) reaches no node; deal.II keeps no rows in a
+    // pattern without columns, so it keeps the first node, never written.
+    if (reached.empty() && !is_reached.empty())
+      reached.push_back(0);
     // each row's kept entries, by their new columns
     const unsigned int n_rows = pattern.n_rows();
     std::vector<std::vector<std::pair<unsigned int, double>>> kept(n_rows);

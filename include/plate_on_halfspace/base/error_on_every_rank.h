@@ -20,6 +20,34 @@ namespace PlateOnHalfspace
       : std::runtime_error(message)
     {}
   };
+
+  /** How long a failing rank waits for the others to fail alike: those
+   *  fail at the same point of the same computation, within moments. */
+  constexpr double failure_agreement_seconds = 5.;
+
+  /**
+   * Collective, once, right after MPI_Init: a communicator of its own for
+   * every_rank_fails_alike(), so that its agreement never meets the
+   * collective steps the other ranks may be waiting in.
+   */
+  void
+  begin_failure_agreement();
+
+  /**
+   * Whether every rank of the run reaches this call within @p seconds;
+   * each rank that fails calls it once, on its way out. Errors that are
+   * not thrown as ErrorOnEveryRank may still be met by every rank alike
+   * where they are decided from what all ranks hold the same (a load off
+   * the plate, a soil matrix that is not positive definite): then all
+   * ranks arrive at about the same moment, and the run reports the error
+   * once, like a bad scene. A rank that fails alone is not answered and
+   * stops the others through MPI_Abort (doc/parallel.md, "Choices and
+   * their reasons"). True on one process. Each call is one agreement of
+   * all ranks: a rank that calls it a second time meets the others'
+   * second call.
+   */
+  bool
+  every_rank_fails_alike(double seconds);
 } // namespace PlateOnHalfspace
 
 #endif

@@ -1,0 +1,68 @@
+// every_rank_fails_alike() (base/error_on_every_rank.h) on 2 processes,
+// the agreement by which a failure that every rank meets alike is
+// reported once and a failure of one rank stops the run (main.cc):
+//  - both ranks call it: true on both, well within the time allowed;
+//  - rank 1 alone, allowed 0.3 s, while rank 0 waits in a collective
+//    step of MPI_COMM_WORLD, as the other ranks of a run wait for the one
+//    that failed: false on rank 1, and not before 0.3 s.
+// The verdicts only are printed.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+
+#include <plate_on_halfspace/base/error_on_every_rank.h>
+
+#include "../tests.h"
+
+using namespace PlateOnHalfspace;
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm                   world = MPI_COMM_WORLD;
+  const unsigned int rank = Utilities::MPI::this_mpi_process(world);
+  initlog_on_first_rank(rank == 0);
+  begin_failure_agreement();
+
+  // every rank fails at the same point
+  Timer      timer;
+  const bool alike       = every_rank_fails_alike(30.);
+  const bool alike_quick = timer.wall_time() < 10.;
+  deallog << "every rank failing alike: agreed on every rank: "
+          << (Utilities::MPI::min(alike ? 1 : 0, world) == 1 ? "ok" :
+                                                                "FAILED")
+          << std::endl;
+  deallog << "every rank failing alike: agreed well within the time: "
+          << (Utilities::MPI::min(alike_quick ? 1 : 0, world) == 1 ?
+                "ok" :
+                "FAILED")
+          << std::endl;
+
+  // rank 1 fails alone while rank 0 waits in a collective step
+  bool   alone_refused = true;
+  double waited        = 0.;
+  if (rank == 1)
+    {
+      timer.restart();
+      alone_refused = !every_rank_fails_alike(0.3);
+      waited        = timer.wall_time();
+    }
+  MPI_Barrier(world);
+  const bool alone_waited = rank != 1 || waited >= 0.3;
+  deallog << "one rank failing alone: not agreed: "
+          << (Utilities::MPI::min(alone_refused ? 1 : 0, world) == 1 ?
+                "ok" :
+                "FAILED")
+          << std::endl;
+  deallog << "one rank failing alone: waited the time allowed: "
+          << (Utilities::MPI::min(alone_waited ? 1 : 0, world) == 1 ?
+                "ok" :
+                "FAILED")
+          << std::endl;
+  // Rank 1's agreement is still open, as in a run that then stops through
+  // MPI_Abort; rank 0 answers it here so that both end cleanly.
+  if (rank == 0)
+    every_rank_fails_alike(30.);
+  MPI_Barrier(world);
+}
