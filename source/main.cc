@@ -117,7 +117,8 @@ main(int argc, char **argv)
           // load off the plate) is reported once, like a bad scene.
           if (n_ranks(MPI_COMM_WORLD) == 1 ||
               dynamic_cast<const ErrorOnEveryRank *>(&e) != nullptr ||
-              every_rank_fails_alike(failure_agreement_seconds))
+              every_rank_fails_alike(FailureSite::run,
+                                     failure_agreement_seconds))
             throw;
           std::cerr << "Error (rank " << rank_in(MPI_COMM_WORLD) << " of "
                     << n_ranks(MPI_COMM_WORLD)

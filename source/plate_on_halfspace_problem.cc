@@ -29,6 +29,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -820,10 +821,13 @@ namespace PlateOnHalfspace
         // stops the run as in any solve (doc/parallel.md), naming the
         // coarse solve and the way around it. An error that every rank
         // meets alike (most are: they are decided from what all ranks hold
-        // the same) falls back as on one process.
+        // the same) falls back as on one process; not so memory, which
+        // may run out anywhere and on some ranks only.
         if (n_ranks(communicator) > 1 &&
             dynamic_cast<const ErrorOnEveryRank *>(&error) == nullptr &&
-            !every_rank_fails_alike(failure_agreement_seconds))
+            (dynamic_cast<const std::bad_alloc *>(&error) != nullptr ||
+             !every_rank_fails_alike(FailureSite::coarse_solve,
+                                     failure_agreement_seconds)))
           {
             restore();
             throw std::runtime_error(

@@ -92,10 +92,10 @@ namespace PlateOnHalfspace
 
     ~Data()
     {
-      // Ending MUMPS is collective. A rank that unwinds alone is on its
-      // way to MPI_Abort (doc/parallel.md, "Choices and their reasons"),
-      // where waiting for the others would hang it: it leaves MUMPS's
-      // memory to the end of the process instead.
+      // Ending MUMPS is collective. A rank that unwinds may be alone, on
+      // its way to MPI_Abort (doc/parallel.md, "Choices and their
+      // reasons"), where waiting for the others would hang it: it leaves
+      // MUMPS's memory to the end of the process instead.
       if (initialised && std::uncaught_exceptions() == 0)
         {
           id.job = end_job;

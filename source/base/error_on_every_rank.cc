@@ -27,27 +27,45 @@ namespace PlateOnHalfspace
   }
 
   bool
-  every_rank_fails_alike(const double seconds)
+  every_rank_fails_alike(const FailureSite site, const double seconds)
   {
     const MPI_Comm communicator = agreement_communicator();
     if (communicator == MPI_COMM_NULL)
       return true;
-    // A barrier that completes only once every rank has failed; polled,
-    // so that a rank that failed alone gives up after the time allowed.
-    MPI_Request request;
-    if (MPI_Ibarrier(communicator, &request) != MPI_SUCCESS)
+    // An agreement that timed out stays open (MPI cannot cancel a
+    // collective request): a later one on this rank would meet the
+    // others' earlier one.
+    static bool timed_out = false;
+    if (timed_out)
       return false;
-    const auto deadline = std::chrono::steady_clock::now() +
-                          std::chrono::duration<double>(seconds);
+    // The smallest and the largest site over the ranks, which completes
+    // only once every rank has failed; polled, so that a rank that failed
+    // alone gives up after the time allowed.
+    // (both kept: MPI reads and writes them until the request completes,
+    // which for one that timed out is after this call)
+    static int mine[2], sites[2];
+    const int  code = static_cast<int>(site);
+    mine[0]         = code;
+    mine[1]         = -code;
+    MPI_Request request;
+    if (MPI_Iallreduce(
+          mine, sites, 2, MPI_INT, MPI_MIN, communicator, &request) !=
+        MPI_SUCCESS)
+      return false;
+    const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     for (;;)
       {
         int done = 0;
         if (MPI_Test(&request, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS)
           return false;
         if (done)
-          return true;
+          return sites[0] == code && -sites[1] == code;
         if (std::chrono::steady_clock::now() > deadline)
-          return false;
+          {
+            timed_out = true;
+            return false;
+          }
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
       }
   }

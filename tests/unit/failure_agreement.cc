@@ -1,10 +1,14 @@
 // every_rank_fails_alike() (base/error_on_every_rank.h) on 2 processes,
 // the agreement by which a failure that every rank meets alike is
 // reported once and a failure of one rank stops the run (main.cc):
-//  - both ranks call it: true on both, well within the time allowed;
+//  - both ranks call it from the same site: true on both, well within the
+//    time allowed;
+//  - both from different sites (one in the nested start's coarse solve,
+//    one elsewhere): false on both, well within the time;
 //  - rank 1 alone, allowed 0.3 s, while rank 0 waits in a collective
 //    step of MPI_COMM_WORLD, as the other ranks of a run wait for the one
-//    that failed: false on rank 1, and not before 0.3 s.
+//    that failed: false on rank 1, and not before 0.3 s;
+//  - rank 1 again after that: false at once.
 // The verdicts only are printed.
 
 #include <deal.II/base/mpi.h>
@@ -27,16 +31,27 @@ main(int argc, char **argv)
 
   // every rank fails at the same point
   Timer      timer;
-  const bool alike       = every_rank_fails_alike(30.);
+  const bool alike       = every_rank_fails_alike(FailureSite::run, 30.);
   const bool alike_quick = timer.wall_time() < 10.;
   deallog << "every rank failing alike: agreed on every rank: "
-          << (Utilities::MPI::min(alike ? 1 : 0, world) == 1 ? "ok" :
-                                                                "FAILED")
+          << (Utilities::MPI::min(alike ? 1 : 0, world) == 1 ? "ok" : "FAILED")
           << std::endl;
   deallog << "every rank failing alike: agreed well within the time: "
-          << (Utilities::MPI::min(alike_quick ? 1 : 0, world) == 1 ?
-                "ok" :
-                "FAILED")
+          << (Utilities::MPI::min(alike_quick ? 1 : 0, world) == 1 ? "ok" :
+                                                                     "FAILED")
+          << std::endl;
+
+  // the ranks fail at different sites
+  timer.restart();
+  const bool apart = every_rank_fails_alike(
+    rank == 0 ? FailureSite::run : FailureSite::coarse_solve, 30.);
+  const bool apart_quick = timer.wall_time() < 10.;
+  deallog << "failing at different sites: refused on every rank: "
+          << (Utilities::MPI::max(apart ? 1 : 0, world) == 0 ? "ok" : "FAILED")
+          << std::endl;
+  deallog << "failing at different sites: refused well within the time: "
+          << (Utilities::MPI::min(apart_quick ? 1 : 0, world) == 1 ? "ok" :
+                                                                     "FAILED")
           << std::endl;
 
   // rank 1 fails alone while rank 0 waits in a collective step
@@ -45,24 +60,35 @@ main(int argc, char **argv)
   if (rank == 1)
     {
       timer.restart();
-      alone_refused = !every_rank_fails_alike(0.3);
+      alone_refused = !every_rank_fails_alike(FailureSite::run, 0.3);
       waited        = timer.wall_time();
     }
   MPI_Barrier(world);
   const bool alone_waited = rank != 1 || waited >= 0.3;
   deallog << "one rank failing alone: not agreed: "
-          << (Utilities::MPI::min(alone_refused ? 1 : 0, world) == 1 ?
-                "ok" :
-                "FAILED")
+          << (Utilities::MPI::min(alone_refused ? 1 : 0, world) == 1 ? "ok" :
+                                                                       "FAILED")
           << std::endl;
   deallog << "one rank failing alone: waited the time allowed: "
-          << (Utilities::MPI::min(alone_waited ? 1 : 0, world) == 1 ?
+          << (Utilities::MPI::min(alone_waited ? 1 : 0, world) == 1 ? "ok" :
+                                                                      "FAILED")
+          << std::endl;
+  // once timed out, rank 1 refuses at once
+  bool refused_at_once = true;
+  if (rank == 1)
+    {
+      timer.restart();
+      refused_at_once = !every_rank_fails_alike(FailureSite::run, 30.) &&
+                        timer.wall_time() < 10.;
+    }
+  deallog << "after its time ran out: refused at once: "
+          << (Utilities::MPI::min(refused_at_once ? 1 : 0, world) == 1 ?
                 "ok" :
                 "FAILED")
           << std::endl;
   // Rank 1's agreement is still open, as in a run that then stops through
   // MPI_Abort; rank 0 answers it here so that both end cleanly.
   if (rank == 0)
-    every_rank_fails_alike(30.);
+    every_rank_fails_alike(FailureSite::run, 30.);
   MPI_Barrier(world);
 }

@@ -33,9 +33,20 @@ namespace PlateOnHalfspace
   void
   begin_failure_agreement();
 
+  /** Where a rank failed, for every_rank_fails_alike(). */
+  enum class FailureSite
+  {
+    /** anywhere in the run: the run ends (main.cc) */
+    run = 1,
+    /** the nested start's solve on a coarser mesh, after which the run
+     *  goes on without it (PlateOnHalfspaceProblem) */
+    coarse_solve = 2
+  };
+
   /**
-   * Whether every rank of the run reaches this call within @p seconds;
-   * each rank that fails calls it once, on its way out. Errors that are
+   * Whether every rank of the run reaches this call within @p seconds,
+   * each from the same @p site; each rank that fails calls it on its way
+   * out. Errors that are
    * not thrown as ErrorOnEveryRank may still be met by every rank alike
    * where they are decided from what all ranks hold the same (a load off
    * the plate, a soil matrix that is not positive definite): then all
@@ -44,10 +55,11 @@ namespace PlateOnHalfspace
    * stops the others through MPI_Abort (doc/parallel.md, "Choices and
    * their reasons"). True on one process. Each call is one agreement of
    * all ranks: a rank that calls it a second time meets the others'
-   * second call.
+   * second call. Ranks that fail at different sites all get false, and
+   * a rank whose agreement timed out gets false from then on at once.
    */
   bool
-  every_rank_fails_alike(double seconds);
+  every_rank_fails_alike(FailureSite site, double seconds);
 } // namespace PlateOnHalfspace
 
 #endif
