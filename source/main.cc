@@ -115,10 +115,7 @@ main(int argc, char **argv)
           out.flush();
           // An error all ranks meet alike (too many ranks for the mesh, a
           // load off the plate) is reported once, like a bad scene.
-          if (n_ranks(MPI_COMM_WORLD) == 1 ||
-              dynamic_cast<const ErrorOnEveryRank *>(&e) != nullptr ||
-              every_rank_fails_alike(FailureSite::run,
-                                     failure_agreement_seconds))
+          if (every_rank_fails_alike(e, FailureSite::run))
             throw;
           std::cerr << "Error (rank " << rank_in(MPI_COMM_WORLD) << " of "
                     << n_ranks(MPI_COMM_WORLD)

@@ -824,10 +824,8 @@ namespace PlateOnHalfspace
         // the same) falls back as on one process; not so memory, which
         // may run out anywhere and on some ranks only.
         if (n_ranks(communicator) > 1 &&
-            dynamic_cast<const ErrorOnEveryRank *>(&error) == nullptr &&
             (dynamic_cast<const std::bad_alloc *>(&error) != nullptr ||
-             !every_rank_fails_alike(FailureSite::coarse_solve,
-                                     failure_agreement_seconds)))
+             !every_rank_fails_alike(error, FailureSite::coarse_solve)))
           {
             restore();
             throw std::runtime_error(

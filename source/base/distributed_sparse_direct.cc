@@ -191,7 +191,7 @@ namespace PlateOnHalfspace
     // nor SCOTCH), on rank 0 alone while the others wait, and it took
     // most of the factorisation's time; the nested dissection that CHOLMOD
     // takes on one process instead (doc/performance.md, "The plate's
-    // LDL^T through MUMPS"). Only the host reads it.
+    // ordering on several processes"). Only the host reads it.
     std::vector<MUMPS_INT> order;
     if (data->rank == 0)
       order = pivot_positions(matrix.get_sparsity_pattern(), solved);

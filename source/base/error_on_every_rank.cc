@@ -69,4 +69,12 @@ namespace PlateOnHalfspace
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
       }
   }
+
+  bool
+  every_rank_fails_alike(const std::exception &error, const FailureSite site)
+  {
+    return agreement_communicator() == MPI_COMM_NULL ||
+           dynamic_cast<const ErrorOnEveryRank *>(&error) != nullptr ||
+           every_rank_fails_alike(site, failure_agreement_seconds);
+  }
 } // namespace PlateOnHalfspace

@@ -16,6 +16,8 @@
 
 #include <plate_on_halfspace/base/error_on_every_rank.h>
 
+#include <string>
+
 #include "../tests.h"
 
 using namespace PlateOnHalfspace;
@@ -29,30 +31,28 @@ main(int argc, char **argv)
   initlog_on_first_rank(rank == 0);
   begin_failure_agreement();
 
+  // "ok" where @p holds_here holds on every rank
+  const auto verdict = [world](const std::string &what, const bool holds_here) {
+    deallog << what << ": "
+            << (Utilities::MPI::min(holds_here ? 1 : 0, world) == 1 ? "ok" :
+                                                                      "FAILED")
+            << std::endl;
+  };
+
   // every rank fails at the same point
   Timer      timer;
-  const bool alike       = every_rank_fails_alike(FailureSite::run, 30.);
-  const bool alike_quick = timer.wall_time() < 10.;
-  deallog << "every rank failing alike: agreed on every rank: "
-          << (Utilities::MPI::min(alike ? 1 : 0, world) == 1 ? "ok" : "FAILED")
-          << std::endl;
-  deallog << "every rank failing alike: agreed well within the time: "
-          << (Utilities::MPI::min(alike_quick ? 1 : 0, world) == 1 ? "ok" :
-                                                                     "FAILED")
-          << std::endl;
+  const bool alike = every_rank_fails_alike(FailureSite::run, 30.);
+  verdict("every rank failing alike: agreed on every rank", alike);
+  verdict("every rank failing alike: agreed well within the time",
+          timer.wall_time() < 10.);
 
   // the ranks fail at different sites
   timer.restart();
   const bool apart = every_rank_fails_alike(
     rank == 0 ? FailureSite::run : FailureSite::coarse_solve, 30.);
-  const bool apart_quick = timer.wall_time() < 10.;
-  deallog << "failing at different sites: refused on every rank: "
-          << (Utilities::MPI::max(apart ? 1 : 0, world) == 0 ? "ok" : "FAILED")
-          << std::endl;
-  deallog << "failing at different sites: refused well within the time: "
-          << (Utilities::MPI::min(apart_quick ? 1 : 0, world) == 1 ? "ok" :
-                                                                     "FAILED")
-          << std::endl;
+  verdict("failing at different sites: refused on every rank", !apart);
+  verdict("failing at different sites: refused well within the time",
+          timer.wall_time() < 10.);
 
   // rank 1 fails alone while rank 0 waits in a collective step
   bool   alone_refused = true;
@@ -64,15 +64,9 @@ main(int argc, char **argv)
       waited        = timer.wall_time();
     }
   MPI_Barrier(world);
-  const bool alone_waited = rank != 1 || waited >= 0.3;
-  deallog << "one rank failing alone: not agreed: "
-          << (Utilities::MPI::min(alone_refused ? 1 : 0, world) == 1 ? "ok" :
-                                                                       "FAILED")
-          << std::endl;
-  deallog << "one rank failing alone: waited the time allowed: "
-          << (Utilities::MPI::min(alone_waited ? 1 : 0, world) == 1 ? "ok" :
-                                                                      "FAILED")
-          << std::endl;
+  verdict("one rank failing alone: not agreed", alone_refused);
+  verdict("one rank failing alone: waited the time allowed",
+          rank != 1 || waited >= 0.3);
   // once timed out, rank 1 refuses at once
   bool refused_at_once = true;
   if (rank == 1)
@@ -81,11 +75,7 @@ main(int argc, char **argv)
       refused_at_once = !every_rank_fails_alike(FailureSite::run, 30.) &&
                         timer.wall_time() < 10.;
     }
-  deallog << "after its time ran out: refused at once: "
-          << (Utilities::MPI::min(refused_at_once ? 1 : 0, world) == 1 ?
-                "ok" :
-                "FAILED")
-          << std::endl;
+  verdict("after its time ran out: refused at once", refused_at_once);
   // Rank 1's agreement is still open, as in a run that then stops through
   // MPI_Abort; rank 0 answers it here so that both end cleanly.
   if (rank == 0)

@@ -8,6 +8,7 @@
 #ifndef plate_on_halfspace_base_error_on_every_rank_h
 #define plate_on_halfspace_base_error_on_every_rank_h
 
+#include <exception>
 #include <stdexcept>
 #include <string>
 
@@ -60,6 +61,14 @@ namespace PlateOnHalfspace
    */
   bool
   every_rank_fails_alike(FailureSite site, double seconds);
+
+  /**
+   * Whether @p error, met at @p site, is met by every rank alike: on one
+   * process and for an ErrorOnEveryRank at once, otherwise through
+   * every_rank_fails_alike() with failure_agreement_seconds.
+   */
+  bool
+  every_rank_fails_alike(const std::exception &error, FailureSite site);
 } // namespace PlateOnHalfspace
 
 #endif
