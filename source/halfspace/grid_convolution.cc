@@ -807,6 +807,21 @@ namespace PlateOnHalfspace
     return first;
   }
 
+  bool
+  GridConvolution::covers(const Point<2> &x) const
+  {
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        const double t = (x[d] - origin[d]) / h;
+        if (!(t > 0) || t >= n[d])
+          return false;
+        const int first = static_cast<int>(t) - int(spline_order / 2) + 1;
+        if (first < 0 || first + spline_order > n[d])
+          return false;
+      }
+    return true;
+  }
+
   GridConvolution::Stencil
   GridConvolution::stencil(const Point<2> &x) const
   {

@@ -260,6 +260,23 @@ namespace PlateOnHalfspace
            transform.memory_consumption();
   }
 
+  unsigned int
+  FoundationOperator::n_loaded_cells(const FoundationSpace &space,
+                                     const Vector<double>  &nodal_pressure)
+  {
+    unsigned int loaded_cells = 0;
+    for (const auto &cell : space.cells)
+      for (const auto &shape : cell.expansion)
+        if (std::any_of(shape.begin(), shape.end(), [&](const auto &t) {
+              return nodal_pressure[t.first] != 0;
+            }))
+          {
+            ++loaded_cells;
+            break;
+          }
+    return loaded_cells;
+  }
+
   std::vector<double>
   FoundationOperator::settlement_at_points(
     const FoundationSpace       &space,
@@ -269,17 +286,7 @@ namespace PlateOnHalfspace
     const auto *elastic = dynamic_cast<const ElasticSoil *>(soil_model.get());
     if (elastic != nullptr)
       {
-        unsigned int loaded_cells = 0;
-        for (const auto &cell : space.cells)
-          for (const auto &shape : cell.expansion)
-            if (std::any_of(shape.begin(), shape.end(), [&](const auto &t) {
-                  return nodal_pressure[t.first] != 0;
-                }))
-              {
-                ++loaded_cells;
-                break;
-              }
-        if (double(points.size()) * loaded_cells >=
+        if (double(points.size()) * n_loaded_cells(space, nodal_pressure) >=
             compressed_settlement_threshold)
           return compressed_settlement_at_points(
             space,

@@ -14,6 +14,7 @@
 #include <plate_on_halfspace/halfspace/grid_convolution.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
 #include <plate_on_halfspace/halfspace/split_kernel_operator.h>
+#include <plate_on_halfspace/soil/surface_settlement.h>
 
 #include <algorithm>
 #include <array>
@@ -1041,6 +1042,114 @@ namespace PlateOnHalfspace
       q, s, [this](const Vector<double> &values, Vector<double> &settlement) {
         apply_to_values(values, settlement);
       });
+  }
+
+  std::vector<double>
+  SplitKernelFftOperator::settlement_at_points(
+    const FoundationSpace       &space,
+    const Vector<double>        &nodal_pressure,
+    const std::vector<Point<2>> &points) const
+  {
+    if (!grid_covers(points) ||
+        double(points.size()) * n_loaded_cells(space, nodal_pressure) <
+          grid_settlement_threshold)
+      return FoundationOperator::settlement_at_points(space,
+                                                      nodal_pressure,
+                                                      points);
+    return grid_settlement_at_points(space, nodal_pressure, points);
+  }
+
+  bool
+  SplitKernelFftOperator::grid_covers(const std::vector<Point<2>> &points) const
+  {
+    return projection && grid && !grid->split() &&
+           std::all_of(points.begin(), points.end(), [this](const Point<2> &x) {
+             return grid->covers(x);
+           });
+  }
+
+  std::vector<double>
+  SplitKernelFftOperator::grid_settlement_at_points(
+    const FoundationSpace       &space,
+    const Vector<double>        &nodal_pressure,
+    const std::vector<Point<2>> &points) const
+  {
+    AssertDimension(nodal_pressure.size(), n_nodes());
+    Assert(grid_covers(points), ExcInternalError());
+    // the near field: alpha / r minus the far field's kernel, within the
+    // cutoff beyond which erfc(r / sigma) drops below the tolerance
+    std::vector<double> settlement = near_settlement_at_points(
+      space,
+      nodal_pressure,
+      points,
+      SurfaceKernel(alpha,
+                    std::make_shared<MinusFarField>(alpha, chosen.sigma)),
+      elastic->singular_quadrature_order(),
+      chosen.cutoff);
+    // the far field: the pressure's grid potentials (with the mirror
+    // images' charges) read at each point by its B-spline stencil
+    Vector<double> charges(projection->n_columns()), potentials;
+    projection->spread(nodal_pressure, charges);
+    grid->convolve(charges, potentials);
+    const unsigned int order = grid->order();
+    const unsigned int row   = grid->grid_sizes()[0];
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(points.size()),
+      [&](const unsigned int from, const unsigned int to) {
+        for (unsigned int p = from; p < to; ++p)
+          {
+            const GridConvolution::Stencil stencil = grid->stencil(points[p]);
+            double                         sum     = 0;
+            for (unsigned int l = 0; l < order; ++l)
+              {
+                const std::size_t first =
+                  std::size_t(stencil.first_y + l) * row + stencil.first_x;
+                double along_x = 0;
+                for (unsigned int k = 0; k < order; ++k)
+                  along_x += stencil.x[k] * potentials[first + k];
+                sum += stencil.y[l] * along_x;
+              }
+            settlement[p] += sum;
+          }
+      },
+      256);
+
+    // the check: the direct sum at points spread over the input
+    const unsigned int    n_samples = std::min<std::size_t>(points.size(), 8);
+    std::vector<Point<2>> samples;
+    for (unsigned int s = 0; s < n_samples; ++s)
+      samples.push_back(points[(2 * s + 1) * points.size() / (2 * n_samples)]);
+    const std::vector<double> exact = PlateOnHalfspace::settlement_at_points(
+      space,
+      nodal_pressure,
+      samples,
+      elastic->kernel(maximal_distance(space)),
+      elastic->singular_quadrature_order());
+    double scale = 0, difference = 0;
+    for (unsigned int s = 0; s < n_samples; ++s)
+      {
+        scale = std::max(scale, std::abs(exact[s]));
+        difference =
+          std::max(difference,
+                   std::abs(
+                     settlement[(2 * s + 1) * points.size() / (2 * n_samples)] -
+                     exact[s]));
+      }
+    const double error = scale > 0 ? difference / scale : difference;
+    AssertThrow(std::all_of(settlement.begin(),
+                            settlement.end(),
+                            [](const double u) { return std::isfinite(u); }) &&
+                  error <= std::min(10 * tolerance, 1e-2),
+                ExcMessage("Foundation operator/Tolerance: the settlement of "
+                           "the goal's estimate through the fft storage's "
+                           "grid differs from the exactly integrated one by " +
+                           Utilities::to_string(error) +
+                           " (relative, sampled points), more than the "
+                           "tolerance " +
+                           Utilities::to_string(tolerance) +
+                           " allows; a smaller Tolerance refines the grid."));
+    return settlement;
   }
 
   Vector<double>

@@ -1,15 +1,21 @@
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/parallel.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/thread_local_storage.h>
 #include <deal.II/base/work_stream.h>
 
 #include <deal.II/numerics/rtree.h>
+
+#include <boost/container_hash/hash.hpp>
 
 #include <plate_on_halfspace/soil/boussinesq_kernel.h>
 #include <plate_on_halfspace/soil/surface_settlement.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <set>
+#include <unordered_map>
 
 namespace PlateOnHalfspace
 {
@@ -82,11 +88,11 @@ namespace PlateOnHalfspace
     /** The geometry and tables of @p space_cell; @p q2_values for N = 1. */
     template <int N>
     KernelCell<N>
-    make_cell(const FoundationSpace::Cell &space_cell,
+    make_cell(const BilinearQuadrilateral &geometry,
               const std::array<double, 9> &q2_values,
               const SurfaceKernel         &kernel)
     {
-      KernelCell<N> cell{space_cell.geometry, {}, q2_values, {}, 0, {}, {}, 0};
+      KernelCell<N> cell{geometry, {}, q2_values, {}, 0, {}, {}, 0};
       const auto   &v = cell.geometry.get_vertices();
       cell.polygon    = {v[0], v[1], v[3], v[2]};
       cell.centre     = cell.geometry.map(Point<2>(0.5, 0.5));
@@ -243,7 +249,7 @@ namespace PlateOnHalfspace
         if (std::any_of(q2_values.begin(), q2_values.end(), [](double q) {
               return q != 0;
             }))
-          cells.push_back(make_cell<1>(space_cell, q2_values, kernel));
+          cells.push_back(make_cell<1>(space_cell.geometry, q2_values, kernel));
       }
     const auto images = image_factors(space);
 
@@ -262,6 +268,174 @@ namespace PlateOnHalfspace
                                  image[1] * points[p][1]);
                 for (const KernelCell<1> &cell : cells)
                   sum += kernel_integral(cell, x, duffy, kernel)[0];
+              }
+            settlement[p] = sum;
+          }
+      },
+      16);
+    return settlement;
+  }
+
+  namespace
+  {
+    /**
+     * A point and a cell as their translates with the cell's first vertex
+     * at the origin, every coordinate rounded to 2^-30 of the power of two
+     * of the cell's diameter (which the key holds too): the key under
+     * which near_settlement_at_points() shares the pair's influences with
+     * its translates. The influences are integrated on the rounded pair
+     * itself, so they depend on the key alone, whichever translate met it
+     * first (the same bits on any number of threads); the rounding moves
+     * the point and the vertices by at most 1e-9 of the diameter.
+     */
+    struct TranslatedPair
+    {
+      using Key = std::array<long long, 9>;
+
+      TranslatedPair(const BilinearQuadrilateral &geometry, const Point<2> &x)
+      {
+        const auto  &v        = geometry.get_vertices();
+        const int    exponent = std::ilogb(geometry.diameter());
+        const double unit     = std::ldexp(1., exponent - 30);
+        const auto   round    = [&](const double offset, long long &k) {
+          k = std::llround(offset / unit);
+          return k * unit;
+        };
+        for (unsigned int i = 1; i < 4; ++i)
+          for (unsigned int d = 0; d < 2; ++d)
+            vertices[i][d] = round(v[i][d] - v[0][d], key[2 * (i - 1) + d]);
+        for (unsigned int d = 0; d < 2; ++d)
+          point[d] = round(x[d] - v[0][d], key[6 + d]);
+        key[8] = exponent;
+      }
+
+      Key                     key;
+      Point<2>                point;
+      std::array<Point<2>, 4> vertices;
+    };
+
+    /** Influences kept per thread, at most this many (about 100 bytes
+     *  each). */
+    constexpr std::size_t translated_pairs_kept = 1u << 18;
+
+    /** Distinct cell shapes (TranslatedPair's rounding of the vertices)
+     *  among @p cells, counted up to @p limit. */
+    unsigned int
+    n_cell_shapes(const std::vector<KernelCell<1>> &cells,
+                  const unsigned int                limit)
+    {
+      std::set<TranslatedPair::Key> shapes;
+      for (const KernelCell<1> &cell : cells)
+        {
+          TranslatedPair::Key key =
+            TranslatedPair(cell.geometry, cell.geometry.get_vertices()[0]).key;
+          shapes.insert(key);
+          if (shapes.size() > limit)
+            break;
+        }
+      return shapes.size();
+    }
+  } // namespace
+
+  std::vector<double>
+  near_settlement_at_points(const FoundationSpace       &space,
+                            const Vector<double>        &nodal_pressure,
+                            const std::vector<Point<2>> &points,
+                            const SurfaceKernel         &near_kernel,
+                            const unsigned int           singular_order,
+                            const double                 reach)
+  {
+    Assert(near_kernel.remainder, ExcInternalError());
+    const SurfaceKernel        inverse_distance(near_kernel.alpha);
+    std::vector<KernelCell<1>> cells;
+    std::vector<std::pair<BoundingBox<2>, unsigned int>> zones;
+    for (const auto &space_cell : space.cells)
+      {
+        const std::array<double, 9> q2_values =
+          space_cell.local_values(nodal_pressure);
+        if (std::none_of(q2_values.begin(), q2_values.end(), [](double q) {
+              return q != 0;
+            }))
+          continue;
+        cells.push_back(
+          make_cell<1>(space_cell.geometry, q2_values, near_kernel));
+        const KernelCell<1> &cell   = cells.back();
+        const double         radius = reach + 0.5 * cell.diameter;
+        zones.emplace_back(BoundingBox<2>(
+                             std::make_pair(Point<2>(cell.centre[0] - radius,
+                                                     cell.centre[1] - radius),
+                                            Point<2>(cell.centre[0] + radius,
+                                                     cell.centre[1] + radius))),
+                           cells.size() - 1);
+      }
+    const auto   zone_tree = pack_rtree(zones);
+    const auto   images    = image_factors(space);
+    const QDuffy duffy(singular_order, 1.0);
+
+    // On a mesh of few cell shapes (uniform, or a few levels of
+    // refinement) most point-cell pairs are translates of another: their
+    // influences on the cell's Q2 shapes are integrated once (the
+    // operator's near field shares translated pairs alike). A mesh of many
+    // shapes (Gmsh, distorted) integrates each pair's pressure directly.
+    const bool translates    = n_cell_shapes(cells, 64) <= 64;
+    using Influences         = std::array<double, 9>;
+    using Kept               = std::unordered_map<TranslatedPair::Key,
+                                    Influences,
+                                    boost::hash<TranslatedPair::Key>>;
+    const auto pair_integral = [&](const KernelCell<1> &cell,
+                                   const Point<2>      &x,
+                                   Kept                &kept) {
+      if (!translates)
+        return kernel_integral(cell, x, duffy, inverse_distance)[0] +
+               smooth_integral(cell, x, *near_kernel.remainder)[0];
+      const TranslatedPair pair(cell.geometry, x);
+      auto                 hit = kept.find(pair.key);
+      Influences           influences;
+      if (hit != kept.end())
+        influences = hit->second;
+      else
+        {
+          const KernelCell<9> shape =
+            make_cell<9>(BilinearQuadrilateral(pair.vertices), {}, near_kernel);
+          influences =
+            kernel_integral(shape, pair.point, duffy, inverse_distance);
+          add_scaled(influences,
+                     1.,
+                     smooth_integral(shape,
+                                     pair.point,
+                                     *near_kernel.remainder));
+          if (kept.size() < translated_pairs_kept)
+            kept.emplace(pair.key, influences);
+        }
+      double sum = 0;
+      for (unsigned int k = 0; k < 9; ++k)
+        sum += influences[k] * cell.q2_values[k];
+      return sum;
+    };
+
+    Threads::ThreadLocalStorage<Kept> kept_influences;
+    std::vector<double>               settlement(points.size(), 0.);
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(points.size()),
+      [&](const unsigned int begin, const unsigned int end) {
+        Kept &kept = kept_influences.get();
+        for (unsigned int p = begin; p < end; ++p)
+          {
+            double sum = 0;
+            for (const auto &image : images)
+              {
+                const Point<2> x(image[0] * points[p][0],
+                                 image[1] * points[p][1]);
+                for (auto it =
+                       zone_tree.qbegin(boost::geometry::index::intersects(x));
+                     it != zone_tree.qend();
+                     ++it)
+                  {
+                    const KernelCell<1> &cell = cells[it->second];
+                    if (x.distance(cell.centre) - 0.5 * cell.diameter < reach)
+                      sum += pair_integral(cell, x, kept);
+                  }
               }
             settlement[p] = sum;
           }
@@ -330,7 +504,8 @@ namespace PlateOnHalfspace
     std::vector<std::pair<BoundingBox<2>, unsigned int>> zones;
     for (unsigned int c = 0; c < space.cells.size(); ++c)
       {
-        tables->cells.push_back(make_cell<9>(space.cells[c], {}, kernel));
+        tables->cells.push_back(
+          make_cell<9>(space.cells[c].geometry, {}, kernel));
         const KernelCell<9> &cell   = tables->cells.back();
         const double         radius = near_distance * cell.diameter;
         zones.emplace_back(BoundingBox<2>(

@@ -102,6 +102,11 @@ namespace PlateOnHalfspace
     Stencil
     stencil(const Point<2> &x) const;
 
+    /** Whether the whole stencil of point @p x lies on the grid (every
+     *  point given to the constructor's extent does). */
+    bool
+    covers(const Point<2> &x) const;
+
     unsigned int
     order() const
     {

@@ -131,9 +131,10 @@ namespace PlateOnHalfspace
      * continuum soil where points × loaded cells exceed
      * compressed_settlement_threshold, the same integrals through a
      * compressed influence matrix at Foundation operator/Tolerance
-     * (halfspace/compressed_settlement.h).
+     * (halfspace/compressed_settlement.h). A storage with a faster
+     * evaluation of the same integrals overrides it.
      */
-    std::vector<double>
+    virtual std::vector<double>
     settlement_at_points(const FoundationSpace       &space,
                          const Vector<double>        &nodal_pressure,
                          const std::vector<Point<2>> &points) const;
@@ -144,6 +145,12 @@ namespace PlateOnHalfspace
      * (doc/performance.md, "Goal error estimate").
      */
     static constexpr double compressed_settlement_threshold = 2e8;
+
+    /** The cells of @p space on which @p nodal_pressure is not zero: the
+     *  cost of a direct settlement_at_points() is points times these. */
+    static unsigned int
+    n_loaded_cells(const FoundationSpace &space,
+                   const Vector<double>  &nodal_pressure);
 
     /** The accuracy of compressed evaluations (Foundation
      *  operator/Tolerance); create_foundation_operator() sets it. */

@@ -99,6 +99,41 @@ namespace PlateOnHalfspace
     /** Near field exactly, far field from its own 2 x 2 Gauss points. */
     Vector<double>
     flexibility_diagonal() const override;
+    /**
+     * The settlement at @p points through this operator's split (a goal's
+     * error estimate, doc/formulation.md, "Goal-oriented refinement"): the
+     * far field's grid potentials of the pressure read at the points by
+     * the B-splines, plus the near field alpha erfc(r / sigma) / r over
+     * the cells within the cutoff (near_settlement_at_points(),
+     * soil/surface_settlement.h). About n log n + points work. Below
+     * grid_settlement_threshold points × loaded cells, on a grid split
+     * over several processes, or for a point off the grid: the base
+     * class's evaluation. Compared at 8 points with the direct sum; more
+     * than 10 × Tolerance apart throws, naming Foundation
+     * operator/Tolerance.
+     */
+    std::vector<double>
+    settlement_at_points(const FoundationSpace       &space,
+                         const Vector<double>        &nodal_pressure,
+                         const std::vector<Point<2>> &points) const override;
+
+    /** Whether grid_settlement_at_points() can serve @p points: one
+     *  process's whole grid, and every point's stencil on it. */
+    bool
+    grid_covers(const std::vector<Point<2>> &points) const;
+
+    /** settlement_at_points() through the grid whatever the size; needs
+     *  grid_covers(@p points). */
+    std::vector<double>
+    grid_settlement_at_points(const FoundationSpace       &space,
+                              const Vector<double>        &nodal_pressure,
+                              const std::vector<Point<2>> &points) const;
+
+    /** Points × loaded cells from which settlement_at_points() takes the
+     *  grid: about where it becomes faster than the direct sum
+     *  (doc/performance.md, "Goal error estimate"). */
+    static constexpr double grid_settlement_threshold = 1e6;
+
     std::unique_ptr<ApproximateInverse>
     make_approximate_inverse() override;
     bool

@@ -48,6 +48,27 @@ namespace PlateOnHalfspace
                        const unsigned int           singular_order);
 
   /**
+   * The part of settlement_at_points() that a split kernel's near field
+   * holds (halfspace/split_kernel_operator.h): at each of @p points,
+   * ∫ q_h(y) K(|x - y|) dy with K(r) = alpha / r + R(r) the kernel
+   * @p near_kernel (its remainder R required), over the cells and mirror
+   * images that come within @p reach of the point (by their centres and
+   * diameters). The alpha / r part takes settlement_at_points()'s rules;
+   * R takes Gauss rules of 3 + 3 H / (l + separation) points per
+   * direction (at most the cell's own near order), so that a remainder
+   * that cancels most of alpha / r near the point, as -alpha erf(r /
+   * sigma) / r does, is integrated to its own accuracy. Beyond @p reach
+   * the kernel must be negligible. The points are split over the threads.
+   */
+  std::vector<double>
+  near_settlement_at_points(const FoundationSpace       &space,
+                            const Vector<double>        &nodal_pressure,
+                            const std::vector<Point<2>> &points,
+                            const SurfaceKernel         &near_kernel,
+                            const unsigned int           singular_order,
+                            const double                 reach);
+
+  /**
    * settlement_at_points() split for a compressed evaluation
    * (halfspace/compressed_settlement.h): per cell and for its nine local Q2
    * shape functions N_k (FE_Q<2>(2) numbering), with the cell's mirror
