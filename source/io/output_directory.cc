@@ -241,8 +241,8 @@ namespace PlateOnHalfspace
   ResultsOutput::is_result_file(const std::string &name)
   {
     static const std::regex pattern(
-      R"((summary\.json|convergence\.txt|solution\.pvd|solution-\d+\.vtu|)"
-      R"(sweep\.csv|complete|(gauss-profile|profile|nodes)-\d+\.csv))");
+      R"((summary\.json|convergence\.txt|solution\.pvd|solution-\d\d\.vtu|)"
+      R"(sweep\.csv|complete|(gauss-profile|profile|nodes)-\d\d\.csv))");
     return std::regex_match(name, pattern);
   }
 

@@ -287,5 +287,25 @@ PLATE_ON_HALFSPACE_MEMORY_LIMIT=100K "$program" sw_second.prm >stdout 2>stderr
 check "a run failing in cycle 1 after a sweep: sweep.csv and the rest restored" \
   eval 'same_snapshot sw "$earlier" && [ -f sw/sweep.csv ] && [ ! -e sw/failed-run/sweep.csv ] && [ -f sw/failed-run/summary.json ]'
 
+# 11. Files whose names only look like results (the program writes NN as
+#     two digits, at most 30 cycles): finished runs leave them alone.
+look_alike="profile-2024.csv nodes-7.csv solution-123.vtu gauss-profile-000.csv summary.json.bak notes.txt"
+kept_look_alike() {
+  local f
+  for f in $look_alike; do
+    [ "$(cat "alike/$f")" = mine ] || return 1
+  done
+}
+quick alike alike.prm
+mkdir alike
+for f in $look_alike; do echo mine >"alike/$f"; done
+"$program" alike.prm >stdout 2>stderr
+status=$?
+check "files named like results with other digits: the run succeeds and keeps them" \
+  eval '[ $status -eq 0 ] && finished_run alike && kept_look_alike'
+"$program" alike.prm >stdout 2>stderr
+check "files named like results with other digits: a second run keeps them too" \
+  eval 'finished_run alike && kept_look_alike'
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
