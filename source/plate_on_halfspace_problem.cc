@@ -472,6 +472,37 @@ namespace PlateOnHalfspace
   }
 
   void
+  PlateOnHalfspaceProblem::check_points_on_plate() const
+  {
+    std::vector<std::pair<std::string, Point<2>>> points;
+    for (const Point<2> &x : parameters.output.probe_points)
+      points.emplace_back("Output/Probe points", x);
+    for (const Parameters::Check &check : parameters.verification.checks)
+      if (check.at_point)
+        points.emplace_back("Verification/Checks", check.location);
+    const FoundationSpace &space = mindlin_plate->get_foundation_space();
+    for (const auto &[entry, x] : points)
+      {
+        bool on_plate = true;
+        if (parameters.plate.shape == Parameters::Plate::Shape::disk)
+          on_plate = x.norm() <= parameters.plate.radius * (1. + 1e-10);
+        else
+          try
+            {
+              mindlin_plate->locate(space.symmetry.to_computed_part(x));
+            }
+          catch (...)
+            {
+              on_plate = false;
+            }
+        std::ostringstream message;
+        message << entry << ": the point (" << x[0] << ", " << x[1]
+                << ") is not on the plate.";
+        AssertThrow(on_plate, ExcMessage(message.str()));
+      }
+  }
+
+  void
   PlateOnHalfspaceProblem::check_result_magnitudes() const
   {
     // Rough scales of the results the loads give, from the assembled
@@ -895,7 +926,10 @@ namespace PlateOnHalfspace
                          cycle == 0,
                          cycle == 0);
     if (cycle == 0)
-      check_result_magnitudes();
+      {
+        check_result_magnitudes();
+        check_points_on_plate();
+      }
     const double integration_error =
       load_integration_error(mindlin_plate->get_foundation_space(),
                              computed_loads);
@@ -1587,7 +1621,22 @@ namespace PlateOnHalfspace
         std::string label = check.quantity;
         if (check.at_point)
           {
-            const PointValues             v        = values_at(check.location);
+            PointValues v;
+            try
+              {
+                v = values_at(check.location);
+              }
+            catch (...)
+              {
+                // on the first mesh (check_points_on_plate()), off the last:
+                // a disk's point beyond its polygon
+                log << "check " << label << "(" << check.location[0] << ","
+                    << check.location[1]
+                    << "): the point is not on the last mesh: FAILED"
+                    << std::endl;
+                all_passed = false;
+                continue;
+              }
             std::map<std::string, double> point    = {{"w", v.w},
                                                       {"q", v.q},
                                                       {"Mx", v.mx},

@@ -291,6 +291,15 @@ namespace PlateOnHalfspace
     check_result_magnitudes() const;
 
     /**
+     * Refuse, before anything is computed, a point of Output/Probe points
+     * or Verification/Checks that is not on the plate, naming the entry
+     * and the point: on the first mesh, which covers the plate exactly
+     * but for a disk, whose outline is then |x| <= radius.
+     */
+    void
+    check_points_on_plate() const;
+
+    /**
      * Refuse to write a cycle whose results hold a NaN or an infinity, or
      * a value beyond what the VTU files hold, naming the quantity.
      */

@@ -115,6 +115,12 @@ namespace PlateOnHalfspace
 
     if (plate.shape == Parameters::Plate::Shape::slabs)
       joints.check();
+    for (const Parameters::Check &check : verification.checks)
+      require(check.quantity.rfind("goal.", 0) != 0 ||
+                adaptivity.goal.functional,
+              "Verification/Checks: <" + check.quantity +
+                "> needs Adaptivity/Goal (the quantity whose value and error "
+                "each cycle reports).");
     if (discretization.flexibility ==
         Parameters::Discretization::Flexibility::collocation)
       require(plate.shape != Parameters::Plate::Shape::slabs,

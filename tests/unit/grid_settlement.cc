@@ -86,9 +86,8 @@ namespace
       scale = std::max(scale, std::abs(u));
     std::ostringstream name;
     name << label << ", tolerance " << tolerance;
-    deallog << name.str() << ": " << space.n_nodes()
-            << " foundation nodes, " << points.size() << " points"
-            << std::endl;
+    deallog << name.str() << ": " << space.n_nodes() << " foundation nodes, "
+            << points.size() << " points" << std::endl;
     require(" every point on the grid", fft.grid_covers(points));
     start = std::chrono::steady_clock::now();
     const std::vector<double> grid =
@@ -109,7 +108,7 @@ namespace
                 difference / scale,
                 10 * tolerance);
     require(" a point beyond the plate is off the grid",
-          !fft.grid_covers({Point<2>(1e3, 1e3)}));
+            !fft.grid_covers({Point<2>(1e3, 1e3)}));
   }
 } // namespace
 
@@ -132,15 +131,16 @@ main()
           "example2-bonded.prm",
           galerkin + " set Symmetry = none\nend\n",
           1e-6);
-  compare("distorted Gmsh square",
-          "flexible-square.prm",
-          "subsection Plate\n set Shape = mesh file\n set Mesh file = " SOURCE_DIR
-          "/../data/distorted-square.msh\n set Thickness = 0.3\n"
-          " set Young's modulus = 3e7\nend\n"
-          "subsection Verification\n set Checks =\nend\n"
-          "subsection Discretization\n set Flexibility = galerkin\n"
-          " set Initial refinements = 2\n set Symmetry = none\nend\n",
-          1e-6);
+  compare(
+    "distorted Gmsh square",
+    "flexible-square.prm",
+    "subsection Plate\n set Shape = mesh file\n set Mesh file = " SOURCE_DIR
+    "/../data/distorted-square.msh\n set Thickness = 0.3\n"
+    " set Young's modulus = 3e7\nend\n"
+    "subsection Verification\n set Checks =\nend\n"
+    "subsection Discretization\n set Flexibility = galerkin\n"
+    " set Initial refinements = 2\n set Symmetry = none\nend\n",
+    1e-6);
   compare("example 2, tensionless, adaptive, quarter",
           "example2.prm",
           "subsection Discretization\n set Flexibility = galerkin\n"
