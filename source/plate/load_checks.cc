@@ -246,38 +246,73 @@ namespace PlateOnHalfspace
     if (n == 0 || load.size() == 0)
       return verdict;
 
-    // The slab of each node (the material id of its cells; one slab
-    // unless Shape = slabs) and the bodies: slabs joined by joints that
-    // keep them from separating vertically (every joint but a free one).
+    // The bodies that move on their own: the cells joined by a node they
+    // share, and the slabs (the material id of their cells; one slab
+    // unless Shape = slabs) joined by joints that keep them from
+    // separating vertically (every joint but a free one). A Gmsh mesh in
+    // several pieces is several bodies, as free slabs are.
     const SlabGrid           *grid    = plate.get_slab_grid();
     const unsigned int        n_slabs = grid ? grid->n_slabs() : 1;
-    std::vector<unsigned int> body(n_slabs);
-    std::iota(body.begin(), body.end(), 0u);
+    const bool                slabs   = n_slabs > 1;
+    const unsigned int        n_cells = space.cells.size();
+    std::vector<unsigned int> parent(n_cells + n_slabs);
+    std::iota(parent.begin(), parent.end(), 0u);
     const auto find = [&](unsigned int s) {
-      while (body[s] != s)
-        s = body[s] = body[body[s]];
+      while (parent[s] != s)
+        s = parent[s] = parent[parent[s]];
       return s;
     };
+    const auto join = [&](const unsigned int a, const unsigned int b) {
+      parent[find(a)] = find(b);
+    };
+    // entries n_cells + s stand for slab s
     if (grid)
       for (const Joint &joint : grid->get_joints())
         if (joint.transfer != Parameters::Joints::LoadTransfer::free &&
             joint.slab_low < n_slabs && joint.slab_high < n_slabs)
-          body[find(joint.slab_low)] = find(joint.slab_high);
+          join(n_cells + joint.slab_low, n_cells + joint.slab_high);
+    std::vector<unsigned int> slab_of_cell(n_cells, 0);
+    {
+      std::vector<unsigned int> first_cell_of_node(
+        n, numbers::invalid_unsigned_int);
+      unsigned int c = 0;
+      for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+        {
+          slab_of_cell[c] =
+            std::min<unsigned int>(cell->material_id(), n_slabs - 1);
+          if (slabs)
+            join(c, n_cells + slab_of_cell[c]);
+          for (const unsigned int i : space.cells[c].nodes())
+            {
+              if (first_cell_of_node[i] == numbers::invalid_unsigned_int)
+                first_cell_of_node[i] = c;
+              else
+                join(c, first_cell_of_node[i]);
+            }
+          ++c;
+        }
+    }
+    // the bodies numbered in the order of their first cells
+    std::vector<unsigned int> body_of_root(n_cells + n_slabs,
+                                           numbers::invalid_unsigned_int);
+    std::vector<unsigned int> body_of_cell(n_cells);
+    unsigned int              n_bodies = 0;
+    for (unsigned int c = 0; c < n_cells; ++c)
+      {
+        unsigned int &b = body_of_root[find(c)];
+        if (b == numbers::invalid_unsigned_int)
+          b = n_bodies++;
+        body_of_cell[c] = b;
+      }
     std::vector<unsigned int> body_of_node(n, 0);
     std::vector<double>       cell_size_of_node(n, 0);
-    unsigned int              c = 0;
-    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
-      {
-        const unsigned int slab =
-          std::min<unsigned int>(cell->material_id(), n_slabs - 1);
-        for (const unsigned int i : space.cells[c].nodes())
-          {
-            body_of_node[i]      = find(slab);
-            cell_size_of_node[i] = std::max(cell_size_of_node[i],
-                                            space.cells[c].geometry.diameter());
-          }
-        ++c;
-      }
+    for (unsigned int c = 0; c < n_cells; ++c)
+      for (const unsigned int i : space.cells[c].nodes())
+        {
+          body_of_node[i] = body_of_cell[c];
+          cell_size_of_node[i] =
+            std::max(cell_size_of_node[i], space.cells[c].geometry.diameter());
+        }
 
     // The reflections that make the whole plate of the computed part's
     // bodies. A mirror plane on a joint that is not tied is two free
@@ -309,7 +344,7 @@ namespace PlateOnHalfspace
       /** node locations with their cell sizes, for the size near x */
       std::vector<std::pair<Point<2>, double>> sizes;
     };
-    std::vector<Body> bodies(n_slabs);
+    std::vector<Body> bodies(n_bodies);
     CompensatedSum    total_sum;
     for (unsigned int i = 0; i < n; ++i)
       {
@@ -359,12 +394,20 @@ namespace PlateOnHalfspace
         return !b.points.empty();
       }) > 1;
     const auto name_of = [&](const unsigned int s) {
-      std::string whose = "the plate";
-      if (several)
+      std::string        whose = "the plate";
+      const unsigned int first =
+        std::find(body_of_cell.begin(), body_of_cell.end(), s) -
+        body_of_cell.begin();
+      if (several && !slabs)
+        // a piece of a Gmsh mesh: named by a point of it
+        whose = "the piece of the plate (the mesh's cells connected to "
+                "each other) around " +
+                point(space.cells[first].geometry.map(Point<2>(0.5, 0.5)));
+      else if (several)
         {
           std::vector<unsigned int> members;
           for (unsigned int t = 0; t < n_slabs; ++t)
-            if (find(t) == s)
+            if (find(n_cells + t) == find(first))
               members.push_back(t + 1);
           whose = members.size() == 1 ? "slab " : "slabs ";
           for (unsigned int k = 0; k < members.size(); ++k)
@@ -377,7 +420,7 @@ namespace PlateOnHalfspace
       return whose;
     };
     std::string unloaded;
-    for (unsigned int s = 0; s < n_slabs; ++s)
+    for (unsigned int s = 0; s < n_bodies; ++s)
       {
         const Body &b = bodies[s];
         if (b.points.empty())
@@ -437,7 +480,10 @@ namespace PlateOnHalfspace
               "answer: the resultant of the loads on " +
               whose + ", " + number(b.force) + " at " + point(resultant) +
               ", lies " + (depth < -1e-9 * diameter ? "outside" : "on") +
-              " the outline of " + (several ? "those slabs" : "the plate") +
+              " the outline of " +
+              (!several ? "the plate" :
+               slabs    ? "those slabs" :
+                          "that piece") +
               (named.empty() ? std::string(" (Loads)") :
                                " (Loads/Point loads at " + named + ")") +
               ". A soil that cannot pull would have to carry the plate on "
@@ -479,15 +525,20 @@ namespace PlateOnHalfspace
       verdict.error =
         "The loads leave " + unloaded +
         " without any load, and the plate has no weight: on a tensionless " +
-        (soil_couples_nodes ? "half-space, which settles under it with the "
-                              "loaded slabs," :
-                              "foundation, with the temperature difference "
-                              "curling it,") +
+        (soil_couples_nodes ?
+           std::string("half-space, which settles under it with the loaded ") +
+             (slabs ? "slabs," : "pieces,") :
+           "foundation, with the temperature difference "
+           "curling it,") +
         " nothing holds it down, so its position and every result on it (its "
-        "deflections, the load transfer of its joints) are not "
-        "determined. Give the plate its weight (Plate/Unit weight), load "
-        "that slab, or join it to a loaded one (Joints/Load transfer other "
-        "than free).";
+        "deflections" +
+        (slabs ? std::string(", the load transfer of its joints") : "") +
+        ") are not determined. Give the plate its weight (Plate/Unit "
+        "weight), " +
+        (slabs ? std::string("load that slab, or join it to a loaded one "
+                             "(Joints/Load transfer other than free).") :
+                 std::string("load that piece, or join it to a loaded one "
+                             "in the mesh (Plate/Mesh file)."));
     return verdict;
   }
 } // namespace PlateOnHalfspace

@@ -83,6 +83,57 @@ namespace PlateOnHalfspace
     }
 
     /**
+     * Refuse a Gmsh mesh with two vertices at one place: GridIn keeps them
+     * apart, so the cells on either side share no degree of freedom and the
+     * plate would be cut there without notice (a mesh made of surfaces
+     * that Gmsh did not make coherent). Places within 1e-9 of the mesh's
+     * size count as one.
+     */
+    void
+    check_vertices_are_merged(const Triangulation<2> &triangulation,
+                              const std::string      &file_name)
+    {
+      const std::vector<Point<2>> &vertices = triangulation.get_vertices();
+      const std::vector<bool>     &used     = triangulation.get_used_vertices();
+      std::vector<unsigned int>    order;
+      for (unsigned int v = 0; v < vertices.size(); ++v)
+        if (used[v])
+          order.push_back(v);
+      std::sort(order.begin(), order.end(), [&](const auto a, const auto b) {
+        return vertices[a][0] < vertices[b][0];
+      });
+      const auto corners =
+        GridTools::compute_bounding_box(triangulation).get_boundary_points();
+      const double tolerance = 1e-9 * corners.first.distance(corners.second);
+      std::size_t  pairs     = 0;
+      Point<2>     first;
+      for (std::size_t i = 0; i < order.size(); ++i)
+        for (std::size_t j = i + 1;
+             j < order.size() &&
+             vertices[order[j]][0] - vertices[order[i]][0] <= tolerance;
+             ++j)
+          if (std::abs(vertices[order[j]][1] - vertices[order[i]][1]) <=
+              tolerance)
+            {
+              if (pairs == 0)
+                first = vertices[order[i]];
+              ++pairs;
+            }
+      if (pairs == 0)
+        return;
+      std::ostringstream message;
+      message << "Plate/Mesh file: <" << file_name << "> has " << pairs
+              << (pairs == 1 ? " pair" : " pairs")
+              << " of distinct vertices at the same place (the first at ("
+              << first[0] << ", " << first[1]
+              << ")): the cells on either side would not be connected, and "
+                 "the plate would be cut there. Merge them (in Gmsh: "
+                 "Geometry.AutoCoherence = 1, or Coherence Mesh before "
+                 "saving); a joint is modelled by Plate/Shape = slabs.";
+      AssertThrow(false, ExcMessage(message.str()));
+    }
+
+    /**
      * Refuse a Gmsh mesh whose vertices do not lie in one plane z = const:
      * GridIn reads a 2d mesh's x and y and drops z, which would flatten a
      * tilted or curved surface without notice. The file is read again as a
@@ -244,6 +295,7 @@ namespace PlateOnHalfspace
                                    "quadrilaterals are allowed (in Gmsh: "
                                    "Mesh.RecombineAll = 1)."));
             check_cells_are_valid(triangulation, plate.mesh_file);
+            check_vertices_are_merged(triangulation, plate.mesh_file);
             check_mesh_is_plane(plate.mesh_file, triangulation);
             break;
           }
