@@ -500,6 +500,29 @@ namespace PlateOnHalfspace
                 << ") is not on the plate.";
         AssertThrow(on_plate, ExcMessage(message.str()));
       }
+    // a profile whose every point lies off the plate would write an empty
+    // profile-NN.csv
+    if (!parameters.output.default_profile)
+      {
+        const Point<2> &start  = parameters.output.profile_start,
+                       &end    = parameters.output.profile_end;
+        const unsigned int n   = parameters.output.profile_points;
+        bool               met = false;
+        for (unsigned int k = 0; k < n && !met; ++k)
+          try
+            {
+              mindlin_plate->locate(space.symmetry.to_computed_part(
+                start + (end - start) * (k / double(n - 1))));
+              met = true;
+            }
+          catch (...)
+            {}
+        std::ostringstream message;
+        message << "Output/Profile: none of its " << n << " points from ("
+                << start[0] << ", " << start[1] << ") to (" << end[0] << ", "
+                << end[1] << ") is on the plate.";
+        AssertThrow(met, ExcMessage(message.str()));
+      }
   }
 
   void

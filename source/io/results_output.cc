@@ -522,12 +522,14 @@ namespace PlateOnHalfspace
         return next < space.n_nodes();
       });
 
-    // Gauss points of the cells the line crosses or borders, keeping those
-    // nearest to the line in each cell.
-    const Tensor<1, 2> direction = (end - start) / end.distance(start);
+    // Gauss points of the cells the segment from start to end crosses or
+    // borders, keeping those nearest to it in each cell.
+    const double       length    = end.distance(start);
+    const Tensor<1, 2> direction = (end - start) / length;
     const auto         distance  = [&](const Point<2> &x) {
-      const Tensor<1, 2> d = x - start;
-      return std::abs(d[0] * direction[1] - d[1] * direction[0]);
+      const double along =
+        std::min(length, std::max(0., (x - start) * direction));
+      return x.distance(start + along * direction);
     };
     const QGauss<2>                    rule(2);
     FEValues<2>                        values(plate.get_fe(),

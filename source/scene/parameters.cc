@@ -1147,6 +1147,9 @@ namespace PlateOnHalfspace
                   "Output/Profile: the number of points must be an integer "
                   "in [2, 1e6].");
           profile_points = static_cast<unsigned int>(v[4]);
+          require(profile_start.distance(profile_end) > 0,
+                  "Output/Profile: the line must have two distinct end "
+                  "points.");
         }
       else
         profile_points = 241;
