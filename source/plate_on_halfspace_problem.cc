@@ -1714,6 +1714,14 @@ namespace PlateOnHalfspace
   std::string
   short_error_message(const std::exception &error)
   {
+    // an allocation that failed where no memory guard foresaw it (the
+    // mesh, a plate factor): what() says only "std::bad_alloc"
+    if (dynamic_cast<const std::bad_alloc *>(&error) != nullptr)
+      return "out of memory (std::bad_alloc): the scene needs more memory "
+             "than the process may use. Use fewer cells (Discretization/"
+             "Subdivisions, Initial refinements, Adaptivity/Max cells) or, "
+             "for the half-space, Foundation operator/Storage = fft or "
+             "hierarchical (doc/errors-and-limits.md, \"Memory guard\").";
     // A deal.II exception's own text, not what(): what() is a C string,
     // cut short at a NUL that a quoted value may hold.
     std::string text = error.what();

@@ -67,5 +67,13 @@ printf 'include %s/rigid-disk.prm\nset Output directory = up\nsubsection Foundat
 expect "upward-only load on a tensionless foundation" nonzero "$program" upward.prm
 grep -q "lift the plate" stderr && echo "ok: the mechanism guard names the reason" && passed=$((passed + 1)) ||
   { echo "FAILED: no mechanism message"; failed=$((failed + 1)); }
+# out of memory where no memory guard foresaw it (10^6 cells under a 2 GB
+# address-space limit): one Error line naming the entries, earlier results kept
+printf 'set Output directory = run\ninclude %s/flexible-square.prm\nset Output directory = run\nsubsection Discretization\n  set Subdivisions x = 1000\n  set Subdivisions y = 1000\nend\n' "$scenes" >huge.prm
+expect "out of memory under ulimit -v" nonzero bash -c "ulimit -v 2000000; exec \"$program\" huge.prm"
+grep -q "^Error: out of memory (std::bad_alloc): .*Discretization/Subdivisions" stderr &&
+  cmp -s before.json run/summary.json &&
+  echo "ok: out of memory says so and keeps the earlier results" && passed=$((passed + 1)) ||
+  { echo "FAILED: no out-of-memory message or earlier results changed"; failed=$((failed + 1)); }
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
