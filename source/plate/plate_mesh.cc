@@ -83,6 +83,52 @@ namespace PlateOnHalfspace
     }
 
     /**
+     * Refuse a Gmsh file whose $Nodes or $Elements section declares more
+     * entries than the file could hold (each takes a line of at least six
+     * bytes) or a negative number of them, before GridIn allocates for
+     * that count: a count of 1e9 in a small file would otherwise ask for
+     * tens of GB, and a negative one ends in std::bad_alloc. Format 2 gives
+     * the count alone on the section's first line, format 4 as the second
+     * of four numbers.
+     */
+    void
+    check_msh_counts(const std::string &file_name)
+    {
+      std::ifstream file(file_name, std::ios::binary);
+      file.seekg(0, std::ios::end);
+      const double bytes = static_cast<double>(file.tellg());
+      file.seekg(0);
+      std::string line;
+      while (std::getline(file, line))
+        {
+          if (!line.empty() && line.back() == '\r')
+            line.pop_back();
+          if (line != "$Nodes" && line != "$Elements")
+            continue;
+          const std::string section = line;
+          if (!std::getline(file, line))
+            return;
+          std::istringstream  fields(line);
+          std::vector<double> numbers;
+          double              number;
+          while (fields >> number)
+            numbers.push_back(number);
+          if (numbers.empty())
+            continue; // GridIn says what it cannot read
+          const double count = numbers.size() >= 4 ? numbers[1] : numbers[0];
+          std::ostringstream message;
+          message << "Plate/Mesh file: <" << file_name << "> declares " << count
+                  << " entries in its " << section << " section, ";
+          AssertThrow(count >= 0,
+                      ExcMessage(message.str() + "a negative number."));
+          message << "more than its " << bytes
+                  << " bytes can hold (at least 6 bytes each): the file is "
+                     "truncated or the count is wrong.";
+          AssertThrow(6 * count <= bytes, ExcMessage(message.str()));
+        }
+    }
+
+    /**
      * Refuse a Gmsh mesh with two vertices at one place: GridIn keeps them
      * apart, so the cells on either side share no degree of freedom and the
      * plate would be cut there without notice (a mesh made of surfaces
@@ -266,6 +312,7 @@ namespace PlateOnHalfspace
             AssertThrow(file && !std::filesystem::is_directory(plate.mesh_file),
                         ExcMessage("Plate/Mesh file: cannot open <" +
                                    plate.mesh_file + ">."));
+            check_msh_counts(plate.mesh_file);
             GridIn<2> grid_in(triangulation);
             try
               {
