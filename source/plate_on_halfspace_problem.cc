@@ -480,47 +480,58 @@ namespace PlateOnHalfspace
     for (const Parameters::Check &check : parameters.verification.checks)
       if (check.at_point)
         points.emplace_back("Verification/Checks", check.location);
+    // On the first mesh, which the later ones contain: a disk's refined
+    // polygons only grow towards its circle.
     const FoundationSpace &space = mindlin_plate->get_foundation_space();
+    const bool disk = parameters.plate.shape == Parameters::Plate::Shape::disk;
     for (const auto &[entry, x] : points)
       {
         bool on_plate = true;
-        if (parameters.plate.shape == Parameters::Plate::Shape::disk)
-          on_plate = x.norm() <= parameters.plate.radius * (1. + 1e-10);
-        else
-          try
-            {
-              mindlin_plate->locate(space.symmetry.to_computed_part(x));
-            }
-          catch (...)
-            {
-              on_plate = false;
-            }
+        try
+          {
+            mindlin_plate->locate(space.symmetry.to_computed_part(x));
+          }
+        catch (...)
+          {
+            on_plate = false;
+          }
         std::ostringstream message;
         message << entry << ": the point (" << x[0] << ", " << x[1]
-                << ") is not on the plate.";
+                << ") is not on the plate"
+                << (disk && x.norm() <= parameters.plate.radius ?
+                      ": it lies between the disk's circle and the polygon "
+                      "of the first mesh's boundary; move it inward or "
+                      "refine the mesh (Discretization/Initial "
+                      "refinements)." :
+                      ".");
         AssertThrow(on_plate, ExcMessage(message.str()));
       }
-    // a profile whose every point lies off the plate would write an empty
-    // profile-NN.csv
+    // a profile that meets no cell would write empty profiles
     if (!parameters.output.default_profile)
       {
-        const Point<2> &start  = parameters.output.profile_start,
-                       &end    = parameters.output.profile_end;
-        const unsigned int n   = parameters.output.profile_points;
-        bool               met = false;
-        for (unsigned int k = 0; k < n && !met; ++k)
-          try
+        const Point<2> &start = parameters.output.profile_start,
+                       &end   = parameters.output.profile_end;
+        const double                       length    = start.distance(end);
+        const Tensor<1, 2>                 direction = (end - start) / length;
+        std::vector<std::array<double, 2>> images    = {{{1., 1.}}};
+        for (const auto &signs : space.symmetry.reflections())
+          images.push_back(signs);
+        bool met = false;
+        for (const auto &cell : space.cells)
+          for (const auto &signs : images)
             {
-              mindlin_plate->locate(space.symmetry.to_computed_part(
-                start + (end - start) * (k / double(n - 1))));
-              met = true;
+              // the cell's image on the whole plate against the segment
+              const Point<2> c = cell.geometry.map(Point<2>(0.5, 0.5));
+              const Point<2> y(signs[0] * c[0], signs[1] * c[1]);
+              const double   along =
+                std::min(length, std::max(0., (y - start) * direction));
+              met = met || y.distance(start + along * direction) <=
+                             0.5 * cell.geometry.diameter();
             }
-          catch (...)
-            {}
         std::ostringstream message;
-        message << "Output/Profile: none of its " << n << " points from ("
-                << start[0] << ", " << start[1] << ") to (" << end[0] << ", "
-                << end[1] << ") is on the plate.";
+        message << "Output/Profile: the line from (" << start[0] << ", "
+                << start[1] << ") to (" << end[0] << ", " << end[1]
+                << ") does not meet the plate.";
         AssertThrow(met, ExcMessage(message.str()));
       }
   }
@@ -1716,7 +1727,8 @@ namespace PlateOnHalfspace
   {
     // an allocation that failed where no memory guard foresaw it (the
     // mesh, a plate factor): what() says only "std::bad_alloc"
-    if (dynamic_cast<const std::bad_alloc *>(&error) != nullptr)
+    if (dynamic_cast<const std::bad_alloc *>(&error) != nullptr &&
+        dynamic_cast<const std::bad_array_new_length *>(&error) == nullptr)
       return "out of memory (std::bad_alloc): the scene needs more memory "
              "than the process may use. Use fewer cells (Discretization/"
              "Subdivisions, Initial refinements, Adaptivity/Max cells) or, "

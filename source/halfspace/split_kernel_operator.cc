@@ -1050,7 +1050,7 @@ namespace PlateOnHalfspace
     const Vector<double>        &nodal_pressure,
     const std::vector<Point<2>> &points) const
   {
-    if (!grid_covers(points) ||
+    if (!grid_serves(space, points) ||
         double(points.size()) * n_loaded_cells(space, nodal_pressure) <
           grid_settlement_threshold)
       return FoundationOperator::settlement_at_points(space,
@@ -1060,9 +1060,15 @@ namespace PlateOnHalfspace
   }
 
   bool
-  SplitKernelFftOperator::grid_covers(const std::vector<Point<2>> &points) const
+  SplitKernelFftOperator::grid_serves(const FoundationSpace       &space,
+                                      const std::vector<Point<2>> &points) const
   {
     return projection && grid && !grid->split() &&
+           std::all_of(space.cells.begin(),
+                       space.cells.end(),
+                       [this](const FoundationSpace::Cell &cell) {
+                         return cell.geometry.diameter() <= 3 * chosen.sigma;
+                       }) &&
            std::all_of(points.begin(), points.end(), [this](const Point<2> &x) {
              return grid->covers(x);
            });
@@ -1075,7 +1081,7 @@ namespace PlateOnHalfspace
     const std::vector<Point<2>> &points) const
   {
     AssertDimension(nodal_pressure.size(), n_nodes());
-    Assert(grid_covers(points), ExcInternalError());
+    Assert(grid_serves(space, points), ExcInternalError());
     // the near field: alpha / r minus the far field's kernel, within the
     // cutoff beyond which erfc(r / sigma) drops below the tolerance
     std::vector<double> settlement = near_settlement_at_points(

@@ -523,13 +523,16 @@ namespace PlateOnHalfspace
       });
 
     // Gauss points of the cells the segment from start to end crosses or
-    // borders, keeping those nearest to it in each cell.
+    // borders, keeping those nearest to it in each cell among those that
+    // lie across the segment (beside it, not beyond its ends).
     const double       length    = end.distance(start);
     const Tensor<1, 2> direction = (end - start) / length;
     const auto         distance  = [&](const Point<2> &x) {
-      const double along =
-        std::min(length, std::max(0., (x - start) * direction));
-      return x.distance(start + along * direction);
+      const double along = (x - start) * direction;
+      if (along < -1e-12 * length || along > (1 + 1e-12) * length)
+        return std::numeric_limits<double>::max();
+      const Tensor<1, 2> d = x - start;
+      return std::abs(d[0] * direction[1] - d[1] * direction[0]);
     };
     const QGauss<2>                    rule(2);
     FEValues<2>                        values(plate.get_fe(),

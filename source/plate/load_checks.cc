@@ -346,6 +346,14 @@ namespace PlateOnHalfspace
     };
     std::vector<Body> bodies(n_bodies);
     CompensatedSum    total_sum;
+    // A body's image across a mirror plane is the same body only where
+    // the body reaches that plane; otherwise it is a body of its own with
+    // the same loads (a Gmsh piece away from the plane), checked alike.
+    std::vector<std::array<bool, 2>> reaches_plane(n_bodies, {{false, false}});
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int d = 0; d < 2; ++d)
+        if (std::abs(space.node_locations[i][d]) <= space.symmetry.tolerance)
+          reaches_plane[body_of_node[i]][d] = true;
     for (unsigned int i = 0; i < n; ++i)
       {
         Body        &b = bodies[body_of_node[i]];
@@ -353,10 +361,15 @@ namespace PlateOnHalfspace
         // The whole plate: each mirror image carries the same load. A node
         // on a mirror plane is its own image there and carries only the
         // computed part's share, so the images of a node share the copies.
-        const Point<2>       &node = space.node_locations[i];
+        const Point<2>       &node    = space.node_locations[i];
+        const auto           &reaches = reaches_plane[body_of_node[i]];
         std::vector<Point<2>> images;
+        unsigned int          copies = 0;
         for (const auto &signs : reflections)
           {
+            if ((signs[0] < 0 && !reaches[0]) || (signs[1] < 0 && !reaches[1]))
+              continue;
+            ++copies;
             const Point<2> x(signs[0] * node[0], signs[1] * node[1]);
             if (std::none_of(images.begin(),
                              images.end(),
@@ -365,7 +378,7 @@ namespace PlateOnHalfspace
                              }))
               images.push_back(x);
           }
-        const double share = double(reflections.size()) / images.size();
+        const double share = double(copies) / images.size();
         for (const Point<2> &x : images)
           {
             b.force_sum(share * p);
@@ -388,8 +401,14 @@ namespace PlateOnHalfspace
     if (!(acc::sum_kahan(total_sum) > 0))
       return verdict;
 
+    // a body whose mirror image is a body of its own
+    bool imaged_apart = false;
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      for (const auto &signs : reflections)
+        imaged_apart = imaged_apart || (signs[0] < 0 && !reaches_plane[b][0]) ||
+                       (signs[1] < 0 && !reaches_plane[b][1]);
     const bool several =
-      separate[0] || separate[1] ||
+      separate[0] || separate[1] || imaged_apart ||
       std::count_if(bodies.begin(), bodies.end(), [](const Body &b) {
         return !b.points.empty();
       }) > 1;

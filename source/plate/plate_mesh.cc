@@ -146,8 +146,18 @@ namespace PlateOnHalfspace
         if (used[v])
           order.push_back(v);
       std::sort(order.begin(), order.end(), [&](const auto a, const auto b) {
-        return vertices[a][0] < vertices[b][0];
+        return vertices[a][0] < vertices[b][0] ||
+               (vertices[a][0] == vertices[b][0] &&
+                vertices[a][1] < vertices[b][1]);
       });
+      // the end of each run of equal x, so that a column of a structured
+      // mesh is not scanned past the y within reach
+      std::vector<std::size_t> run_end(order.size());
+      for (std::size_t i = order.size(); i-- > 0;)
+        run_end[i] = i + 1 < order.size() &&
+                         vertices[order[i + 1]][0] == vertices[order[i]][0] ?
+                       run_end[i + 1] :
+                       i + 1;
       const auto corners =
         GridTools::compute_bounding_box(triangulation).get_boundary_points();
       const double tolerance = 1e-9 * corners.first.distance(corners.second);
@@ -158,13 +168,17 @@ namespace PlateOnHalfspace
              j < order.size() &&
              vertices[order[j]][0] - vertices[order[i]][0] <= tolerance;
              ++j)
-          if (std::abs(vertices[order[j]][1] - vertices[order[i]][1]) <=
-              tolerance)
-            {
-              if (pairs == 0)
-                first = vertices[order[i]];
-              ++pairs;
-            }
+          {
+            const double dy = vertices[order[j]][1] - vertices[order[i]][1];
+            if (std::abs(dy) <= tolerance)
+              {
+                if (pairs == 0)
+                  first = vertices[order[i]];
+                ++pairs;
+              }
+            else if (dy > tolerance && j < run_end[i])
+              j = run_end[i] - 1; // the rest of this column lies higher
+          }
       if (pairs == 0)
         return;
       std::ostringstream message;

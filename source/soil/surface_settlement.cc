@@ -314,9 +314,9 @@ namespace PlateOnHalfspace
       std::array<Point<2>, 4> vertices;
     };
 
-    /** Influences kept per thread, at most this many (about 100 bytes
-     *  each). */
-    constexpr std::size_t translated_pairs_kept = 1u << 18;
+    /** Influences kept per thread, at most this many (about 170 bytes
+     *  each with the hash table's node: 11 MB). */
+    constexpr std::size_t translated_pairs_kept = 1u << 16;
 
     /** Distinct cell shapes (TranslatedPair's rounding of the vertices)
      *  among @p cells, counted up to @p limit. */

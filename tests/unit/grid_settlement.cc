@@ -15,7 +15,7 @@
 //   many shapes: the near field's pairs integrated one by one, not shared
 //   by translates);
 // the largest difference relative to the largest settlement within 10
-// times the tolerance. Points off the grid are not served (grid_covers()).
+// times the tolerance. Points off the grid are not served (grid_serves()).
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -88,7 +88,7 @@ namespace
     name << label << ", tolerance " << tolerance;
     deallog << name.str() << ": " << space.n_nodes() << " foundation nodes, "
             << points.size() << " points" << std::endl;
-    require(" every point on the grid", fft.grid_covers(points));
+    require(" the grid serves every point", fft.grid_serves(space, points));
     start = std::chrono::steady_clock::now();
     const std::vector<double> grid =
       fft.grid_settlement_at_points(space, pressure, points);
@@ -108,7 +108,7 @@ namespace
                 difference / scale,
                 10 * tolerance);
     require(" a point beyond the plate is off the grid",
-            !fft.grid_covers({Point<2>(1e3, 1e3)}));
+            !fft.grid_serves(space, {Point<2>(1e3, 1e3)}));
   }
 } // namespace
 

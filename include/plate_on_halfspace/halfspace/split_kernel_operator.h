@@ -106,24 +106,29 @@ namespace PlateOnHalfspace
      * the B-splines, plus the near field alpha erfc(r / sigma) / r over
      * the cells within the cutoff (near_settlement_at_points(),
      * soil/surface_settlement.h). About n log n + points work. Below
-     * grid_settlement_threshold points × loaded cells, on a grid split
-     * over several processes, or for a point off the grid: the base
-     * class's evaluation. Compared at 8 points with the direct sum; more
-     * than 10 × Tolerance apart throws, naming Foundation
-     * operator/Tolerance.
+     * grid_settlement_threshold points × loaded cells, or where
+     * grid_serves() says no: the base class's evaluation. Compared at 8 points
+     * with the direct sum; more than 10 × Tolerance apart throws, naming
+     * Foundation operator/Tolerance.
      */
     std::vector<double>
     settlement_at_points(const FoundationSpace       &space,
                          const Vector<double>        &nodal_pressure,
                          const std::vector<Point<2>> &points) const override;
 
-    /** Whether grid_settlement_at_points() can serve @p points: one
-     *  process's whole grid, and every point's stencil on it. */
+    /**
+     * Whether grid_settlement_at_points() can serve @p points on @p space:
+     * one process's whole grid, every point's stencil on it, and no cell
+     * wider than 3 sigma, beyond which the near field's Gauss rules for
+     * erf(r / sigma) / r (at most 12 points per direction) no longer
+     * resolve it (the operator's own pairs subdivide such cells).
+     */
     bool
-    grid_covers(const std::vector<Point<2>> &points) const;
+    grid_serves(const FoundationSpace       &space,
+                const std::vector<Point<2>> &points) const;
 
     /** settlement_at_points() through the grid whatever the size; needs
-     *  grid_covers(@p points). */
+     *  grid_serves(@p space, @p points). */
     std::vector<double>
     grid_settlement_at_points(const FoundationSpace       &space,
                               const Vector<double>        &nodal_pressure,
