@@ -7,8 +7,10 @@
 #define plate_on_halfspace_test_tools_h
 
 #include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/fe/component_mask.h>
+#include <deal.II/fe/fe_values.h>
 
 #include <deal.II/grid/grid_generator.h>
 
@@ -216,6 +218,24 @@ namespace TestTools
     const auto located = plate.locate(Point<2>(0., 0.));
     return {plate.point_value(solution, Point<2>(0., 0.), 0),
             plate.moments(located.first, located.second, solution).mx};
+  }
+  /** The 4 x 4 Gauss points of every cell of @p plate: where a goal
+   *  estimate's half-space residual evaluates the settlement. */
+  inline std::vector<dealii::Point<2>>
+  cell_gauss_points(const PlateOnHalfspace::MindlinPlate &plate)
+  {
+    const dealii::QGauss<2>       rule(4);
+    dealii::FEValues<2>           values(plate.get_fe(),
+                               rule,
+                               dealii::update_quadrature_points);
+    std::vector<dealii::Point<2>> points;
+    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
+      {
+        values.reinit(cell);
+        for (const dealii::Point<2> &x : values.get_quadrature_points())
+          points.push_back(x);
+      }
+    return points;
   }
 } // namespace TestTools
 

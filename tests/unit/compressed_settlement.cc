@@ -51,21 +51,6 @@ namespace
     }
   };
 
-  std::vector<Point<2>>
-  gauss_points(const MindlinPlate &plate)
-  {
-    const QGauss<2> rule(4);
-    FEValues<2>     values(plate.get_fe(), rule, update_quadrature_points);
-    std::vector<Point<2>> points;
-    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
-      {
-        values.reinit(cell);
-        for (const Point<2> &x : values.get_quadrature_points())
-          points.push_back(x);
-      }
-    return points;
-  }
-
   void
   compare(const std::string &label,
           const std::string &scene,
@@ -79,7 +64,7 @@ namespace
       dynamic_cast<const ElasticSoil &>(problem->foundation().soil());
     const SurfaceKernel         kernel = soil.kernel(maximal_distance(space));
     const unsigned int          order  = soil.singular_quadrature_order();
-    const std::vector<Point<2>> points = gauss_points(problem->plate());
+    const std::vector<Point<2>> points = cell_gauss_points(problem->plate());
 
     const SurfaceKernel reference =
       kernel.remainder ?

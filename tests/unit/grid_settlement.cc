@@ -37,21 +37,6 @@ using namespace TestTools;
 
 namespace
 {
-  std::vector<Point<2>>
-  gauss_points(const MindlinPlate &plate)
-  {
-    const QGauss<2> rule(4);
-    FEValues<2>     values(plate.get_fe(), rule, update_quadrature_points);
-    std::vector<Point<2>> points;
-    for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
-      {
-        values.reinit(cell);
-        for (const Point<2> &x : values.get_quadrature_points())
-          points.push_back(x);
-      }
-    return points;
-  }
-
   void
   compare(const std::string &label,
           const std::string &scene,
@@ -69,7 +54,7 @@ namespace
     const auto &fft =
       dynamic_cast<const SplitKernelFftOperator &>(problem->foundation());
     const auto &soil = dynamic_cast<const ElasticSoil &>(fft.soil());
-    const std::vector<Point<2>> points = gauss_points(problem->plate());
+    const std::vector<Point<2>> points = cell_gauss_points(problem->plate());
 
     auto                      start = std::chrono::steady_clock::now();
     const std::vector<double> exact =
