@@ -319,20 +319,18 @@ namespace PlateOnHalfspace
                            "finite." +
                            HmatGlue::tolerance_advice));
 
-    // The check of the compression: the same sum uncompressed at points
-    // spread over the input.
-    const unsigned int n_samples = std::min<std::size_t>(points.size(), 8);
-    double             scale = 0, difference = 0;
-    for (unsigned int s = 0; s < n_samples; ++s)
-      {
-        const std::size_t p     = (2 * s + 1) * points.size() / (2 * n_samples);
-        double            exact = near_part(points[p]);
-        for (unsigned int c = 0; c < space.cells.size(); ++c)
-          exact += add(influence.far_influences(c, points[p]), c);
-        scale      = std::max(scale, std::abs(exact));
-        difference = std::max(difference, std::abs(settlement[p] - exact));
-      }
-    const double error = scale > 0 ? difference / scale : difference;
+    // The check of the compression: the same sum uncompressed.
+    const double error = sampled_settlement_error(
+      points, settlement, [&](const std::vector<Point<2>> &samples) {
+        std::vector<double> exact;
+        for (const Point<2> &x : samples)
+          {
+            exact.push_back(near_part(x));
+            for (unsigned int c = 0; c < space.cells.size(); ++c)
+              exact.back() += add(influence.far_influences(c, x), c);
+          }
+        return exact;
+      });
     if (report != nullptr)
       {
         report->sampled_error = error;
@@ -351,5 +349,31 @@ namespace PlateOnHalfspace
                            "tolerance allows." +
                            HmatGlue::tolerance_advice));
     return settlement;
+  }
+
+  double
+  sampled_settlement_error(
+    const std::vector<Point<2>> &points,
+    const std::vector<double>   &computed,
+    const std::function<std::vector<double>(const std::vector<Point<2>> &)>
+      &exact)
+  {
+    const std::size_t n_samples = std::min<std::size_t>(points.size(), 8);
+    std::vector<std::size_t> sampled;
+    std::vector<Point<2>>    samples;
+    for (std::size_t s = 0; s < n_samples; ++s)
+      {
+        sampled.push_back((2 * s + 1) * points.size() / (2 * n_samples));
+        samples.push_back(points[sampled.back()]);
+      }
+    const std::vector<double> reference = exact(samples);
+    double                    scale = 0, difference = 0;
+    for (std::size_t s = 0; s < n_samples; ++s)
+      {
+        scale = std::max(scale, std::abs(reference[s]));
+        difference =
+          std::max(difference, std::abs(computed[sampled[s]] - reference[s]));
+      }
+    return scale > 0 ? difference / scale : difference;
   }
 } // namespace PlateOnHalfspace

@@ -10,6 +10,7 @@
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/halfspace/cell_pair_quadrature.h>
 #include <plate_on_halfspace/halfspace/cell_pair_summation.h>
+#include <plate_on_halfspace/halfspace/compressed_settlement.h>
 #include <plate_on_halfspace/halfspace/fractional_laplace_inverse.h>
 #include <plate_on_halfspace/halfspace/grid_convolution.h>
 #include <plate_on_halfspace/halfspace/memory_guard.h>
@@ -1121,28 +1122,18 @@ namespace PlateOnHalfspace
       },
       256);
 
-    // the check: the direct sum at points spread over the input
-    const unsigned int    n_samples = std::min<std::size_t>(points.size(), 8);
-    std::vector<Point<2>> samples;
-    for (unsigned int s = 0; s < n_samples; ++s)
-      samples.push_back(points[(2 * s + 1) * points.size() / (2 * n_samples)]);
-    const std::vector<double> exact = PlateOnHalfspace::settlement_at_points(
-      space,
-      nodal_pressure,
-      samples,
-      elastic->kernel(maximal_distance(space)),
-      elastic->singular_quadrature_order());
-    double scale = 0, difference = 0;
-    for (unsigned int s = 0; s < n_samples; ++s)
-      {
-        scale = std::max(scale, std::abs(exact[s]));
-        difference =
-          std::max(difference,
-                   std::abs(
-                     settlement[(2 * s + 1) * points.size() / (2 * n_samples)] -
-                     exact[s]));
-      }
-    const double error = scale > 0 ? difference / scale : difference;
+    // the check: the direct sum
+    const double error =
+      sampled_settlement_error(points,
+                               settlement,
+                               [&](const std::vector<Point<2>> &samples) {
+                                 return PlateOnHalfspace::settlement_at_points(
+                                   space,
+                                   nodal_pressure,
+                                   samples,
+                                   elastic->kernel(maximal_distance(space)),
+                                   elastic->singular_quadrature_order());
+                               });
     AssertThrow(std::all_of(settlement.begin(),
                             settlement.end(),
                             [](const double u) { return std::isfinite(u); }) &&

@@ -28,6 +28,7 @@
 #include <plate_on_halfspace/plate/foundation_space.h>
 #include <plate_on_halfspace/soil/soil_model.h>
 
+#include <functional>
 #include <vector>
 
 namespace PlateOnHalfspace
@@ -58,6 +59,19 @@ namespace PlateOnHalfspace
                                   const unsigned int           singular_order,
                                   const double                 tolerance,
                                   CompressedSettlementReport *report = nullptr);
+
+  /**
+   * The check of a fast settlement evaluation: at 8 of @p points spread
+   * over them, the largest difference of @p computed from @p exact (the
+   * exactly integrated settlements at the given points), relative to the
+   * largest of those.
+   */
+  double
+  sampled_settlement_error(
+    const std::vector<Point<2>> &points,
+    const std::vector<double>   &computed,
+    const std::function<std::vector<double>(const std::vector<Point<2>> &)>
+      &exact);
 } // namespace PlateOnHalfspace
 
 #endif
