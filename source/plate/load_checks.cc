@@ -271,17 +271,16 @@ namespace PlateOnHalfspace
         if (joint.transfer != Parameters::Joints::LoadTransfer::free &&
             joint.slab_low < n_slabs && joint.slab_high < n_slabs)
           join(n_cells + joint.slab_low, n_cells + joint.slab_high);
-    std::vector<unsigned int> slab_of_cell(n_cells, 0);
     {
       std::vector<unsigned int> first_cell_of_node(
         n, numbers::invalid_unsigned_int);
       unsigned int c = 0;
       for (const auto &cell : plate.get_dof_handler().active_cell_iterators())
         {
-          slab_of_cell[c] =
-            std::min<unsigned int>(cell->material_id(), n_slabs - 1);
           if (slabs)
-            join(c, n_cells + slab_of_cell[c]);
+            join(c,
+                 n_cells +
+                   std::min<unsigned int>(cell->material_id(), n_slabs - 1));
           for (const unsigned int i : space.cells[c].nodes())
             {
               if (first_cell_of_node[i] == numbers::invalid_unsigned_int)
