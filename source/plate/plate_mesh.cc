@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -129,6 +131,41 @@ namespace PlateOnHalfspace
     }
 
     /**
+     * Where GridIn could not read @p file_name: the first field of its
+     * $Nodes section that is not a finite decimal number ("line 7: <nan>"),
+     * or "" if every field is one. GridIn itself then reports only that it
+     * lost its place in the file ("<$Nodes> is not recognized").
+     */
+    std::string
+    unreadable_node_field(const std::string &file_name)
+    {
+      std::ifstream file(file_name, std::ios::binary);
+      std::string   line;
+      bool          in_nodes = false;
+      for (unsigned int number = 1; std::getline(file, line); ++number)
+        {
+          if (!line.empty() && line.back() == '\r')
+            line.pop_back();
+          if (line == "$Nodes" || line == "$EndNodes")
+            {
+              in_nodes = line == "$Nodes";
+              continue;
+            }
+          if (!in_nodes)
+            continue;
+          std::istringstream fields(line);
+          for (std::string field; fields >> field;)
+            {
+              char        *end   = nullptr;
+              const double value = std::strtod(field.c_str(), &end);
+              if (end != field.c_str() + field.size() || !std::isfinite(value))
+                return "line " + std::to_string(number) + ": <" + field + ">";
+            }
+        }
+      return "";
+    }
+
+    /**
      * Refuse a Gmsh mesh with two vertices at one place: GridIn keeps them
      * apart, so the cells on either side share no degree of freedom and the
      * plate would be cut there without notice (a mesh made of surfaces
@@ -241,6 +278,30 @@ namespace PlateOnHalfspace
            "constant z is allowed).";
       AssertThrow(false, ExcMessage(message.str()));
     }
+
+    /**
+     * The check Parameters::Plate makes of the other shapes
+     * (source/scene/parameters.cc): the plate at least 1/100 as wide, its
+     * bounding box's shorter side, as thick.
+     */
+    void
+    check_mesh_is_wider_than_thick(const Parameters::Plate &plate,
+                                   const Triangulation<2>  &triangulation)
+    {
+      const auto corners =
+        GridTools::compute_bounding_box(triangulation).get_boundary_points();
+      const double width = std::min(corners.second[0] - corners.first[0],
+                                    corners.second[1] - corners.first[1]);
+      if (width >= 0.01 * plate.thickness)
+        return;
+      std::ostringstream message;
+      message << "Plate/Mesh file: the plate of <" << plate.mesh_file << "> is "
+              << width << " wide but " << plate.thickness
+              << " thick (Plate/Thickness); it must be at least 1/100 as "
+                 "wide as thick (a rigid block is a plate about as thick as "
+                 "wide). Check the units of the mesh's coordinates.";
+      AssertThrow(false, ExcMessage(message.str()));
+    }
   } // namespace
 
   void
@@ -339,6 +400,12 @@ namespace PlateOnHalfspace
                 const std::string marker = "Additional information:";
                 if (reason.find(marker) != std::string::npos)
                   reason = reason.substr(reason.find(marker) + marker.size());
+                const std::string field =
+                  unreadable_node_field(plate.mesh_file);
+                if (!field.empty())
+                  reason = " its $Nodes section, " + field +
+                           ", is not a finite number (each node is a number "
+                           "and its coordinates x y z).";
                 AssertThrow(false,
                             ExcMessage("Plate/Mesh file: <" + plate.mesh_file +
                                        "> is not a readable Gmsh mesh of "
@@ -358,6 +425,7 @@ namespace PlateOnHalfspace
             check_cells_are_valid(triangulation, plate.mesh_file);
             check_vertices_are_merged(triangulation, plate.mesh_file);
             check_mesh_is_plane(plate.mesh_file, triangulation);
+            check_mesh_is_wider_than_thick(plate, triangulation);
             break;
           }
       }

@@ -2,11 +2,18 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+
 #include <plate_on_halfspace/scene/input_checks.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <map>
 #include <regex>
@@ -411,6 +418,70 @@ namespace PlateOnHalfspace
     const std::string rest = trimmed(flat.substr(where[0].length()));
     return (path.empty() ? std::string("") : section_name(path) + ": ") +
            "cannot read the line: " + rest + place;
+  }
+
+  std::string
+  unrepresentable_number_entry(const ParameterHandler &prm)
+  {
+    std::stringstream listing;
+    prm.print_parameters(listing, ParameterHandler::JSON);
+    boost::property_tree::ptree tree;
+    boost::property_tree::read_json(listing, tree);
+    // deal.II writes a name's characters other than letters and digits
+    // as _XX (hexadecimal); the declared names hold no '_'.
+    const auto demangled = [](const std::string &name) {
+      std::string plain;
+      for (std::size_t i = 0; i < name.size(); ++i)
+        if (name[i] == '_' && i + 2 < name.size() &&
+            std::isxdigit(static_cast<unsigned char>(name[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(name[i + 2])))
+          {
+            plain +=
+              static_cast<char>(std::stoi(name.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+          }
+        else
+          plain += name[i];
+      return plain;
+    };
+    const std::function<std::string(const boost::property_tree::ptree &,
+                                    const std::string &)>
+      first_in = [&](const boost::property_tree::ptree &node,
+                     const std::string                 &path) -> std::string {
+      for (const auto &[key, child] : node)
+        {
+          const std::string name  = path + demangled(key);
+          const auto        value = child.get_child_optional("value");
+          if (!value || !value->empty())
+            {
+              const std::string message = first_in(child, name + "/");
+              if (!message.empty())
+                return message;
+              continue;
+            }
+          // a Double entry's value that strtod reads only with a range
+          // error, or as a subnormal: deal.II cannot convert it (an
+          // expression entry checks its own values)
+          const std::string pattern =
+            child.get<std::string>("pattern_description", "");
+          const std::string text = trimmed(value->data());
+          if (pattern.rfind("[Double", 0) != 0 || text.empty() ||
+              text.find_first_of("xXpP") != std::string::npos)
+            continue;
+          char *end           = nullptr;
+          errno               = 0;
+          const double number = std::strtod(text.c_str(), &end);
+          if (end != text.c_str() + text.size() ||
+              (errno != ERANGE && std::fpclassify(number) != FP_SUBNORMAL))
+            continue;
+          return name + ": the value <" + text +
+                 "> cannot be computed with (numbers must be 0 or of "
+                 "magnitude 1e-307 to 1e308); the entry must be " +
+                 describe_pattern(pattern) + ". Check the units of the value.";
+        }
+      return "";
+    };
+    return first_in(tree, "");
   }
 
   std::vector<std::string>

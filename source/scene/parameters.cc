@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -37,6 +38,14 @@ namespace PlateOnHalfspace
     {
       std::ostringstream s;
       s << " (got " << value << ")";
+      return s.str();
+    }
+
+    std::string
+    to_text(const double value)
+    {
+      std::ostringstream s;
+      s << std::setprecision(12) << value;
       return s.str();
     }
   } // namespace
@@ -171,11 +180,46 @@ namespace PlateOnHalfspace
                 "Shape = mesh file.");
       require(thickness > 0,
               "Plate/Thickness must be > 0" + got(thickness) + ".");
+      // A plate far thicker than wide is no plate (and its thickness then
+      // swamps the cells' coordinates in rounding): a units slip. A rigid
+      // block is a plate about as thick as wide (parameters/rigid-disk.prm).
+      if (shape != Shape::mesh_file)
+        {
+          const double width =
+            shape == Shape::disk ?
+              2 * radius :
+            shape == Shape::slabs ?
+              std::min(*std::min_element(slab_lengths_x.begin(),
+                                         slab_lengths_x.end()),
+                       *std::min_element(slab_lengths_y.begin(),
+                                         slab_lengths_y.end())) :
+              std::min(length_x, length_y);
+          const std::string entries =
+            shape == Shape::disk  ? "Plate/Radius" :
+            shape == Shape::slabs ? "Plate/Slab lengths x and y" :
+                                    "Plate/Length x and y";
+          require(width >= 0.01 * thickness,
+                  entries + ": the plate (or a slab) is " + to_text(width) +
+                    " wide but " + to_text(thickness) +
+                    " thick (Plate/Thickness); it must be at least 1/100 as "
+                    "wide as thick (a rigid block is a plate about as thick "
+                    "as wide). Check the units of the lengths.");
+        }
       require(youngs_modulus > 0,
               "Plate/Young's modulus must be > 0" + got(youngs_modulus) + ".");
-      require(poissons_ratio > -1 && poissons_ratio < 0.5,
-              "Plate/Poisson's ratio must lie in (-1, 0.5)" +
-                got(poissons_ratio) + ".");
+      // Closer to -1 the bending stiffness of anticlastic curvature and
+      // twist, D (1 - nu), exceeds that of synclastic curvature, D (1 + nu),
+      // more than 1e6 times, and rounding takes the pressures' digits
+      // (doc/errors-and-limits.md, "Poisson's ratios and load magnitude").
+      require(poissons_ratio >= -0.999999 && poissons_ratio < 0.5,
+              "Plate/Poisson's ratio must lie in [-0.999999, 0.5) (got " +
+                to_text(poissons_ratio) + ")" +
+                (poissons_ratio < -0.999999 && poissons_ratio > -1 ?
+                   ": nearer -1 the plate's stiffness against twist "
+                   "exceeds that against a dome-shaped bending more than "
+                   "1e6 times, and rounding would take the results' "
+                   "digits." :
+                   "."));
     }
 
     double
@@ -541,6 +585,25 @@ namespace PlateOnHalfspace
               "Temperature/Profile needs at least two temperatures (top and "
               "bottom face), separated by commas; got " +
                 std::to_string(profile.size()) + ".");
+      // The plate's theory is one of small strains: a thermal strain of
+      // 10 % is a units slip (doc/errors-and-limits.md, "Dense liquid and
+      // temperature"); larger ones overflowed into the loads' checks.
+      const auto strain_check = [&](const std::string &entry,
+                                    const double       temperature) {
+        const double strain = expansion_coefficient * std::abs(temperature);
+        require(strain <= 0.1,
+                entry +
+                  ": the thermal strain (Temperature/Expansion "
+                  "coefficient times the temperature " +
+                  to_text(temperature) + ") reaches " + to_text(strain) +
+                  ", beyond the 0.1 the plate's small strains allow; check "
+                  "the units of the temperatures [K] and of the expansion "
+                  "coefficient [1/K].");
+      };
+      if (profile.empty())
+        strain_check("Temperature/Difference", difference);
+      for (const double temperature : profile)
+        strain_check("Temperature/Profile", temperature);
     }
 
     void

@@ -656,6 +656,8 @@ namespace PlateOnHalfspace
                                                             text.str(),
                                                             filename)));
       }
+    const std::string number_problem = unrepresentable_number_entry(prm);
+    AssertThrow(number_problem.empty(), ExcMessage(number_problem));
     parse_parameters(prm);
   }
 
@@ -676,6 +678,8 @@ namespace PlateOnHalfspace
                                                             text,
                                                             "input string")));
       }
+    const std::string number_problem = unrepresentable_number_entry(prm);
+    AssertThrow(number_problem.empty(), ExcMessage(number_problem));
     parse_parameters(prm);
   }
 } // namespace PlateOnHalfspace

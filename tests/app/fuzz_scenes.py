@@ -114,7 +114,8 @@ end
 """
 
 numbers = ["0", "-1", "1e-300", "1e300", "nan", "inf", "-inf", "x", "", "1,2",
-           "0.5", "0.499", "1e-6", "1e9", "2.5", "-0.2", "3", "1e999"]
+           "0.5", "0.499", "1e-6", "1e9", "2.5", "-0.2", "3", "1e999",
+           "2e-310", "1e-400", "-0.999999999"]
 choices = {
     "Shape": ["rectangle", "disk", "mesh file", "square", "slabs", ""],
     "Slab lengths x": ["1, 1", "2", "1, 0", "1, -1", "1, x", "", "0.5, 0.5, 0.5, 0.5"],
@@ -141,7 +142,9 @@ choices = {
                "1e-20, 1e5, 0.3", "0.3, 1e-160, 0.3", "1e160, 1e5, 0.3"],
     "Base": ["half-space", "rigid", "bedrock", ""],
     "Interfaces": ["bonded", "frictionless", "rough"],
-    "Profile": ["", "20,10", "5", "1,x", "20,15,10,12", "20;10", "nan,1", "1e300,-1e300"],
+    "Profile": ["", "20,10", "5", "1,x", "20,15,10,12", "20;10", "nan,1", "1e300,-1e300",
+                "1.7e308,0", "1e4,0"],
+    "Difference": ["5", "-20", "0", "1e300", "5e4", "nan", "2e-310"],
     "Modulus of subgrade reaction": ["0", "1e4", "-1e4", "1e-300", "1e300", "nan",
                                      "x", "5e4 kN/m3"],
     "Method": ["active set", "element exclusion", "newton"],

@@ -74,6 +74,17 @@ namespace PlateOnHalfspace
                                const std::string    &file_name);
 
   /**
+   * "" if every entry of the parsed @p prm whose value is a single number
+   * can be held as a double, otherwise the message naming the first that
+   * cannot ("Foundation/Young's modulus: ..."). deal.II accepts a subnormal
+   * or underflowing value (2e-310, 1e-400) as matching a Double pattern
+   * but then cannot convert it, and its message names neither the section
+   * nor the range (doc/errors-and-limits.md, "Numbers").
+   */
+  std::string
+  unrepresentable_number_entry(const dealii::ParameterHandler &prm);
+
+  /**
    * Warnings for a valid scene whose element choice is known to give a
    * poor answer for it: shear locking (cells much larger than the
    * thickness, tests/unit/thin_plate_limit) and the communicable spurious
