@@ -7,6 +7,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <plate_on_halfspace/base/interruption.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/contact/contact_results.h>
 #include <plate_on_halfspace/io/results_output.h>
@@ -471,6 +472,10 @@ namespace PlateOnHalfspace
     csv << '\n' << std::setprecision(10);
     for (unsigned int k = 0; k < n_points; ++k)
       {
+        // a safe point every 1024 points: a profile of 10^6 points takes
+        // tens of seconds (base/interruption.h)
+        if (k % 1024 == 0)
+          Interruption::check_if_alone();
         const Point<2> x = start + (end - start) * (k / double(n_points - 1));
         PointValues    values;
         try
@@ -506,6 +511,7 @@ namespace PlateOnHalfspace
     std::string  text;
     write_file_in_parts(
       "nodes-" + two_digits(cycle) + ".csv", [&](std::string_view &part) {
+        Interruption::check_if_alone();
         std::ostringstream rows;
         rows << std::setprecision(10);
         if (next == 0)
