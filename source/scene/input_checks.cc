@@ -4,6 +4,7 @@
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
+#include <boost/property_tree/xml_parser.hpp>
 
 #include <plate_on_halfspace/scene/input_checks.h>
 
@@ -12,6 +13,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -132,6 +134,58 @@ namespace PlateOnHalfspace
     {
       return path.empty() ? "the top level" :
                             "subsection " + path.substr(0, path.size() - 1);
+    }
+
+    /**
+     * A name as deal.II writes it in JSON and XML, its characters other
+     * than letters and digits as _XX (hexadecimal), in plain text; the
+     * declared names hold no '_'.
+     */
+    std::string
+    demangled(const std::string &name)
+    {
+      std::string plain;
+      for (std::size_t i = 0; i < name.size(); ++i)
+        if (name[i] == '_' && i + 2 < name.size() &&
+            std::isxdigit(static_cast<unsigned char>(name[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(name[i + 2])))
+          {
+            plain +=
+              static_cast<char>(std::stoi(name.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+          }
+        else
+          plain += name[i];
+      return plain;
+    }
+
+    /** Every declared entry's path ("Plate/Thickness") and pattern. */
+    std::map<std::string, std::string>
+    declared_patterns()
+    {
+      ParameterHandler prm;
+      SceneParameters::declare_parameters(prm);
+      std::stringstream listing;
+      prm.print_parameters(listing, ParameterHandler::JSON);
+      boost::property_tree::ptree tree;
+      boost::property_tree::read_json(listing, tree);
+      std::map<std::string, std::string> patterns;
+      std::function<void(const boost::property_tree::ptree &,
+                         const std::string &)>
+        collect = [&](const boost::property_tree::ptree &node,
+                      const std::string                 &path) {
+          for (const auto &[key, child] : node)
+            {
+              const std::string name = path + demangled(key);
+              if (child.get_child_optional("value"))
+                patterns[name] =
+                  child.get<std::string>("pattern_description", "");
+              else
+                collect(child, name + "/");
+            }
+        };
+      collect(tree, "");
+      return patterns;
     }
   } // namespace
 
@@ -427,23 +481,6 @@ namespace PlateOnHalfspace
     prm.print_parameters(listing, ParameterHandler::JSON);
     boost::property_tree::ptree tree;
     boost::property_tree::read_json(listing, tree);
-    // deal.II writes a name's characters other than letters and digits
-    // as _XX (hexadecimal); the declared names hold no '_'.
-    const auto demangled = [](const std::string &name) {
-      std::string plain;
-      for (std::size_t i = 0; i < name.size(); ++i)
-        if (name[i] == '_' && i + 2 < name.size() &&
-            std::isxdigit(static_cast<unsigned char>(name[i + 1])) &&
-            std::isxdigit(static_cast<unsigned char>(name[i + 2])))
-          {
-            plain +=
-              static_cast<char>(std::stoi(name.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-          }
-        else
-          plain += name[i];
-      return plain;
-    };
     const std::function<std::string(const boost::property_tree::ptree &,
                                     const std::string &)>
       first_in = [&](const boost::property_tree::ptree &node,
@@ -478,6 +515,98 @@ namespace PlateOnHalfspace
                  "> cannot be computed with (numbers must be 0 or of "
                  "magnitude 1e-307 to 1e308); the entry must be " +
                  describe_pattern(pattern) + ". Check the units of the value.";
+        }
+      return "";
+    };
+    return first_in(tree, "");
+  }
+
+  std::string
+  structured_scene_problem(const std::string &file_name)
+  {
+    std::string extension =
+      std::filesystem::path(file_name).extension().string();
+    std::transform(extension.begin(),
+                   extension.end(),
+                   extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (extension != ".json" && extension != ".xml")
+      return "";
+    const bool                  json = extension == ".json";
+    boost::property_tree::ptree tree;
+    try
+      {
+        std::ifstream file(file_name);
+        if (json)
+          boost::property_tree::read_json(file, tree);
+        else
+          boost::property_tree::read_xml(file, tree);
+      }
+    catch (const boost::property_tree::file_parser_error &error)
+      {
+        return file_name + " is not a valid " + (json ? "JSON" : "XML") +
+               " scene: line " + std::to_string(error.line()) + ": " +
+               error.message() + ".";
+      }
+    if (!json)
+      {
+        const auto root = tree.get_child_optional("ParameterHandler");
+        if (!root)
+          return file_name +
+                 ": an XML scene has the root element <ParameterHandler>, "
+                 "each subsection and entry an element inside it (names "
+                 "written as deal.II does, e.g. Young_27s_20modulus).";
+        tree = *root;
+      }
+    const auto patterns = declared_patterns();
+    const auto names    = declared_names();
+    const auto known    = [&](const std::string &path) {
+      const auto it = names.find(path);
+      return it == names.end() ? std::set<std::string>() : it->second;
+    };
+    const std::string place = " (" + file_name +
+                              "; plate-on-halfspace --print-parameters "
+                              "lists every entry)";
+    std::function<std::string(const boost::property_tree::ptree &,
+                              const std::string &)>
+      first_in = [&](const boost::property_tree::ptree &node,
+                     const std::string                 &path) -> std::string {
+      for (const auto &[key, child] : node)
+        {
+          if (key == "<xmlattr>" || key == "<xmlcomment>")
+            continue;
+          const std::string name    = demangled(key);
+          const auto        pattern = patterns.find(path + name);
+          if (pattern != patterns.end())
+            {
+              const auto        value = child.get_child_optional("value");
+              const std::string text  = trimmed(value         ? value->data() :
+                                               child.empty() ? child.data() :
+                                                               "");
+              if ((!value && !child.empty()) ||
+                  !Patterns::pattern_factory(pattern->second)->match(text))
+                return path + name + ": the value <" + text +
+                       "> is not allowed; it must be " +
+                       describe_pattern(pattern->second) + "." + place;
+              continue;
+            }
+          if (names.count(path + name + "/") > 0 && !child.empty())
+            {
+              const std::string problem = first_in(child, path + name + "/");
+              if (!problem.empty())
+                return problem;
+              continue;
+            }
+          std::set<std::string> entries, sections;
+          for (const std::string &n : known(path))
+            (names.count(path + n + "/") > 0 ? sections : entries).insert(n);
+          if (!child.empty() && !child.get_child_optional("value"))
+            return "subsection <" + name + "> does not exist in " +
+                   section_name(path) + "." + suggestion(name, sections) +
+                   " The subsections: " + list_of(sections) + "." + place;
+          return path + name + ": there is no such entry in " +
+                 section_name(path) + "." + suggestion(name, entries) +
+                 " Its entries: " + list_of(entries) + "." + place;
         }
       return "";
     };

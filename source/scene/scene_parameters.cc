@@ -640,6 +640,8 @@ namespace PlateOnHalfspace
                            " is larger than 64 MiB: not a parameter file."));
     std::ostringstream text;
     text << std::ifstream(filename).rdbuf();
+    const std::string structure_problem = structured_scene_problem(filename);
+    AssertThrow(structure_problem.empty(), ExcMessage(structure_problem));
     SceneFileReader prm(true);
     declare_parameters(prm);
     // parse_input() also follows "include other.prm" lines, so tests can

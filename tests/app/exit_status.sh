@@ -75,5 +75,25 @@ grep -q "^Error: out of memory (std::bad_alloc): .*Discretization/Subdivisions" 
   cmp -s before.json run/summary.json &&
   echo "ok: out of memory says so and keeps the earlier results" && passed=$((passed + 1)) ||
   { echo "FAILED: no out-of-memory message or earlier results changed"; failed=$((failed + 1)); }
+# JSON and XML scenes (deal.II reads them by the extension): messages in
+# the .prm messages' words, and a valid JSON scene runs
+jsonxml() { # description, file, expected text
+  expect "$1" nonzero "$program" "$2"
+  grep -qF -- "$3" stderr && echo "ok: $1 names it" && passed=$((passed + 1)) ||
+    { echo "FAILED: $1 lacks <$3>"; failed=$((failed + 1)); }
+}
+printf '{"Plate": {"Thickness": "-1"}}' >value.json
+jsonxml "JSON value outside its pattern" value.json \
+  "Plate/Thickness: the value <-1> is not allowed; it must be a number >= 0."
+printf '{"Plate": {"Thikness": {"value": "1"}}}' >name.json
+jsonxml "JSON misspelt entry" name.json "Did you mean <Thickness>?"
+printf '{"Plate": ' >broken.json
+jsonxml "malformed JSON" broken.json "broken.json is not a valid JSON scene: line"
+printf '<ParameterHandler><Plat><Thickness><value>1</value></Thickness></Plat></ParameterHandler>' >section.xml
+jsonxml "XML misspelt subsection" section.xml "subsection <Plat> does not exist"
+printf '<Plate></Plate>' >root.xml
+jsonxml "XML without its root" root.xml "root element <ParameterHandler>"
+printf '{"Output directory": "json", "Loads": {"Uniform pressure": "10"}, "Output": {"VTU": "false"}, "Discretization": {"Subdivisions x": "2", "Subdivisions y": "2"}}' >good.json
+expect "valid JSON scene" 0 "$program" good.json
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -85,6 +85,17 @@ namespace PlateOnHalfspace
   unrepresentable_number_entry(const dealii::ParameterHandler &prm);
 
   /**
+   * "" if the JSON or XML scene @p file_name (deal.II reads both besides
+   * .prm, by the name's extension) is well formed and every entry in it is
+   * declared and allowed, otherwise the message for the first problem, in
+   * the .prm messages' words ("Plate/Thickness: the value <-1> is not
+   * allowed; it must be a number >= 0."). deal.II's own messages for such
+   * files name neither the entry nor the section.
+   */
+  std::string
+  structured_scene_problem(const std::string &file_name);
+
+  /**
    * Warnings for a valid scene whose element choice is known to give a
    * poor answer for it: shear locking (cells much larger than the
    * thickness, tests/unit/thin_plate_limit) and the communicable spurious
