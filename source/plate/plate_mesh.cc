@@ -158,7 +158,10 @@ namespace PlateOnHalfspace
             {
               char        *end   = nullptr;
               const double value = std::strtod(field.c_str(), &end);
-              if (end != field.c_str() + field.size() || !std::isfinite(value))
+              // GridIn reads decimals only; strtod would take 0x1p0 too
+              if (end != field.c_str() + field.size() ||
+                  !std::isfinite(value) ||
+                  field.find_first_of("xXpP") != std::string::npos)
                 return "line " + std::to_string(number) + ": <" + field + ">";
             }
         }
@@ -404,8 +407,8 @@ namespace PlateOnHalfspace
                   unreadable_node_field(plate.mesh_file);
                 if (!field.empty())
                   reason = " its $Nodes section, " + field +
-                           ", is not a finite number (each node is a number "
-                           "and its coordinates x y z).";
+                           ", is not a finite decimal number (each node is a "
+                           "number and its coordinates x y z).";
                 AssertThrow(false,
                             ExcMessage("Plate/Mesh file: <" + plate.mesh_file +
                                        "> is not a readable Gmsh mesh of "

@@ -532,11 +532,58 @@ namespace PlateOnHalfspace
                    [](unsigned char c) { return std::tolower(c); });
     if (extension != ".json" && extension != ".xml")
       return "";
-    const bool                  json = extension == ".json";
+    const bool  json = extension == ".json";
+    std::string text;
+    {
+      std::ifstream      file(file_name, std::ios::binary);
+      std::ostringstream contents;
+      contents << file.rdbuf();
+      text = contents.str();
+    }
+    // Boost's parsers recurse once per level: a file nested 10^5 deep
+    // overflows the stack. A scene nests three levels; refuse beyond 64
+    // (brackets and elements outside strings, comments and the like
+    // counted roughly: enough to bound the recursion).
+    {
+      int  depth = 0, deepest = 0;
+      bool in_string = false;
+      for (std::size_t i = 0; i < text.size(); ++i)
+        {
+          const char c = text[i];
+          if (json)
+            {
+              if (in_string)
+                {
+                  if (c == '\\')
+                    ++i;
+                  else if (c == '"')
+                    in_string = false;
+                }
+              else if (c == '"')
+                in_string = true;
+              else if (c == '{' || c == '[')
+                ++depth;
+              else if (c == '}' || c == ']')
+                --depth;
+            }
+          else if (c == '<' && i + 1 < text.size())
+            depth += text[i + 1] == '/' ? -1 :
+                     std::isalpha(static_cast<unsigned char>(text[i + 1])) ? 1 :
+                                                                             0;
+          else if (c == '/' && i + 1 < text.size() && text[i + 1] == '>')
+            --depth;
+          deepest = std::max(deepest, depth);
+        }
+      if (deepest > 64)
+        return file_name + " nests its " + (json ? "objects" : "elements") +
+               " " + std::to_string(deepest) +
+               " deep; a scene's sections nest a few levels (at most 64 are "
+               "read).";
+    }
     boost::property_tree::ptree tree;
     try
       {
-        std::ifstream file(file_name);
+        std::istringstream file(text);
         if (json)
           boost::property_tree::read_json(file, tree);
         else
@@ -548,10 +595,25 @@ namespace PlateOnHalfspace
                " scene: line " + std::to_string(error.line()) + ": " +
                error.message() + ".";
       }
+    // deal.II reads neither XML comments nor attributes (it takes them
+    // for entries)
+    const std::function<bool(const boost::property_tree::ptree &)>
+      has_comment_or_attribute = [&](const boost::property_tree::ptree &node) {
+        for (const auto &[key, child] : node)
+          if (key == "<xmlattr>" || key == "<xmlcomment>" ||
+              has_comment_or_attribute(child))
+            return true;
+        return false;
+      };
+    if (!json && has_comment_or_attribute(tree))
+      return file_name +
+             ": an XML scene takes no comments (<!-- -->) and no "
+             "attributes (<ParameterHandler version=\"1\">): deal.II "
+             "would read them as entries; remove them.";
     if (!json)
       {
         const auto root = tree.get_child_optional("ParameterHandler");
-        if (!root)
+        if (tree.size() != 1 || !root)
           return file_name +
                  ": an XML scene has the root element <ParameterHandler>, "
                  "each subsection and entry an element inside it (names "
@@ -573,25 +635,45 @@ namespace PlateOnHalfspace
                      const std::string                 &path) -> std::string {
       for (const auto &[key, child] : node)
         {
-          if (key == "<xmlattr>" || key == "<xmlcomment>")
-            continue;
-          const std::string name    = demangled(key);
-          const auto        pattern = patterns.find(path + name);
+          // a name that holds '/' (mangled as _2f) names no entry here
+          const std::string name =
+            demangled(key).find('/') == std::string::npos ? demangled(key) :
+                                                            key;
+          if (name.empty())
+            return file_name + ": " + section_name(path) +
+                   " holds a list ([...]); a scene gives each entry by its "
+                   "name." +
+                   place;
+          const auto pattern = patterns.find(path + name);
           if (pattern != patterns.end())
             {
-              const auto        value = child.get_child_optional("value");
-              const std::string text  = trimmed(value         ? value->data() :
-                                               child.empty() ? child.data() :
-                                                               "");
-              if ((!value && !child.empty()) ||
+              // as deal.II reads it: untrimmed
+              const auto value = child.get_child_optional("value");
+              if (!value && !child.empty())
+                return path + name + ": the entry has no value (give it as \"" +
+                       name + "\": \"...\" or with a \"value\" field)." + place;
+              const std::string text = value ? value->data() : child.data();
+              // deal.II matches " 0.2 " as a Double but cannot convert it
+              const bool padded =
+                !text.empty() &&
+                (std::isspace(static_cast<unsigned char>(text.front())) ||
+                 std::isspace(static_cast<unsigned char>(text.back())));
+              if (padded ||
                   !Patterns::pattern_factory(pattern->second)->match(text))
                 return path + name + ": the value <" + text +
                        "> is not allowed; it must be " +
-                       describe_pattern(pattern->second) + "." + place;
+                       describe_pattern(pattern->second) +
+                       (padded ? " (without spaces around it)" : "") + "." +
+                       place;
               continue;
             }
-          if (names.count(path + name + "/") > 0 && !child.empty())
+          if (names.count(path + name + "/") > 0)
             {
+              if (child.empty())
+                return path + name +
+                       ": a subsection, not an entry; give its entries "
+                       "inside it, or leave it out." +
+                       place;
               const std::string problem = first_in(child, path + name + "/");
               if (!problem.empty())
                 return problem;

@@ -594,16 +594,22 @@ namespace PlateOnHalfspace
         require(strain <= 0.1,
                 entry +
                   ": the thermal strain (Temperature/Expansion "
-                  "coefficient times the temperature " +
+                  "coefficient times the temperature difference " +
                   to_text(temperature) + ") reaches " + to_text(strain) +
                   ", beyond the 0.1 the plate's small strains allow; check "
                   "the units of the temperatures [K] and of the expansion "
                   "coefficient [1/K].");
       };
+      // The profile's mean only expands the plate freely (absolute
+      // temperatures in K are fine): its strains are the differences from
+      // the mean, summed as T_i / n so that no sum overflows.
       if (profile.empty())
         strain_check("Temperature/Difference", difference);
+      double mean = 0;
       for (const double temperature : profile)
-        strain_check("Temperature/Profile", temperature);
+        mean += temperature / profile.size();
+      for (const double temperature : profile)
+        strain_check("Temperature/Profile", temperature - mean);
     }
 
     void

@@ -93,6 +93,12 @@ printf '<ParameterHandler><Plat><Thickness><value>1</value></Thickness></Plat></
 jsonxml "XML misspelt subsection" section.xml "subsection <Plat> does not exist"
 printf '<Plate></Plate>' >root.xml
 jsonxml "XML without its root" root.xml "root element <ParameterHandler>"
+python3 -c "print('{\"a\":' * 100000 + '1' + '}' * 100000)" >deep.json
+jsonxml "JSON nested 10^5 deep (a stack overflow in the parser)" deep.json "nests its objects 100000 deep"
+printf '<ParameterHandler><Plate><!-- the plate --><Thickness>0.2</Thickness></Plate></ParameterHandler>' >comment.xml
+jsonxml "XML comment" comment.xml "an XML scene takes no comments"
+printf '<ParameterHandler><Plate><Thickness>\n 0.2\n</Thickness></Plate></ParameterHandler>' >padded.xml
+jsonxml "XML value with spaces around it" padded.xml "(without spaces around it)"
 printf '{"Output directory": "json", "Loads": {"Uniform pressure": "10"}, "Output": {"VTU": "false"}, "Discretization": {"Subdivisions x": "2", "Subdivisions y": "2"}}' >good.json
 expect "valid JSON scene" 0 "$program" good.json
 echo "$passed passed, $failed failed"
