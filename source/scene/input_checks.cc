@@ -477,48 +477,34 @@ namespace PlateOnHalfspace
   std::string
   unrepresentable_number_entry(const ParameterHandler &prm)
   {
-    std::stringstream listing;
-    prm.print_parameters(listing, ParameterHandler::JSON);
-    boost::property_tree::ptree tree;
-    boost::property_tree::read_json(listing, tree);
-    const std::function<std::string(const boost::property_tree::ptree &,
-                                    const std::string &)>
-      first_in = [&](const boost::property_tree::ptree &node,
-                     const std::string                 &path) -> std::string {
-      for (const auto &[key, child] : node)
-        {
-          const std::string name  = path + demangled(key);
-          const auto        value = child.get_child_optional("value");
-          if (!value || !value->empty())
-            {
-              const std::string message = first_in(child, name + "/");
-              if (!message.empty())
-                return message;
-              continue;
-            }
-          // a Double entry's value that strtod reads only with a range
-          // error, or as a subnormal: deal.II cannot convert it (an
-          // expression entry checks its own values)
-          const std::string pattern =
-            child.get<std::string>("pattern_description", "");
-          const std::string text = trimmed(value->data());
-          if (pattern.rfind("[Double", 0) != 0 || text.empty() ||
-              text.find_first_of("xXpP") != std::string::npos)
-            continue;
-          char *end           = nullptr;
-          errno               = 0;
-          const double number = std::strtod(text.c_str(), &end);
-          if (end != text.c_str() + text.size() ||
-              (errno != ERANGE && std::fpclassify(number) != FP_SUBNORMAL))
-            continue;
-          return name + ": the value <" + text +
-                 "> cannot be computed with (numbers must be 0 or of "
-                 "magnitude 1e-307 to 1e308); the entry must be " +
-                 describe_pattern(pattern) + ". Check the units of the value.";
-        }
-      return "";
-    };
-    return first_in(tree, "");
+    // The declared Double entries, each read from @p prm by its path (a
+    // listing of @p prm itself would carry the user's bytes through a
+    // JSON parser that refuses invalid UTF-8).
+    for (const auto &[path, pattern] : declared_patterns())
+      {
+        if (pattern.rfind("[Double", 0) != 0)
+          continue;
+        std::vector<std::string> sections =
+          Utilities::split_string_list(path, '/');
+        const std::string entry = sections.back();
+        sections.pop_back();
+        // a value that strtod reads only with a range error, or as a
+        // subnormal: deal.II cannot convert it
+        const std::string text = trimmed(prm.get(sections, entry));
+        if (text.empty() || text.find_first_of("xXpP") != std::string::npos)
+          continue;
+        char *end           = nullptr;
+        errno               = 0;
+        const double number = std::strtod(text.c_str(), &end);
+        if (end != text.c_str() + text.size() ||
+            (errno != ERANGE && std::fpclassify(number) != FP_SUBNORMAL))
+          continue;
+        return path + ": the value <" + text +
+               "> cannot be computed with (numbers must be 0 or of "
+               "magnitude 1e-307 to 1e308); the entry must be " +
+               describe_pattern(pattern) + ". Check the units of the value.";
+      }
+    return "";
   }
 
   std::string
