@@ -137,6 +137,51 @@ namespace PlateOnHalfspace
     }
 
     /**
+     * The entries (@p subsections false) or the subsections of the
+     * declared section @p path ("Plate/") among @p names.
+     */
+    std::set<std::string>
+    declared_in(const std::map<std::string, std::set<std::string>> &names,
+                const std::string                                  &path,
+                const bool                                          subsections)
+    {
+      std::set<std::string> found;
+      const auto            section = names.find(path);
+      if (section != names.end())
+        for (const std::string &n : section->second)
+          if ((names.count(path + n + "/") > 0) == subsections)
+            found.insert(n);
+      return found;
+    }
+
+    /** The refusal of the undeclared entry @p name in section @p path. */
+    std::string
+    no_such_entry(const std::map<std::string, std::set<std::string>> &names,
+                  const std::string                                  &path,
+                  const std::string                                  &name,
+                  const std::string                                  &place)
+    {
+      const std::set<std::string> entries = declared_in(names, path, false);
+      return path + name + ": there is no such entry in " + section_name(path) +
+             "." + suggestion(name, entries) +
+             " Its entries: " + list_of(entries) + "." + place;
+    }
+
+    /** The refusal of the undeclared subsection @p name in @p path. */
+    std::string
+    no_such_subsection(
+      const std::map<std::string, std::set<std::string>> &names,
+      const std::string                                  &path,
+      const std::string                                  &name,
+      const std::string                                  &place)
+    {
+      const std::set<std::string> sections = declared_in(names, path, true);
+      return "subsection <" + name + "> does not exist in " +
+             section_name(path) + "." + suggestion(name, sections) +
+             " The subsections: " + list_of(sections) + "." + place;
+    }
+
+    /**
      * A name as deal.II writes it in JSON and XML, its characters other
      * than letters and digits as _XX (hexadecimal), in plain text; the
      * declared names hold no '_'.
@@ -427,10 +472,6 @@ namespace PlateOnHalfspace
                               "; plate-on-halfspace --print-parameters lists "
                               "every entry)";
     const auto names = declared_names();
-    const auto known = [&](const std::string &p) {
-      const auto it = names.find(p);
-      return it == names.end() ? std::set<std::string>() : it->second;
-    };
 
     std::smatch m;
     if (std::regex_search(
@@ -444,30 +485,17 @@ namespace PlateOnHalfspace
     if (std::regex_search(flat,
                           m,
                           std::regex("No entry with name <(.*)> was declared")))
-      {
-        std::set<std::string> entries;
-        for (const std::string &n : known(path))
-          if (names.count(path + n + "/") == 0)
-            entries.insert(n);
-        return path + std::string(m[1]) + ": there is no such entry in " +
-               section_name(path) + "." + suggestion(m[1], entries) +
-               " Its entries: " + list_of(entries) + "." + place;
-      }
+      return no_such_entry(names, path, m[1], place);
     if (std::regex_search(
           flat, m, std::regex("no such subsection to be entered: (.*)$")))
       {
         // deal.II reports the mangled path; the last part is the name
-        std::string name = m[1];
-        name             = name.substr(name.rfind('.') + 1);
-        name = std::regex_replace(name, std::regex("_20"), std::string(" "));
-        name = std::regex_replace(name, std::regex("_27"), std::string("'"));
-        std::set<std::string> sections;
-        for (const std::string &n : known(path))
-          if (names.count(path + n + "/") > 0)
-            sections.insert(n);
-        return "subsection <" + name + "> does not exist in " +
-               section_name(path) + "." + suggestion(name, sections) +
-               " The subsections: " + list_of(sections) + "." + place;
+        const std::string path_name = m[1];
+        return no_such_subsection(names,
+                                  path,
+                                  demangled(
+                                    path_name.substr(path_name.rfind('.') + 1)),
+                                  place);
       }
     const std::string rest = trimmed(flat.substr(where[0].length()));
     return (path.empty() ? std::string("") : section_name(path) + ": ") +
@@ -606,13 +634,9 @@ namespace PlateOnHalfspace
                  "written as deal.II does, e.g. Young_27s_20modulus).";
         tree = *root;
       }
-    const auto patterns = declared_patterns();
-    const auto names    = declared_names();
-    const auto known    = [&](const std::string &path) {
-      const auto it = names.find(path);
-      return it == names.end() ? std::set<std::string>() : it->second;
-    };
-    const std::string place = " (" + file_name +
+    const auto        patterns = declared_patterns();
+    const auto        names    = declared_names();
+    const std::string place    = " (" + file_name +
                               "; plate-on-halfspace --print-parameters "
                               "lists every entry)";
     std::function<std::string(const boost::property_tree::ptree &,
@@ -665,16 +689,9 @@ namespace PlateOnHalfspace
                 return problem;
               continue;
             }
-          std::set<std::string> entries, sections;
-          for (const std::string &n : known(path))
-            (names.count(path + n + "/") > 0 ? sections : entries).insert(n);
           if (!child.empty() && !child.get_child_optional("value"))
-            return "subsection <" + name + "> does not exist in " +
-                   section_name(path) + "." + suggestion(name, sections) +
-                   " The subsections: " + list_of(sections) + "." + place;
-          return path + name + ": there is no such entry in " +
-                 section_name(path) + "." + suggestion(name, entries) +
-                 " Its entries: " + list_of(entries) + "." + place;
+            return no_such_subsection(names, path, name, place);
+          return no_such_entry(names, path, name, place);
         }
       return "";
     };
