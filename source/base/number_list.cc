@@ -4,11 +4,34 @@
 #include <plate_on_halfspace/base/number_list.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 
 namespace PlateOnHalfspace
 {
   using namespace dealii;
+
+  DecimalReading
+  read_decimal_number(const std::string &text, double &value)
+  {
+    value = 0;
+    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])) ||
+        text.find_first_of("xXpP") != std::string::npos)
+      return DecimalReading::not_a_number;
+    char *end = nullptr;
+    errno     = 0;
+    value     = std::strtod(text.c_str(), &end);
+    if (end != text.c_str() + text.size())
+      return DecimalReading::not_a_number;
+    if (!std::isfinite(value))
+      return errno == ERANGE ? DecimalReading::overflow :
+                               DecimalReading::not_finite;
+    // strtod signals both an underflow to 0 and a subnormal with ERANGE
+    if (errno == ERANGE || std::fpclassify(value) == FP_SUBNORMAL)
+      return DecimalReading::underflow;
+    return DecimalReading::number;
+  }
 
   std::vector<std::vector<double>>
   parse_number_list(const std::string &text,
@@ -38,25 +61,16 @@ namespace PlateOnHalfspace
         std::vector<double> numbers;
         for (const std::string &field : fields)
           {
-            // A decimal number: strtod alone would also take the
-            // hexadecimal 0x10 as 16 (and 0x1p4).
-            double value = 0;
-            try
-              {
-                AssertThrow(field.find_first_of("xXpP") == std::string::npos,
-                            ExcInternalError());
-                value = Utilities::string_to_double(field);
-              }
-            catch (...)
-              {
-                AssertThrow(false,
-                            ExcMessage("Entry <" + entry_name + ">: <" + field +
-                                       "> in <" + item +
-                                       "> is not a number (a decimal "
-                                       "number of magnitude 1e-307 to "
-                                       "1e308, or 0)."));
-              }
-            AssertThrow(std::isfinite(value),
+            double               value   = 0;
+            const DecimalReading reading = read_decimal_number(field, value);
+            AssertThrow(reading == DecimalReading::number ||
+                          reading == DecimalReading::not_finite,
+                        ExcMessage("Entry <" + entry_name + ">: <" + field +
+                                   "> in <" + item +
+                                   "> is not a number (a decimal "
+                                   "number of magnitude 1e-307 to "
+                                   "1e308, or 0)."));
+            AssertThrow(reading == DecimalReading::number,
                         ExcMessage("Entry <" + entry_name + ">: <" + field +
                                    "> is not a finite number."));
             numbers.push_back(value);

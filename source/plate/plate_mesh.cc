@@ -4,9 +4,11 @@
 #include <deal.II/grid/manifold_lib.h>
 
 #include <plate_on_halfspace/base/error_on_every_rank.h>
+#include <plate_on_halfspace/base/number_list.h>
 #include <plate_on_halfspace/base/quadrilateral_geometry.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate/plate_mesh.h>
+#include <plate_on_halfspace/scene/input_checks.h>
 
 #include <algorithm>
 #include <array>
@@ -156,12 +158,11 @@ namespace PlateOnHalfspace
           std::istringstream fields(line);
           for (std::string field; fields >> field;)
             {
-              char        *end   = nullptr;
-              const double value = std::strtod(field.c_str(), &end);
-              // GridIn reads decimals only; strtod would take 0x1p0 too
-              if (end != field.c_str() + field.size() ||
-                  !std::isfinite(value) ||
-                  field.find_first_of("xXpP") != std::string::npos)
+              // GridIn reads an underflow as 0
+              double               value   = 0;
+              const DecimalReading reading = read_decimal_number(field, value);
+              if (reading != DecimalReading::number &&
+                  reading != DecimalReading::underflow)
                 return "line " + std::to_string(number) + ": <" + field + ">";
             }
         }
@@ -282,29 +283,6 @@ namespace PlateOnHalfspace
       AssertThrow(false, ExcMessage(message.str()));
     }
 
-    /**
-     * The check Parameters::Plate makes of the other shapes
-     * (source/scene/parameters.cc): the plate at least 1/100 as wide, its
-     * bounding box's shorter side, as thick.
-     */
-    void
-    check_mesh_is_wider_than_thick(const Parameters::Plate &plate,
-                                   const Triangulation<2>  &triangulation)
-    {
-      const auto corners =
-        GridTools::compute_bounding_box(triangulation).get_boundary_points();
-      const double width = std::min(corners.second[0] - corners.first[0],
-                                    corners.second[1] - corners.first[1]);
-      if (width >= 0.01 * plate.thickness)
-        return;
-      std::ostringstream message;
-      message << "Plate/Mesh file: the plate of <" << plate.mesh_file << "> is "
-              << width << " wide but " << plate.thickness
-              << " thick (Plate/Thickness); it must be at least 1/100 as "
-                 "wide as thick (a rigid block is a plate about as thick as "
-                 "wide). Check the units of the mesh's coordinates.";
-      AssertThrow(false, ExcMessage(message.str()));
-    }
   } // namespace
 
   void
@@ -428,7 +406,15 @@ namespace PlateOnHalfspace
             check_cells_are_valid(triangulation, plate.mesh_file);
             check_vertices_are_merged(triangulation, plate.mesh_file);
             check_mesh_is_plane(plate.mesh_file, triangulation);
-            check_mesh_is_wider_than_thick(plate, triangulation);
+            const auto corners = GridTools::compute_bounding_box(triangulation)
+                                   .get_boundary_points();
+            const std::string problem = plate_width_problem(
+              std::min(corners.second[0] - corners.first[0],
+                       corners.second[1] - corners.first[1]),
+              plate.thickness,
+              "Plate/Mesh file: the plate of <" + plate.mesh_file + ">",
+              "the mesh's coordinates");
+            AssertThrow(problem.empty(), ExcMessage(problem));
             break;
           }
       }

@@ -6,13 +6,12 @@
 #include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/xml_parser.hpp>
 
+#include <plate_on_halfspace/base/number_list.h>
 #include <plate_on_halfspace/scene/input_checks.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -516,16 +515,13 @@ namespace PlateOnHalfspace
           Utilities::split_string_list(path, '/');
         const std::string entry = sections.back();
         sections.pop_back();
-        // a value that strtod reads only with a range error, or as a
-        // subnormal: deal.II cannot convert it
-        const std::string text = trimmed(prm.get(sections, entry));
-        if (text.empty() || text.find_first_of("xXpP") != std::string::npos)
-          continue;
-        char *end           = nullptr;
-        errno               = 0;
-        const double number = std::strtod(text.c_str(), &end);
-        if (end != text.c_str() + text.size() ||
-            (errno != ERANGE && std::fpclassify(number) != FP_SUBNORMAL))
+        // deal.II's pattern matches a decimal number beyond the range of
+        // double, but cannot convert it
+        const std::string    text    = trimmed(prm.get(sections, entry));
+        double               number  = 0;
+        const DecimalReading reading = read_decimal_number(text, number);
+        if (reading != DecimalReading::underflow &&
+            reading != DecimalReading::overflow)
           continue;
         return path + ": the value <" + text +
                "> cannot be computed with (numbers must be 0 or of "
@@ -536,7 +532,26 @@ namespace PlateOnHalfspace
   }
 
   std::string
-  structured_scene_problem(const std::string &file_name)
+  plate_width_problem(const double       width,
+                      const double       thickness,
+                      const std::string &plate,
+                      const std::string &lengths)
+  {
+    if (width >= 0.01 * thickness)
+      return "";
+    std::ostringstream message;
+    message << std::setprecision(12) << plate << " is " << width << " wide but "
+            << thickness
+            << " thick (Plate/Thickness); it must be at least 1/100 as "
+               "wide as thick (a rigid block is a plate about as thick as "
+               "wide). Check the units of "
+            << lengths << ".";
+    return message.str();
+  }
+
+  std::string
+  structured_scene_problem(const std::string &text,
+                           const std::string &file_name)
   {
     std::string extension =
       std::filesystem::path(file_name).extension().string();
@@ -546,14 +561,16 @@ namespace PlateOnHalfspace
                    [](unsigned char c) { return std::tolower(c); });
     if (extension != ".json" && extension != ".xml")
       return "";
-    const bool  json = extension == ".json";
-    std::string text;
-    {
-      std::ifstream      file(file_name, std::ios::binary);
-      std::ostringstream contents;
-      contents << file.rdbuf();
-      text = contents.str();
-    }
+    const bool json = extension == ".json";
+    // Boost reads a lone value ("hello", 5) as an empty scene
+    const std::size_t first =
+      text.find_first_not_of(" \t\r\n",
+                             text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0);
+    if (json && (first == std::string::npos || text[first] != '{'))
+      return file_name +
+             " does not hold a JSON object: a JSON scene is one object "
+             "{...} of sections and entries, e.g. {\"Plate\": "
+             "{\"Thickness\": \"0.2\"}}.";
     // Boost's parsers recurse once per level: a file nested 10^5 deep
     // overflows the stack. A scene nests three levels; refuse beyond 64
     // (brackets and elements outside strings, comments and the like

@@ -12,6 +12,7 @@
 #include <plate_on_halfspace/base/number_list.h>
 #include <plate_on_halfspace/base/result_record.h>
 #include <plate_on_halfspace/refinement/goal.h>
+#include <plate_on_halfspace/scene/input_checks.h>
 #include <plate_on_halfspace/scene/parameters.h>
 
 #include <algorithm>
@@ -180,9 +181,6 @@ namespace PlateOnHalfspace
                 "Shape = mesh file.");
       require(thickness > 0,
               "Plate/Thickness must be > 0" + got(thickness) + ".");
-      // A plate far thicker than wide is no plate (and its thickness then
-      // swamps the cells' coordinates in rounding): a units slip. A rigid
-      // block is a plate about as thick as wide (parameters/rigid-disk.prm).
       if (shape != Shape::mesh_file)
         {
           const double width =
@@ -198,12 +196,12 @@ namespace PlateOnHalfspace
             shape == Shape::disk  ? "Plate/Radius" :
             shape == Shape::slabs ? "Plate/Slab lengths x and y" :
                                     "Plate/Length x and y";
-          require(width >= 0.01 * thickness,
-                  entries + ": the plate (or a slab) is " + to_text(width) +
-                    " wide but " + to_text(thickness) +
-                    " thick (Plate/Thickness); it must be at least 1/100 as "
-                    "wide as thick (a rigid block is a plate about as thick "
-                    "as wide). Check the units of the lengths.");
+          const std::string problem =
+            plate_width_problem(width,
+                                thickness,
+                                entries + ": the plate (or a slab)",
+                                "the lengths");
+          require(problem.empty(), problem);
         }
       require(youngs_modulus > 0,
               "Plate/Young's modulus must be > 0" + got(youngs_modulus) + ".");

@@ -640,7 +640,15 @@ namespace PlateOnHalfspace
                            " is larger than 64 MiB: not a parameter file."));
     std::ostringstream text;
     text << std::ifstream(filename).rdbuf();
-    const std::string structure_problem = structured_scene_problem(filename);
+    // SceneFileReader checks a .prm file's encoding; deal.II reads a JSON
+    // or XML file without calling it
+    const std::string encoding = encoding_problem(text.str());
+    AssertThrow(encoding.empty(),
+                ExcMessage(filename +
+                           " is not a text parameter file (it looks " +
+                           encoding + "); save it as UTF-8 or ASCII."));
+    const std::string structure_problem =
+      structured_scene_problem(text.str(), filename);
     AssertThrow(structure_problem.empty(), ExcMessage(structure_problem));
     SceneFileReader prm(true);
     declare_parameters(prm);

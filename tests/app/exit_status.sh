@@ -104,6 +104,12 @@ printf '<ParameterHandler><Plate><!-- the plate --><Thickness>0.2</Thickness></P
 jsonxml "XML comment" comment.xml "an XML scene takes no comments"
 printf '<ParameterHandler><Plate><Thickness>\n 0.2\n</Thickness></Plate></ParameterHandler>' >padded.xml
 jsonxml "XML value with spaces around it" padded.xml "(without spaces around it)"
+printf '"hello"' >lone.json
+jsonxml "JSON file of one string" lone.json "does not hold a JSON object"
+printf '{"Plate": {"Thickness": "0.2"}}' | iconv -f UTF-8 -t UTF-16 >utf16.json
+jsonxml "UTF-16 JSON" utf16.json "(it looks UTF-16 encoded)"
+printf '\357\273\277{"Output directory": "bom", "Loads": {"Uniform pressure": "10"}, "Output": {"VTU": "false"}, "Discretization": {"Subdivisions x": "2", "Subdivisions y": "2"}}' >bom.json
+expect "JSON scene with a UTF-8 byte-order mark" 0 "$program" bom.json
 printf '{"Output directory": "json", "Loads": {"Uniform pressure": "10"}, "Output": {"VTU": "false"}, "Discretization": {"Subdivisions x": "2", "Subdivisions y": "2"}}' >good.json
 expect "valid JSON scene" 0 "$program" good.json
 echo "$passed passed, $failed failed"

@@ -10,6 +10,32 @@
 namespace PlateOnHalfspace
 {
   /**
+   * What a text read as one decimal number gives.
+   */
+  enum class DecimalReading
+  {
+    /** a finite number: 0 or of magnitude 2.2e-308 to 1.8e308 */
+    number,
+    /** a decimal number nearer 0 than 2.2e-308, not 0 itself */
+    underflow,
+    /** a decimal number beyond 1.8e308 */
+    overflow,
+    /** inf or nan */
+    not_finite,
+    /** anything else: empty, trailing characters, hexadecimal */
+    not_a_number
+  };
+
+  /**
+   * Read @p text, without blanks around it, as one decimal number into
+   * @p value. strtod() alone would also take the hexadecimal 0x10 as 16
+   * (and 0x1p4); the parameter files, GridIn and deal.II's patterns take
+   * decimals only.
+   */
+  DecimalReading
+  read_decimal_number(const std::string &text, double &value);
+
+  /**
    * Split a list entry "a,b,c ; d,e,f" into items of exactly @p n_fields
    * decimal numbers each (any number if @p n_fields is 0). Errors name the
    * entry @p entry_name and its @p field_names.

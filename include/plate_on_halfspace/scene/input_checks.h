@@ -85,15 +85,31 @@ namespace PlateOnHalfspace
   unrepresentable_number_entry(const dealii::ParameterHandler &prm);
 
   /**
-   * "" if the JSON or XML scene @p file_name (deal.II reads both besides
-   * .prm, by the name's extension) is well formed and every entry in it is
-   * declared and allowed, otherwise the message for the first problem, in
-   * the .prm messages' words ("Plate/Thickness: the value <-1> is not
-   * allowed; it must be a number >= 0."). deal.II's own messages for such
+   * "" if a plate @p width wide (its narrowest extent: a side, a slab, a
+   * disk's diameter, a mesh's bounding box) and @p thickness thick is at
+   * least 1/100 as wide as thick, otherwise the refusal: @p plate names
+   * the entry and the plate ("Plate/Radius: the plate"), @p lengths what
+   * the user should check ("the lengths"). A plate far thicker than wide
+   * is a units slip, and its thickness swamps the cells' coordinates in
+   * rounding; a rigid block is a plate about as thick as wide.
+   */
+  std::string
+  plate_width_problem(const double       width,
+                      const double       thickness,
+                      const std::string &plate,
+                      const std::string &lengths);
+
+  /**
+   * "" if the JSON or XML scene @p file_name, holding @p text (deal.II
+   * reads both besides .prm, by the name's extension), is well formed and every
+   * entry in it is declared and allowed, otherwise the message for the first
+   * problem, in the .prm messages' words ("Plate/Thickness: the value <-1> is
+   * not allowed; it must be a number >= 0."). deal.II's own messages for such
    * files name neither the entry nor the section.
    */
   std::string
-  structured_scene_problem(const std::string &file_name);
+  structured_scene_problem(const std::string &text,
+                           const std::string &file_name);
 
   /**
    * Warnings for a valid scene whose element choice is known to give a
