@@ -358,6 +358,99 @@ namespace PlateOnHalfspace
      *  "Preconditioning the contact pressures"). */
     constexpr double rounding_floor_factor = 100;
 
+    /**
+     * The space spanned by conjugate directions W of an earlier solve on
+     * the same contact set, with their products H W: deflated conjugate
+     * gradients (doc/formulation.md, "Recycled directions") start from the
+     * H-projection of the residual onto W and keep every direction
+     * H-orthogonal to W. Inactive if the Gram matrix W^T H W is not
+     * numerically positive definite.
+     */
+    class Deflation
+    {
+    public:
+      Deflation(const std::vector<Vector<double>> &w,
+                const std::vector<Vector<double>> &hw)
+        : w(w)
+        , hw(hw)
+      {
+        const unsigned int k = w.size();
+        if (k == 0)
+          return;
+        gram.reinit(k, k);
+        for (unsigned int i = 0; i < k; ++i)
+          for (unsigned int j = 0; j <= i; ++j)
+            {
+              const double g = 0.5 * (w[i] * hw[j] + w[j] * hw[i]);
+              gram(i, j)     = g;
+              gram(j, i)     = g;
+            }
+        gram.set_property(LAPACKSupport::symmetric);
+        try
+          {
+            gram.compute_cholesky_factorization();
+            usable = true;
+          }
+        catch (...)
+          {
+            usable = false;
+          }
+      }
+
+      bool
+      active() const
+      {
+        return usable;
+      }
+
+      /** x += sign W (W^T H W)^{-1} V^T v, V = W or H W. */
+      void
+      add_projection(Vector<double>                    &x,
+                     const std::vector<Vector<double>> &v_basis,
+                     const Vector<double>              &v,
+                     const double                       sign) const
+      {
+        Vector<double> mu(w.size());
+        for (unsigned int i = 0; i < w.size(); ++i)
+          mu[i] = v_basis[i] * v;
+        gram.solve(mu);
+        for (unsigned int i = 0; i < w.size(); ++i)
+          x.add(sign * mu[i], w[i]);
+      }
+
+      /** q += W (W^T H W)^{-1} W^T r: the residual r becomes
+       *  orthogonal to W. */
+      void
+      correct(Vector<double> &q, const Vector<double> &r) const
+      {
+        add_projection(q, w, r, 1.);
+      }
+
+      /** d -= W (W^T H W)^{-1} (H W)^T z, with @p d = z on entry: the
+       *  part of z H-orthogonal to W. */
+      void
+      make_conjugate(Vector<double> &d, const Vector<double> &z) const
+      {
+        add_projection(d, hw, z, -1.);
+      }
+
+    private:
+      const std::vector<Vector<double>> &w, &hw;
+      LAPACKFullMatrix<double>           gram;
+      bool                               usable = false;
+    };
+
+    /**
+     * Where projected_conjugate_gradients() puts the directions of its
+     * solve (each scaled to p^T H p = 1, with H p projected), at most
+     * @p room of them.
+     */
+    struct DirectionSink
+    {
+      std::vector<Vector<double>> p, hp;
+      unsigned int                room = 0;
+    };
+
     /** Outcome of one projected conjugate gradient solve. */
     struct ConjugateGradientResult
     {
@@ -393,13 +486,16 @@ namespace PlateOnHalfspace
     ConjugateGradientResult
     projected_conjugate_gradients(const ContactSetProblem        &problem,
                                   const ConjugateGradientControl &control,
-                                  Vector<double>                 &q)
+                                  Vector<double>                 &q,
+                                  const Deflation                &deflation,
+                                  DirectionSink                  &sink)
     {
       ConjugateGradientResult result;
       const unsigned int      m = problem.size();
-      Vector<double>          r(m), soil(m), z(m), p(m), hp(m), soil_p(m);
+      Vector<double>          r(m), soil(m), z(m), p(m), hp(m), soil_p(m), d(m);
       problem.make_equilibrated(q);
       unsigned int restarts_after_convergence = 0;
+      bool         deflate = deflation.active(), corrected = false;
       while (true)
         {
           problem.projected_residual(q,
@@ -449,10 +545,20 @@ namespace PlateOnHalfspace
             }
           if (result.iterations >= control.max_iterations)
             return result;
+          // The start's component in the recycled directions, solved
+          // exactly; its residual is recomputed (once per solve).
+          if (deflate && !corrected)
+            {
+              deflation.correct(q, r);
+              corrected = true;
+              continue;
+            }
           // (Re)start.
           problem.precondition(z, r);
           problem.project(z);
-          p         = z;
+          p = z;
+          if (deflate)
+            deflation.make_conjugate(p, z);
           double rz = r * z;
           while (result.iterations < control.max_iterations)
             {
@@ -469,6 +575,13 @@ namespace PlateOnHalfspace
                   r.l2_norm() <= result.rounding_floor * soil.l2_norm())
                 {
                   ++restarts_after_convergence;
+                  break;
+                }
+              // The recycled directions, not H, may have lost their
+              // conjugacy to rounding: go on without them.
+              if (!(curvature > 0 && rz > 0) && deflate)
+                {
+                  deflate = false;
                   break;
                 }
               if (!(curvature > 0 && rz > 0))
@@ -490,6 +603,14 @@ namespace PlateOnHalfspace
               problem.project(hp);
               r.add(-step, hp);
               ++result.iterations;
+              if (sink.p.size() < sink.room)
+                {
+                  const double scale = 1. / std::sqrt(curvature);
+                  sink.p.emplace_back(p);
+                  sink.p.back() *= scale;
+                  sink.hp.emplace_back(hp);
+                  sink.hp.back() *= scale;
+                }
               if (r.l2_norm() <= control.tolerance * soil.l2_norm())
                 {
                   ++restarts_after_convergence;
@@ -498,12 +619,21 @@ namespace PlateOnHalfspace
               problem.precondition(z, r);
               problem.project(z);
               const double rz_next = r * z;
-              p.sadd(rz_next / rz, 1., z);
+              d                    = z;
+              if (deflate)
+                deflation.make_conjugate(d, z);
+              p.sadd(rz_next / rz, 1., d);
               rz = rz_next;
             }
         }
     }
   } // namespace
+
+  struct IterativeContactSolver::RecordedDirections
+  {
+    std::vector<bool>           contact_set;
+    std::vector<Vector<double>> p, hp;
+  };
 
   IterativeContactSolver::IterativeContactSolver(
     const Parameters::Contact      &contact,
@@ -563,6 +693,7 @@ namespace PlateOnHalfspace
     else if (!inverse || !inverse->is_of(plate))
       inverse = std::make_unique<PlateGeneralizedInverse>(plate);
     inverse->factorize();
+    recorded = std::make_unique<RecordedDirections>();
     const SparseMatrix<double> &test_coupling = foundation.test_coupling();
     const auto                 &motions       = inverse->rigid_motions();
     tested_motions.clear();
@@ -806,8 +937,33 @@ namespace PlateOnHalfspace
                                                Vector<double>(problem.size());
     ConjugateGradientControl solve_control = control;
     solve_control.tolerance                = tolerance;
+    // Directions are recycled on one set only (H is the set's); at most
+    // 32 of them, and at most 256 MiB with their products.
+    if (recorded->contact_set != contact_set)
+      {
+        *recorded             = RecordedDirections();
+        recorded->contact_set = contact_set;
+      }
+    const Deflation    deflation(recorded->p, recorded->hp);
+    DirectionSink      sink;
+    const unsigned int capacity =
+      std::min<std::size_t>(32,
+                            (std::size_t(256) << 20) /
+                              (2 * sizeof(double) * (problem.size() + 1)));
+    sink.room = capacity - std::min<unsigned int>(capacity, recorded->p.size());
     const ConjugateGradientResult cg =
-      projected_conjugate_gradients(problem, solve_control, q);
+      projected_conjugate_gradients(problem, solve_control, q, deflation, sink);
+    // directions that the Gram matrix showed dependent start again
+    if (!deflation.active())
+      {
+        recorded->p.clear();
+        recorded->hp.clear();
+      }
+    for (unsigned int i = 0; i < sink.p.size(); ++i)
+      {
+        recorded->p.push_back(std::move(sink.p[i]));
+        recorded->hp.push_back(std::move(sink.hp[i]));
+      }
     ContactState::LinearSolve record;
     record.contact_iteration = state.linear_solves.size() + 1;
     record.contact_nodes     = problem.size();

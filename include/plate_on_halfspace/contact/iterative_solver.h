@@ -209,6 +209,11 @@ namespace PlateOnHalfspace
     Vector<double>              tested_plate_load;
     std::vector<Vector<double>> tested_motions;
     Vector<double>              motion_loads;
+    /** Conjugate directions of the solves on the last contact set, which
+     *  the next solve on the same set recycles (doc/formulation.md,
+     *  "Recycled directions"); cleared by prepare(). */
+    struct RecordedDirections;
+    std::unique_ptr<RecordedDirections> recorded;
   };
 } // namespace PlateOnHalfspace
 
