@@ -16,8 +16,7 @@ namespace PlateOnHalfspace
   read_decimal_number(const std::string &text, double &value)
   {
     value = 0;
-    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])) ||
-        text.find_first_of("xXpP") != std::string::npos)
+    if (text.empty() || text.find_first_of("xXpP") != std::string::npos)
       return DecimalReading::not_a_number;
     char *end = nullptr;
     errno     = 0;

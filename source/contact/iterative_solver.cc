@@ -363,8 +363,8 @@ namespace PlateOnHalfspace
      * the same contact set, with their products H W: deflated conjugate
      * gradients (doc/formulation.md, "Recycled directions") start from the
      * H-projection of the residual onto W and keep every direction
-     * H-orthogonal to W. Inactive if the Gram matrix W^T H W is not
-     * numerically positive definite.
+     * H-orthogonal to W, in the well-conditioned part of the Gram matrix
+     * W^T H W. Inactive if no part of it is.
      */
     class Deflation
     {
@@ -377,57 +377,71 @@ namespace PlateOnHalfspace
         const unsigned int k = w.size();
         if (k == 0)
           return;
-        gram.reinit(k, k);
+        LAPACKFullMatrix<double> gram(k, k);
+        double                   trace = 0;
         for (unsigned int i = 0; i < k; ++i)
           for (unsigned int j = 0; j <= i; ++j)
             {
               const double g = 0.5 * (w[i] * hw[j] + w[j] * hw[i]);
               gram(i, j)     = g;
               gram(j, i)     = g;
+              trace += i == j ? g : 0.;
             }
+        if (!std::isfinite(trace) || !(trace > 0))
+          return;
+        // W^T H W = V Lambda V^T; the eigenvectors with eigenvalues below
+        // 1e-6 of the trace are dropped: directions that rounding made
+        // nearly dependent (a long solve's lost conjugacy), or that H
+        // does not curve.
         gram.set_property(LAPACKSupport::symmetric);
         try
           {
-            gram.compute_cholesky_factorization();
-            usable = true;
+            gram.compute_eigenvalues_symmetric(
+              1e-6 * trace, 2 * trace, 0., eigenvalues, eigenvectors);
           }
         catch (...)
           {
-            usable = false;
+            eigenvalues.reinit(0);
           }
+        for (const double lambda : eigenvalues)
+          if (!std::isfinite(lambda))
+            eigenvalues.reinit(0);
       }
 
       bool
       active() const
       {
-        return usable;
+        return eigenvalues.size() > 0;
       }
 
-      /** x += sign W (W^T H W)^{-1} V^T v, V = W or H W. */
+      /** x += sign W V Lambda^{-1} V^T V_b^T v, V_b = W or H W. */
       void
       add_projection(Vector<double>                    &x,
                      const std::vector<Vector<double>> &v_basis,
                      const Vector<double>              &v,
                      const double                       sign) const
       {
-        Vector<double> mu(w.size());
+        Vector<double> wv(w.size()), c(eigenvalues.size()), mu(w.size());
         for (unsigned int i = 0; i < w.size(); ++i)
-          mu[i] = v_basis[i] * v;
-        gram.solve(mu);
+          wv[i] = v_basis[i] * v;
+        eigenvectors.Tvmult(c, wv);
+        for (unsigned int j = 0; j < c.size(); ++j)
+          c[j] /= eigenvalues[j];
+        eigenvectors.vmult(mu, c);
         for (unsigned int i = 0; i < w.size(); ++i)
           x.add(sign * mu[i], w[i]);
       }
 
-      /** q += W (W^T H W)^{-1} W^T r: the residual r becomes
-       *  orthogonal to W. */
+      /** q += W (W^T H W)^+ W^T r: the residual r becomes orthogonal
+       *  to W. */
       void
       correct(Vector<double> &q, const Vector<double> &r) const
       {
         add_projection(q, w, r, 1.);
       }
 
-      /** d -= W (W^T H W)^{-1} (H W)^T z, with @p d = z on entry: the
-       *  part of z H-orthogonal to W. */
+      /** d -= W (W^T H W)^+ (H W)^T z, with @p d = z on entry: the part
+       *  of z H-orthogonal to W. */
       void
       make_conjugate(Vector<double> &d, const Vector<double> &z) const
       {
@@ -436,8 +450,8 @@ namespace PlateOnHalfspace
 
     private:
       const std::vector<Vector<double>> &w, &hw;
-      LAPACKFullMatrix<double>           gram;
-      bool                               usable = false;
+      Vector<double>                     eigenvalues;
+      FullMatrix<double>                 eigenvectors;
     };
 
     /**
@@ -460,6 +474,9 @@ namespace PlateOnHalfspace
       /** The residual that rounding allows, relative like
        *  relative_residual (see projected_conjugate_gradients()). */
       double rounding_floor = 0;
+      /** The recycled directions were dropped during the solve (a
+       *  direction of non-positive curvature with them). */
+      bool deflation_abandoned = false;
       /** vmult_on_all_nodes() of the final q: H q, F q and the plate's
        *  response K^+ N^T M T q. */
       Vector<double> product_on_all_nodes, soil_on_all_nodes, plate_response;
@@ -581,7 +598,8 @@ namespace PlateOnHalfspace
               // conjugacy to rounding: go on without them.
               if (!(curvature > 0 && rz > 0) && deflate)
                 {
-                  deflate = false;
+                  deflate                    = false;
+                  result.deflation_abandoned = true;
                   break;
                 }
               if (!(curvature > 0 && rz > 0))
@@ -666,6 +684,9 @@ namespace PlateOnHalfspace
                                   FoundationOperator &foundation,
                                   ContactState       &state)
   {
+    // a new plate, operator or load: before the factorisations, whose
+    // memory the record would add to
+    recorded             = std::make_unique<RecordedDirections>();
     const unsigned int n = plate.get_foundation_space().n_nodes();
     AssertThrow(foundation.is_symmetric() && foundation.n_nodes() == n,
                 ExcMessage("The iterative contact solver needs the symmetric "
@@ -693,7 +714,6 @@ namespace PlateOnHalfspace
     else if (!inverse || !inverse->is_of(plate))
       inverse = std::make_unique<PlateGeneralizedInverse>(plate);
     inverse->factorize();
-    recorded = std::make_unique<RecordedDirections>();
     const SparseMatrix<double> &test_coupling = foundation.test_coupling();
     const auto                 &motions       = inverse->rigid_motions();
     tested_motions.clear();
@@ -950,11 +970,12 @@ namespace PlateOnHalfspace
       std::min<std::size_t>(32,
                             (std::size_t(256) << 20) /
                               (2 * sizeof(double) * (problem.size() + 1)));
-    sink.room = capacity - std::min<unsigned int>(capacity, recorded->p.size());
+    // a record that serves no longer starts again with this solve's
+    const std::size_t kept = deflation.active() ? recorded->p.size() : 0;
+    sink.room              = capacity - std::min<std::size_t>(capacity, kept);
     const ConjugateGradientResult cg =
       projected_conjugate_gradients(problem, solve_control, q, deflation, sink);
-    // directions that the Gram matrix showed dependent start again
-    if (!deflation.active())
+    if (!deflation.active() || cg.deflation_abandoned)
       {
         recorded->p.clear();
         recorded->hp.clear();

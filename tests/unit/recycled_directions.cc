@@ -31,9 +31,11 @@ using namespace TestTools;
 namespace
 {
   void
-  check(const std::string &name, const std::string &extra, const bool tensionless)
+  check(const std::string &name,
+        const std::string &extra,
+        const bool         tensionless)
   {
-    const auto problem = solve_scene("example2.prm", extra);
+    const auto          problem    = solve_scene("example2.prm", extra);
     MindlinPlate       &plate      = problem->plate();
     FoundationOperator &foundation = problem->foundation();
 
@@ -46,9 +48,8 @@ namespace
     std::ostringstream     log;
     IterativeContactSolver iterative(contact, tensionless, control, 0, log);
     DirectContactSolver    direct(contact, tensionless, 0, log);
-    const Vector<double>  &load = plate.get_load_vector();
-    const ContactState     first =
-      iterative.solve(plate, foundation, load, {});
+    const Vector<double>  &load  = plate.get_load_vector();
+    const ContactState     first = iterative.solve(plate, foundation, load, {});
     const ContactState reference = direct.solve(plate, foundation, load, {});
     AssertThrow(first.converged && reference.converged,
                 ExcMessage("not converged"));
@@ -81,20 +82,21 @@ namespace
     AssertThrow(d_direct <= 1e-8,
                 ExcMessage("differs by " + std::to_string(d_direct)));
 
-    const ContactState again   = iterative.solve_linearised(second);
-    const double       d_again = difference(again, recycled);
-    const bool again_ok = iterations(again) <= 2 && d_again <= 1e-8;
+    const ContactState again    = iterative.solve_linearised(second);
+    const double       d_again  = difference(again, recycled);
+    const bool         again_ok = iterations(again) <= 2 && d_again <= 1e-8;
     deallog << "  the same load again: at most 2 CG iterations, the same "
                "w and q to 1e-8: "
             << (again_ok ? "ok" : "FAILED") << std::endl;
     AssertThrow(again_ok,
                 ExcMessage(std::to_string(iterations(again)) +
-                           " iterations, differs by " + std::to_string(d_again)));
+                           " iterations, differs by " +
+                           std::to_string(d_again)));
 
-    const ContactState mixed = iterative.solve_linearised(between);
+    const ContactState mixed        = iterative.solve_linearised(between);
     const ContactState direct_mixed = direct.solve_linearised(between);
-    const bool         mixed_ok     = iterations(mixed) < iterations(recycled) &&
-                             difference(mixed, direct_mixed) <= 1e-8;
+    const bool         mixed_ok = iterations(mixed) < iterations(recycled) &&
+                          difference(mixed, direct_mixed) <= 1e-8;
     deallog << "  a load between the two: fewer CG iterations than the "
                "second load's, the direct solver's w and q to 1e-8: "
             << (mixed_ok ? "ok" : "FAILED") << std::endl;

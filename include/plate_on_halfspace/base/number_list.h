@@ -27,10 +27,10 @@ namespace PlateOnHalfspace
   };
 
   /**
-   * Read @p text, without blanks around it, as one decimal number into
-   * @p value. strtod() alone would also take the hexadecimal 0x10 as 16
-   * (and 0x1p4); the parameter files, GridIn and deal.II's patterns take
-   * decimals only.
+   * Read @p text as one decimal number into @p value (white space before
+   * it is skipped, none may follow). strtod() alone would also take the
+   * hexadecimal 0x10 as 16 (and 0x1p4); the parameter files, GridIn and
+   * deal.II's patterns take decimals only.
    */
   DecimalReading
   read_decimal_number(const std::string &text, double &value);
