@@ -403,9 +403,12 @@ namespace PlateOnHalfspace
           {
             eigenvalues.reinit(0);
           }
-        for (const double lambda : eigenvalues)
-          if (!std::isfinite(lambda))
-            eigenvalues.reinit(0);
+        if (!std::all_of(eigenvalues.begin(),
+                         eigenvalues.end(),
+                         [](const double lambda) {
+                           return std::isfinite(lambda);
+                         }))
+          eigenvalues.reinit(0);
       }
 
       bool

@@ -450,6 +450,17 @@ namespace PlateOnHalfspace
       return "";
     }
 
+    /** Throws unless @p text, the contents of @p filename, is a text
+     *  parameter file (encoding_problem()). */
+    void
+    require_text_file(const std::string &text, const std::string &filename)
+    {
+      const std::string encoding = encoding_problem(text);
+      require(encoding.empty(),
+              filename + " is not a text parameter file (it looks " + encoding +
+                "); save it as UTF-8 or ASCII.");
+    }
+
     /**
      * A ParameterHandler that reads every file, the scene and each file it
      * includes, with checks deal.II does not make (doc/errors-and-limits.md,
@@ -520,10 +531,7 @@ namespace PlateOnHalfspace
           text.append(buffer, input.gcount());
         require(text.size() <= largest_parameter_file,
                 filename + " is larger than 64 MiB: not a parameter file.");
-        const std::string encoding = encoding_problem(text);
-        require(encoding.empty(),
-                filename + " is not a text parameter file (it looks " +
-                  encoding + "); save it as UTF-8 or ASCII.");
+        require_text_file(text, filename);
         if (text.compare(0, 3, "\xEF\xBB\xBF") == 0)
           text.erase(0, 3); // the UTF-8 byte-order mark
         check_include_statements(text, filename);
@@ -638,17 +646,14 @@ namespace PlateOnHalfspace
     AssertThrow(error || size <= largest_parameter_file,
                 ExcMessage(filename +
                            " is larger than 64 MiB: not a parameter file."));
-    std::ostringstream text;
-    text << std::ifstream(filename).rdbuf();
+    std::ostringstream contents;
+    contents << std::ifstream(filename).rdbuf();
+    const std::string text = contents.str();
     // SceneFileReader checks a .prm file's encoding; deal.II reads a JSON
     // or XML file without calling it
-    const std::string encoding = encoding_problem(text.str());
-    AssertThrow(encoding.empty(),
-                ExcMessage(filename +
-                           " is not a text parameter file (it looks " +
-                           encoding + "); save it as UTF-8 or ASCII."));
+    require_text_file(text, filename);
     const std::string structure_problem =
-      structured_scene_problem(text.str(), filename);
+      structured_scene_problem(text, filename);
     AssertThrow(structure_problem.empty(), ExcMessage(structure_problem));
     SceneFileReader prm(true);
     declare_parameters(prm);
@@ -662,9 +667,8 @@ namespace PlateOnHalfspace
     catch (const std::exception &error)
       {
         AssertThrow(false,
-                    ExcMessage(explain_parameter_file_error(error,
-                                                            text.str(),
-                                                            filename)));
+                    ExcMessage(
+                      explain_parameter_file_error(error, text, filename)));
       }
     const std::string number_problem = unrepresentable_number_entry(prm);
     AssertThrow(number_problem.empty(), ExcMessage(number_problem));
