@@ -559,8 +559,15 @@ namespace PlateOnHalfspace
                    extension.end(),
                    extension.begin(),
                    [](unsigned char c) { return std::tolower(c); });
+    // deal.II's parse_input() chooses the reader by the file's ending
     if (extension != ".json" && extension != ".xml")
-      return "";
+      return extension == ".prm" ?
+               "" :
+               file_name + ": a scene file's name ends in .prm, .json or " +
+                 ".xml (deal.II chooses the reader by it); this one " +
+                 (extension.empty() ? std::string("has no ending") :
+                                      "ends in " + extension) +
+                 ". Rename it.";
     const bool json = extension == ".json";
     // Boost reads a lone value ("hello", 5) as an empty scene
     const std::size_t first =
@@ -668,8 +675,8 @@ namespace PlateOnHalfspace
                                                             key;
           if (name.empty())
             return file_name + ": " + section_name(path) +
-                   " holds a list ([...]); a scene gives each entry by its "
-                   "name." +
+                   " holds a list ([...]) or an entry named \"\"; a scene "
+                   "gives each entry by its name." +
                    place;
           const auto pattern = patterns.find(path + name);
           if (pattern != patterns.end())

@@ -106,6 +106,12 @@ printf '<ParameterHandler><Plate><Thickness>\n 0.2\n</Thickness></Plate></Parame
 jsonxml "XML value with spaces around it" padded.xml "(without spaces around it)"
 printf '"hello"' >lone.json
 jsonxml "JSON file of one string" lone.json "does not hold a JSON object"
+printf '{"Plate": {"": {}}}' >unnamed.json
+jsonxml "JSON entry with an empty name" unnamed.json "or an entry named \"\""
+cp "$scenes/flexible-square.prm" scene.txt
+jsonxml "scene named .txt" scene.txt "scene.txt: a scene file's name ends in .prm, .json or .xml"
+cp "$scenes/flexible-square.prm" scene
+jsonxml "scene without an ending" scene "this one has no ending"
 printf '{"Plate": {"Thickness": "0.2"}}' | iconv -f UTF-8 -t UTF-16 >utf16.json
 jsonxml "UTF-16 JSON" utf16.json "(it looks UTF-16 encoded)"
 printf '\357\273\277{"Output directory": "bom", "Loads": {"Uniform pressure": "10"}, "Output": {"VTU": "false"}, "Discretization": {"Subdivisions x": "2", "Subdivisions y": "2"}}' >bom.json

@@ -105,7 +105,8 @@ namespace PlateOnHalfspace
    * entry in it is declared and allowed, otherwise the message for the first
    * problem, in the .prm messages' words ("Plate/Thickness: the value <-1> is
    * not allowed; it must be a number >= 0."). deal.II's own messages for such
-   * files name neither the entry nor the section.
+   * files name neither the entry nor the section. A name ending neither in
+   * .prm, .json nor .xml gets the message that asks to rename the file.
    */
   std::string
   structured_scene_problem(const std::string &text,
