@@ -357,6 +357,9 @@ namespace PlateOnHalfspace
      *  measured on a plate with l = h/10 (doc/performance.md,
      *  "Preconditioning the contact pressures"). */
     constexpr double rounding_floor_factor = 100;
+    /** Growth of the residual over the start's at which a deflated solve
+     *  is taken to diverge (projected_conjugate_gradients()). */
+    constexpr double divergence_factor = 1e4;
 
     /**
      * The space spanned by conjugate directions W of an earlier solve on
@@ -415,6 +418,13 @@ namespace PlateOnHalfspace
       active() const
       {
         return eigenvalues.size() > 0;
+      }
+
+      /** The recycled directions kept: the eigenvectors not dropped. */
+      unsigned int
+      rank() const
+      {
+        return eigenvalues.size();
       }
 
       /** x += sign W V Lambda^{-1} V^T V_b^T v, V_b = W or H W. */
@@ -516,6 +526,10 @@ namespace PlateOnHalfspace
       problem.make_equilibrated(q);
       unsigned int restarts_after_convergence = 0;
       bool         deflate = deflation.active(), corrected = false;
+      // the start, to return to if the recycled directions make the
+      // iteration diverge
+      const Vector<double> start          = deflate ? q : Vector<double>();
+      double               start_residual = 0;
       while (true)
         {
           problem.projected_residual(q,
@@ -569,6 +583,7 @@ namespace PlateOnHalfspace
           // exactly; its residual is recomputed (once per solve).
           if (deflate && !corrected)
             {
+              start_residual = r.l2_norm();
               deflation.correct(q, r);
               corrected = true;
               continue;
@@ -624,6 +639,20 @@ namespace PlateOnHalfspace
               problem.project(hp);
               r.add(-step, hp);
               ++result.iterations;
+              // Conjugate gradients in exact arithmetic bound the residual
+              // by sqrt(cond H) times the start's; far beyond that, W and
+              // H W no longer agree with H (products whose digits rounding
+              // took): start again from the start, without W.
+              if (deflate &&
+                  !(r.l2_norm() <= divergence_factor * start_residual))
+                {
+                  deflate                    = false;
+                  result.deflation_abandoned = true;
+                  q                          = start;
+                  sink.p.clear();
+                  sink.hp.clear();
+                  break;
+                }
               if (sink.p.size() < sink.room)
                 {
                   const double scale = 1. / std::sqrt(curvature);
@@ -967,6 +996,7 @@ namespace PlateOnHalfspace
         *recorded             = RecordedDirections();
         recorded->contact_set = contact_set;
       }
+    const std::size_t  offered = recorded->p.size();
     const Deflation    deflation(recorded->p, recorded->hp);
     DirectionSink      sink;
     const unsigned int capacity =
@@ -982,6 +1012,16 @@ namespace PlateOnHalfspace
       {
         recorded->p.clear();
         recorded->hp.clear();
+      }
+    // A solve that ended at its rounding floor has products H p whose
+    // last digits rounding took, too few for (W^T H W)^+ (doc/formulation.md,
+    // "Recycled directions"): it leaves no record.
+    if (!(cg.relative_residual <= tolerance))
+      {
+        recorded->p.clear();
+        recorded->hp.clear();
+        sink.p.clear();
+        sink.hp.clear();
       }
     for (unsigned int i = 0; i < sink.p.size(); ++i)
       {
@@ -1001,7 +1041,12 @@ namespace PlateOnHalfspace
           << ": conjugate gradients " << cg.iterations
           << " iterations, relative residual " << std::scientific
           << std::setprecision(1) << cg.relative_residual << std::defaultfloat
-          << (at_floor ? " (the rounding floor)" : "") << std::endl;
+          << (at_floor ? " (the rounding floor)" : "");
+    if (verbosity > 0 && offered > 0)
+      log << ", recycled " << deflation.rank() << " of " << offered
+          << " directions" << (cg.deflation_abandoned ? " (abandoned)" : "");
+    if (verbosity > 0)
+      log << std::endl;
     if (!cg.converged && cg.relative_residual <= cg.rounding_floor &&
         cg.relative_residual > accepted_rounding_floor)
       {
