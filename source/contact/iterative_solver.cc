@@ -1028,6 +1028,8 @@ namespace PlateOnHalfspace
         recorded->p.push_back(std::move(sink.p[i]));
         recorded->hp.push_back(std::move(sink.hp[i]));
       }
+    state.factor_memory_bytes +=
+      2 * recorded->p.size() * problem.size() * sizeof(double);
     ContactState::LinearSolve record;
     record.contact_iteration = state.linear_solves.size() + 1;
     record.contact_nodes     = problem.size();

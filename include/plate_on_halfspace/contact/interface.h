@@ -80,7 +80,7 @@ namespace PlateOnHalfspace
     /**
      * Wall time (s) the solver spent factorising the half-space flexibility
      * (the first contact block, or the approximate inverse), and the bytes
-     * that factor holds.
+     * that factor holds (with an iterative solver's recorded directions).
      */
     double      factorization_time_s = 0;
     std::size_t factor_memory_bytes  = 0;
