@@ -360,6 +360,9 @@ namespace PlateOnHalfspace
     /** Growth of the residual over the start's at which a deflated solve
      *  is taken to diverge (projected_conjugate_gradients()). */
     constexpr double divergence_factor = 1e4;
+    /** Largest Deflation::disagreement() of a deflated solve: rounding
+     *  leaves about 1e-14 (measured up to 7e-14 on flexible plates). */
+    constexpr double largest_disagreement = 1e-11;
 
     /**
      * The space spanned by conjugate directions W of an earlier solve on
@@ -418,6 +421,23 @@ namespace PlateOnHalfspace
       active() const
       {
         return eigenvalues.size() > 0;
+      }
+
+      /**
+       * How far the recorded products disagree with H on a direction p
+       * and its product H p (projected): H is symmetric, so w_i . H p =
+       * (H w_i) . p exactly; the largest difference over the directions,
+       * relative to sqrt(p . H p) (each w_i has w_i . H w_i = 1).
+       */
+      double
+      disagreement(const Vector<double> &p,
+                   const Vector<double> &hp,
+                   const double          curvature) const
+      {
+        double largest = 0;
+        for (unsigned int i = 0; i < w.size(); ++i)
+          largest = std::max(largest, std::abs(w[i] * hp - hw[i] * p));
+        return largest / std::sqrt(curvature);
       }
 
       /** The recycled directions kept: the eigenvectors not dropped. */
@@ -530,6 +550,7 @@ namespace PlateOnHalfspace
       // iteration diverge
       const Vector<double> start          = deflate ? q : Vector<double>();
       double               start_residual = 0;
+      unsigned int         limit          = control.max_iterations;
       while (true)
         {
           problem.projected_residual(q,
@@ -577,7 +598,7 @@ namespace PlateOnHalfspace
                 result.relative_residual <= accepted_rounding_floor;
               return result;
             }
-          if (result.iterations >= control.max_iterations)
+          if (result.iterations >= limit)
             return result;
           // The start's component in the recycled directions, solved
           // exactly; its residual is recomputed (once per solve).
@@ -595,7 +616,7 @@ namespace PlateOnHalfspace
           if (deflate)
             deflation.make_conjugate(p, z);
           double rz = r * z;
-          while (result.iterations < control.max_iterations)
+          while (result.iterations < limit)
             {
               // a safe point, reached by every rank alike
               // (base/interruption.h)
@@ -639,18 +660,24 @@ namespace PlateOnHalfspace
               problem.project(hp);
               r.add(-step, hp);
               ++result.iterations;
-              // Conjugate gradients in exact arithmetic bound the residual
-              // by sqrt(cond H) times the start's; far beyond that, W and
-              // H W no longer agree with H (products whose digits rounding
-              // took): start again from the start, without W.
+              // The recorded products must agree with H on the directions
+              // the iteration reaches: where rounding took their digits,
+              // the disagreement grows from about 1e-14 until the deflated
+              // iteration diverges. Exact conjugate gradients also bound
+              // the residual by sqrt(cond H) times the start's. Past either
+              // limit: start again from the start, without W, with a whole
+              // budget of iterations.
               if (deflate &&
-                  !(r.l2_norm() <= divergence_factor * start_residual))
+                  (!(deflation.disagreement(p, hp, curvature) <=
+                     largest_disagreement) ||
+                   !(r.l2_norm() <= divergence_factor * start_residual)))
                 {
                   deflate                    = false;
                   result.deflation_abandoned = true;
                   q                          = start;
                   sink.p.clear();
                   sink.hp.clear();
+                  limit = result.iterations + control.max_iterations;
                   break;
                 }
               if (sink.p.size() < sink.room)
@@ -1013,10 +1040,13 @@ namespace PlateOnHalfspace
         recorded->p.clear();
         recorded->hp.clear();
       }
-    // A solve that ended at its rounding floor has products H p whose
-    // last digits rounding took, too few for (W^T H W)^+ (doc/formulation.md,
-    // "Recycled directions"): it leaves no record.
-    if (!(cg.relative_residual <= tolerance))
+    // A solve that ended at or near its rounding floor has products H p
+    // whose last digits rounding took, too few for (W^T H W)^+
+    // (doc/formulation.md, "Recycled directions"): it leaves no record.
+    // The floor's estimate holds a factor rounding_floor_factor = 100, so
+    // a record needs a true floor a digit below the tolerance.
+    if (!(cg.relative_residual <= tolerance &&
+          cg.rounding_floor <= 10 * tolerance))
       {
         recorded->p.clear();
         recorded->hp.clear();
