@@ -92,57 +92,52 @@ namespace
                       relative_difference(a.q, b.q, Norm::max));
     };
 
+    // prints the check and its verdict, and stops the test on a failure
+    const auto verdict =
+      [](const std::string &check, const bool ok, const std::string &found) {
+        deallog << check << ": " << (ok ? "ok" : "FAILED") << std::endl;
+        AssertThrow(ok, ExcMessage(check + ": " + found));
+      };
+
     const ContactState recycled      = iterative.solve_linearised(second);
     const ContactState direct_second = direct.solve_linearised(second);
     const double       d_direct      = difference(recycled, direct_second);
-    deallog << name << ": a second load, the direct solver's w and q to 1e-8: "
-            << (d_direct <= 1e-8 ? "ok" : "FAILED") << std::endl;
-    AssertThrow(d_direct <= 1e-8,
-                ExcMessage("differs by " + std::to_string(d_direct)));
+    verdict(name + ": a second load, the direct solver's w and q to 1e-8",
+            d_direct <= 1e-8,
+            "differs by " + std::to_string(d_direct));
 
     if (record == Record::whole)
       {
-        const ContactState again    = iterative.solve_linearised(second);
-        const double       d_again  = difference(again, recycled);
-        const bool         again_ok = iterations(again) <= 2 && d_again <= 1e-8;
-        deallog << "  the same load again: at most 2 CG iterations, the same "
-                   "w and q to 1e-8: "
-                << (again_ok ? "ok" : "FAILED") << std::endl;
-        AssertThrow(again_ok,
-                    ExcMessage(std::to_string(iterations(again)) +
-                               " iterations, differs by " +
-                               std::to_string(d_again)));
+        const ContactState again   = iterative.solve_linearised(second);
+        const double       d_again = difference(again, recycled);
+        verdict("  the same load again: at most 2 CG iterations, the same "
+                "w and q to 1e-8",
+                iterations(again) <= 2 && d_again <= 1e-8,
+                std::to_string(iterations(again)) + " iterations, differs by " +
+                  std::to_string(d_again));
 
         const ContactState mixed        = iterative.solve_linearised(between);
         const ContactState direct_mixed = direct.solve_linearised(between);
-        const bool mixed_ok = iterations(mixed) < iterations(recycled) &&
-                              difference(mixed, direct_mixed) <= 1e-8;
-        deallog << "  a load between the two: fewer CG iterations than the "
-                   "second load's, the direct solver's w and q to 1e-8: "
-                << (mixed_ok ? "ok" : "FAILED") << std::endl;
-        AssertThrow(mixed_ok,
-                    ExcMessage(std::to_string(iterations(mixed)) + " against " +
-                               std::to_string(iterations(recycled))));
+        verdict("  a load between the two: fewer CG iterations than the "
+                "second load's, the direct solver's w and q to 1e-8",
+                iterations(mixed) < iterations(recycled) &&
+                  difference(mixed, direct_mixed) <= 1e-8,
+                std::to_string(iterations(mixed)) + " against " +
+                  std::to_string(iterations(recycled)));
       }
 
     if (record == Record::full_after_first)
-      {
-        const bool fewer = 2 * iterations(recycled) < iterations(first);
-        deallog << "  the second load: fewer than half the first solve's "
-                   "CG iterations: "
-                << (fewer ? "ok" : "FAILED") << std::endl;
-        AssertThrow(fewer,
-                    ExcMessage(std::to_string(iterations(recycled)) +
-                               " against " +
-                               std::to_string(iterations(first))));
-      }
+      verdict("  the second load: fewer than half the first solve's CG "
+              "iterations",
+              2 * iterations(recycled) < iterations(first),
+              std::to_string(iterations(recycled)) + " against " +
+                std::to_string(iterations(first)));
 
     const ContactState repeated = iterative.solve(plate, foundation, load, {});
     const double       d_repeat = difference(repeated, first);
-    deallog << "  solve() again: the first solve's w and q to 1e-10: "
-            << (d_repeat <= 1e-10 ? "ok" : "FAILED") << std::endl;
-    AssertThrow(d_repeat <= 1e-10,
-                ExcMessage("differs by " + std::to_string(d_repeat)));
+    verdict("  solve() again: the first solve's w and q to 1e-10",
+            d_repeat <= 1e-10,
+            "differs by " + std::to_string(d_repeat));
   }
 } // namespace
 
