@@ -27,7 +27,8 @@ namespace PlateOnHalfspace
       CellLoad
       on_cell(const BilinearQuadrilateral &, const unsigned int) const override
       {
-        return {};
+        // a point load has no distributed part (concentrated_force())
+        return CellLoad();
       }
 
       std::optional<std::pair<Point<2>, double>>

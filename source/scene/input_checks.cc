@@ -1,3 +1,8 @@
+// Boost 1.74's JSON parser includes <boost/bind.hpp>, which prints a
+// deprecation note at every build unless told to keep the placeholders
+// global, as the parser expects.
+#define BOOST_BIND_GLOBAL_PLACEHOLDERS
+
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
