@@ -710,6 +710,10 @@ namespace PlateOnHalfspace
   {
     std::vector<bool>           contact_set;
     std::vector<Vector<double>> p, hp;
+    /** The largest rounding floor of the solves that made p and hp. */
+    double floor = 0;
+    /** A deflated solve on this set gave the record up. */
+    bool refused = false;
   };
 
   IterativeContactSolver::IterativeContactSolver(
@@ -1023,6 +1027,18 @@ namespace PlateOnHalfspace
         *recorded             = RecordedDirections();
         recorded->contact_set = contact_set;
       }
+    // Near the rounding floor the products H p have their last digits
+    // from rounding, too few for (W^T H W)^+ (doc/formulation.md,
+    // "Recycled directions"). The floor's estimate holds a factor
+    // rounding_floor_factor = 100, so a record serves a solve whose
+    // tolerance lies at least a digit above the true floor of the solves
+    // that made it (a final stage after a loose one may not).
+    if (!(recorded->floor <= 10 * tolerance))
+      {
+        recorded->p.clear();
+        recorded->hp.clear();
+        recorded->floor = 0;
+      }
     const std::size_t  offered = recorded->p.size();
     const Deflation    deflation(recorded->p, recorded->hp);
     DirectionSink      sink;
@@ -1039,20 +1055,21 @@ namespace PlateOnHalfspace
       {
         recorded->p.clear();
         recorded->hp.clear();
+        recorded->floor = 0;
       }
-    // A solve that ended at or near its rounding floor has products H p
-    // whose last digits rounding took, too few for (W^T H W)^+
-    // (doc/formulation.md, "Recycled directions"): it leaves no record.
-    // The floor's estimate holds a factor rounding_floor_factor = 100, so
-    // a record needs a true floor a digit below the tolerance.
-    if (!(cg.relative_residual <= tolerance &&
-          cg.rounding_floor <= 10 * tolerance))
+    // A record given up once on this set is not tried again on it; a solve
+    // that ended at its rounding floor leaves none.
+    recorded->refused = recorded->refused || cg.deflation_abandoned;
+    if (recorded->refused || !(cg.relative_residual <= tolerance))
       {
         recorded->p.clear();
         recorded->hp.clear();
+        recorded->floor = 0;
         sink.p.clear();
         sink.hp.clear();
       }
+    if (!sink.p.empty())
+      recorded->floor = std::max(recorded->floor, cg.rounding_floor);
     for (unsigned int i = 0; i < sink.p.size(); ++i)
       {
         recorded->p.push_back(std::move(sink.p[i]));
