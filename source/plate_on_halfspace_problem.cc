@@ -165,7 +165,8 @@ namespace PlateOnHalfspace
         "bytes",
         "memory held by the half-space operator's matrices and by the "
         "contact solver's factor of the flexibility, or of the plate on "
-        "springs (on several processes: rank 0's share)",
+        "springs, with the iterative solver's recorded directions (on "
+        "several processes: rank 0's share)",
         ResultKind::count},
        {{"foundation_nodes_per_rank"},
         "–",
