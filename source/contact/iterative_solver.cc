@@ -714,6 +714,15 @@ namespace PlateOnHalfspace
     double floor = 0;
     /** A deflated solve on this set gave the record up. */
     bool refused = false;
+
+    /** Drops the directions (the set and refused stay). */
+    void
+    forget()
+    {
+      p.clear();
+      hp.clear();
+      floor = 0;
+    }
   };
 
   IterativeContactSolver::IterativeContactSolver(
@@ -1034,11 +1043,7 @@ namespace PlateOnHalfspace
     // tolerance lies at least a digit above the true floor of the solves
     // that made it (a final stage after a loose one may not).
     if (!(recorded->floor <= 10 * tolerance))
-      {
-        recorded->p.clear();
-        recorded->hp.clear();
-        recorded->floor = 0;
-      }
+      recorded->forget();
     const std::size_t  offered = recorded->p.size();
     const Deflation    deflation(recorded->p, recorded->hp);
     DirectionSink      sink;
@@ -1047,24 +1052,18 @@ namespace PlateOnHalfspace
                             (std::size_t(256) << 20) /
                               (2 * sizeof(double) * (problem.size() + 1)));
     // a record that serves no longer starts again with this solve's
-    const std::size_t kept = deflation.active() ? recorded->p.size() : 0;
+    const std::size_t kept = deflation.active() ? offered : 0;
     sink.room              = capacity - std::min<std::size_t>(capacity, kept);
     const ConjugateGradientResult cg =
       projected_conjugate_gradients(problem, solve_control, q, deflation, sink);
     if (!deflation.active() || cg.deflation_abandoned)
-      {
-        recorded->p.clear();
-        recorded->hp.clear();
-        recorded->floor = 0;
-      }
+      recorded->forget();
     // A record given up once on this set is not tried again on it; a solve
     // that ended at its rounding floor leaves none.
     recorded->refused = recorded->refused || cg.deflation_abandoned;
     if (recorded->refused || !(cg.relative_residual <= tolerance))
       {
-        recorded->p.clear();
-        recorded->hp.clear();
-        recorded->floor = 0;
+        recorded->forget();
         sink.p.clear();
         sink.hp.clear();
       }
@@ -1090,12 +1089,11 @@ namespace PlateOnHalfspace
           << ": conjugate gradients " << cg.iterations
           << " iterations, relative residual " << std::scientific
           << std::setprecision(1) << cg.relative_residual << std::defaultfloat
-          << (at_floor ? " (the rounding floor)" : "");
-    if (verbosity > 0 && offered > 0)
-      log << ", recycled " << deflation.rank() << " of " << offered
-          << " directions" << (cg.deflation_abandoned ? " (abandoned)" : "");
-    if (verbosity > 0)
-      log << std::endl;
+          << (at_floor ? " (the rounding floor)" : "")
+          << (offered > 0 ? ", recycled " + std::to_string(deflation.rank()) +
+                              " of " + std::to_string(offered) + " directions" :
+                            std::string())
+          << (cg.deflation_abandoned ? " (abandoned)" : "") << std::endl;
     if (!cg.converged && cg.relative_residual <= cg.rounding_floor &&
         cg.relative_residual > accepted_rounding_floor)
       {
