@@ -107,6 +107,19 @@ namespace PlateOnHalfspace
   ContactState
   ContactIteration::solve_linearised(const Vector<double> &load)
   {
+    return solve_on_final_set(load, final_tolerance());
+  }
+
+  ContactState
+  ContactIteration::solve_adjoint(const Vector<double> &load)
+  {
+    return solve_on_final_set(load, adjoint_tolerance());
+  }
+
+  ContactState
+  ContactIteration::solve_on_final_set(const Vector<double> &load,
+                                       const double          tolerance)
+  {
     AssertThrow(plate != nullptr && !final_contact_set.empty(),
                 ExcMessage("ContactSolver::solve_linearised() needs a "
                            "solve() first."));
@@ -114,7 +127,7 @@ namespace PlateOnHalfspace
     ContactState state;
     state.cell_in_foundation.assign(plate->get_foundation_space().cells.size(),
                                     true);
-    solve_on_set(final_contact_set, final_tolerance(), state);
+    solve_on_set(final_contact_set, tolerance, state);
     state.iterations = 1;
     state.converged  = true;
     express_in_nodal_values(*foundation, state);

@@ -363,6 +363,10 @@ namespace PlateOnHalfspace
     /** Largest Deflation::disagreement() of a deflated solve: rounding
      *  leaves about 1e-14 (measured up to 7e-14 on flexible plates). */
     constexpr double largest_disagreement = 1e-11;
+    /** Relative accuracy of solve_adjoint(), unless the fields' is
+     *  coarser: the goal estimate moves by about 1e-4 of itself
+     *  (doc/formulation.md, "Goal-oriented refinement"). */
+    constexpr double adjoint_accuracy = 1e-6;
 
     /**
      * The space spanned by conjugate directions W of an earlier solve on
@@ -1183,6 +1187,12 @@ namespace PlateOnHalfspace
   IterativeContactSolver::final_tolerance() const
   {
     return last_solve_tolerance(control.tolerance, *foundation);
+  }
+
+  double
+  IterativeContactSolver::adjoint_tolerance() const
+  {
+    return std::max(final_tolerance(), adjoint_accuracy);
   }
 
   double

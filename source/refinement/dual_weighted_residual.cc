@@ -506,7 +506,7 @@ namespace PlateOnHalfspace
         contact, plate.get_foundation_space().symmetry.n_copies());
     if (goal.estimate() != GoalFunctional::Estimate::dual_weighted_residual)
       return GoalErrorEstimate();
-    const ContactState adjoint = contact_solver.solve_linearised(
+    const ContactState adjoint = contact_solver.solve_adjoint(
       goal.derivative(plate, contact.plate_solution, value));
     // the goal's points on the computed part, where the solution is
     std::vector<std::pair<Point<2>, double>> terms = goal.deflection_terms();

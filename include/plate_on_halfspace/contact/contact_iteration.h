@@ -38,6 +38,9 @@ namespace PlateOnHalfspace
     ContactState
     solve_linearised(const Vector<double> &load) final;
 
+    ContactState
+    solve_adjoint(const Vector<double> &load) final;
+
   protected:
     /**
      * Once per solve(), before any contact set: set up what every set
@@ -111,6 +114,13 @@ namespace PlateOnHalfspace
       return 0;
     }
 
+    /** Relative accuracy of solve_adjoint(). */
+    virtual double
+    adjoint_tolerance() const
+    {
+      return final_tolerance();
+    }
+
     const Parameters::Contact contact;
     const bool                tensionless;
     const unsigned int        verbosity;
@@ -120,6 +130,10 @@ namespace PlateOnHalfspace
     FoundationOperator *foundation = nullptr;
 
   private:
+    /** solve_linearised() to the relative accuracy @p tolerance. */
+    ContactState
+    solve_on_final_set(const Vector<double> &load, const double tolerance);
+
     /** The contact set of the last solve_on_set() of solve(). */
     std::vector<bool> final_contact_set;
 

@@ -166,6 +166,16 @@ namespace PlateOnHalfspace
      */
     virtual ContactState
     solve_linearised(const Vector<double> &load) = 0;
+
+    /**
+     * solve_linearised() to the accuracy an error estimate needs rather
+     * than the one the fields need: the goal's adjoint problem. The
+     * iterative solver stops at 1e-6 of the settlement, or at the fields'
+     * accuracy where that is coarser (doc/formulation.md, "Goal-oriented
+     * refinement").
+     */
+    virtual ContactState
+    solve_adjoint(const Vector<double> &load) = 0;
   };
 
   /**

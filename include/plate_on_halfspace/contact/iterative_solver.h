@@ -197,6 +197,10 @@ namespace PlateOnHalfspace
     double
     final_tolerance() const override;
 
+    /** 1e-6, or final_tolerance() where that is coarser. */
+    double
+    adjoint_tolerance() const override;
+
   private:
     const ConjugateGradientControl           control;
     std::unique_ptr<PressurePreconditioner>  preconditioner;
