@@ -121,8 +121,8 @@ namespace PlateOnHalfspace
                                        const double          tolerance)
   {
     AssertThrow(plate != nullptr && !final_contact_set.empty(),
-                ExcMessage("ContactSolver::solve_linearised() needs a "
-                           "solve() first."));
+                ExcMessage("ContactSolver::solve_linearised() and "
+                           "solve_adjoint() need a solve() first."));
     prepare_load(load);
     ContactState state;
     state.cell_in_foundation.assign(plate->get_foundation_space().cells.size(),
