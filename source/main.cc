@@ -4,6 +4,7 @@
  *   plate-on-halfspace scene.prm
  *   plate-on-halfspace --print-parameters
  *   plate-on-halfspace --print-results
+ *   plate-on-halfspace --help
  *   mpirun -np P plate-on-halfspace scene.prm
  * Under MPI every rank runs the same program on a shared mesh; rank 0
  * writes the log, the messages and the results (doc/parallel.md).
@@ -79,6 +80,18 @@ main(int argc, char **argv)
           out << usage << std::endl;
           return 0;
         }
+      // Any other argument that begins with '-' is an option this program
+      // does not have (--help=1, --print-parameter): the usage, status 2,
+      // as for a wrong number of arguments. A scene file whose name begins
+      // with '-' is reached as ./-x.prm.
+      if (argument.rfind('-', 0) == 0)
+        {
+          err << "Error: unknown option <" << printable(argument)
+              << ">; a scene file whose name begins with - is given as ./"
+              << printable(argument) << "." << std::endl
+              << usage << std::endl;
+          return 2;
+        }
       // Every rank reads the same file and fails alike: a bad scene ends
       // every rank here with one message.
       SceneParameters parameters;
@@ -101,6 +114,14 @@ main(int argc, char **argv)
           // the ranks) and the earlier results are back: the conventional
           // status of a death by the signal, 128 + its number.
           out.flush();
+          if (e.results_committed())
+            {
+              err << "Error: " << e.what()
+                  << " after the results were written; they are whole in <"
+                  << printable(parameters.output_directory)
+                  << "> (doc/outputs.md)." << std::endl;
+              return 128 + e.signal_number();
+            }
           err << "Error: " << e.what() << "; the earlier results in <"
               << printable(parameters.output_directory)
               << "> are kept (doc/outputs.md)." << std::endl;

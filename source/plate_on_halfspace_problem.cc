@@ -239,6 +239,7 @@ namespace PlateOnHalfspace
       log << output->recovery_note() << std::endl;
     // A run that fails or is interrupted keeps the earlier run's results
     // (results_output.h).
+    bool checks_passed = true;
     try
       {
         make_mesh();
@@ -285,6 +286,9 @@ namespace PlateOnHalfspace
           }
         if (parameters.loads.sweep_steps > 0)
           run_sweep();
+        // A run whose checks fail is a failed run: its files go to
+        // failed-run/ and the earlier results stay (doc/outputs.md).
+        checks_passed = run_checks();
         // the last moment to give up: after it the results are committed
         Interruption::check();
       }
@@ -306,10 +310,39 @@ namespace PlateOnHalfspace
           log << note << std::endl;
         throw;
       }
+    if (!checks_passed)
+      {
+        std::string note;
+        try
+          {
+            note = output->abandon();
+          }
+        catch (const std::exception &e)
+          {
+            note =
+              "Restoring the earlier results failed: " + one_line_message(e) +
+              " They are in <" + parameters.output_directory +
+              "/previous-run>.";
+          }
+        if (!note.empty())
+          log << note << std::endl;
+        return false;
+      }
     output->commit();
     if (parameters.output.verbosity > 1)
       timer_output.print_summary();
-    return run_checks();
+    // A signal during the last writes: the results are whole, but whoever
+    // sent it asked the run to stop, and a script must learn that it did
+    // not end normally.
+    try
+      {
+        Interruption::check();
+      }
+    catch (const Interrupted &e)
+      {
+        throw Interrupted(e.signal_number(), true);
+      }
+    return true;
   }
 
   void

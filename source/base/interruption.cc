@@ -35,8 +35,9 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
-  Interrupted::Interrupted(const int signal_number)
+  Interrupted::Interrupted(const int signal_number, const bool committed)
     : number(signal_number)
+    , committed(committed)
     , message(
         std::string("interrupted by ") +
         (signal_number == SIGINT  ? "SIGINT" :

@@ -39,10 +39,20 @@ namespace PlateOnHalfspace
                     const std::string &field_names)
   {
     std::vector<std::vector<double>> items;
-    for (const std::string &item : Utilities::split_string_list(text, ';'))
+    // split_string_list() keeps an empty item between two ';' (or before
+    // the first) and drops one after the last: "a ; ; b" is a slip (an
+    // item deleted in part?), refused like an empty field; a trailing ';'
+    // stays allowed.
+    const std::vector<std::string> list =
+      Utilities::split_string_list(text, ';');
+    for (std::size_t i = 0; i < list.size(); ++i)
       {
-        if (item.empty())
-          continue;
+        const std::string &item = list[i];
+        AssertThrow(!Utilities::trim(item).empty(),
+                    ExcMessage("Entry <" + entry_name + ">: item " +
+                               std::to_string(i + 1) + " of <" + text +
+                               "> is empty (nothing between two ';', or "
+                               "before the first); remove the extra ';'."));
         const std::vector<std::string> fields =
           Utilities::split_string_list(item, ',');
         // split_string_list() drops a trailing empty field: a comma

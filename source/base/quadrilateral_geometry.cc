@@ -190,11 +190,14 @@ namespace PlateOnHalfspace
   double
   BilinearQuadrilateral::area() const
   {
-    // the shoelace formula, vertices counterclockwise 0, 1, 3, 2
+    // the shoelace formula, vertices counterclockwise 0, 1, 3, 2, as half
+    // the cross product of the diagonals: differences of coordinates only,
+    // so that a plate far from the origin (a Gmsh mesh in survey
+    // coordinates, 1e8 m off) keeps its digits
     const Point<2> &a = vertices[0], &b = vertices[1], &c = vertices[3],
-                   &d = vertices[2];
-    return 0.5 * ((a[0] * b[1] - b[0] * a[1]) + (b[0] * c[1] - c[0] * b[1]) +
-                  (c[0] * d[1] - d[0] * c[1]) + (d[0] * a[1] - a[0] * d[1]));
+                   &d     = vertices[2];
+    const Tensor<1, 2> ac = c - a, bd = d - b;
+    return 0.5 * (ac[0] * bd[1] - ac[1] * bd[0]);
   }
 
 

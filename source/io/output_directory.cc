@@ -111,6 +111,30 @@ namespace PlateOnHalfspace
              S_ISREG(status.st_mode);
     }
 
+    /**
+     * Creates (or opens) the marker @p moving_name in @p folder: a regular
+     * file, opened without following a link and without waiting (a FIFO
+     * planted at the name would block a plain open for a reader). False
+     * with errno where the entry is something else or cannot be made.
+     */
+    bool
+    make_moving_marker(const int folder)
+    {
+      const int fd =
+        ::openat(folder,
+                 moving_name,
+                 O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC,
+                 0644);
+      if (fd < 0)
+        return false;
+      struct stat status;
+      const bool regular = ::fstat(fd, &status) == 0 && S_ISREG(status.st_mode);
+      ::close(fd);
+      if (!regular)
+        errno = EEXIST;
+      return regular;
+    }
+
     /** The names of the entries of @p directory, sorted. */
     std::vector<std::string>
     entries_of(const int directory)
@@ -240,9 +264,11 @@ namespace PlateOnHalfspace
   bool
   ResultsOutput::is_result_file(const std::string &name)
   {
+    // NN is a cycle's number, 00 to 29 (Adaptivity/Cycles is at most 30):
+    // a file named with other digits is never this program's.
     static const std::regex pattern(
-      R"((summary\.json|convergence\.txt|solution\.pvd|solution-\d\d\.vtu|)"
-      R"(sweep\.csv|complete|(gauss-profile|profile|nodes)-\d\d\.csv))");
+      R"((summary\.json|convergence\.txt|solution\.pvd|solution-[0-2]\d\.vtu|)"
+      R"(sweep\.csv|complete|(gauss-profile|profile|nodes)-[0-2]\d\.csv))");
     return std::regex_match(name, pattern);
   }
 
@@ -367,7 +393,10 @@ namespace PlateOnHalfspace
           e = errno;
         if (::close(fd) != 0 && e == 0)
           e = errno;
-        ::unlinkat(directory_fd, probe_name, 0);
+        // a directory that takes files but lets none be removed or renamed
+        // (append-only) cannot take the results either
+        if (::unlinkat(directory_fd, probe_name, 0) != 0 && e == 0)
+          e = errno;
       }
     AssertThrow(e == 0,
                 ExcMessage("Output directory: cannot write in <" + directory +
@@ -471,12 +500,7 @@ namespace PlateOnHalfspace
     Descriptor previous(fd);
     if (!result_files_in(previous.fd).empty())
       {
-        const int marker = ::openat(previous.fd,
-                                    moving_name,
-                                    O_WRONLY | O_CREAT | O_NOFOLLOW | O_CLOEXEC,
-                                    0644);
-        if (marker >= 0)
-          ::close(marker);
+        make_moving_marker(previous.fd);
         move_result_files(previous.fd, directory_fd, false, directory);
       }
     remove_result_files(previous.fd);
@@ -544,14 +568,13 @@ namespace PlateOnHalfspace
     setting_aside = true;
     const int  fd = open_results_folder("previous-run", true);
     Descriptor previous(fd);
-    const int  marker = ::openat(previous.fd,
-                                moving_name,
-                                O_WRONLY | O_CREAT | O_NOFOLLOW | O_CLOEXEC,
-                                0644);
-    AssertThrow(marker >= 0,
-                ExcMessage("Output directory: cannot write in <" +
-                           previous_run + ">: " + error_text(errno) + "."));
-    ::close(marker);
+    AssertThrow(make_moving_marker(previous.fd),
+                ExcMessage(
+                  "Output directory: cannot create the regular file <" +
+                  previous_run + "/" + moving_name +
+                  "> that marks results being moved: " + error_text(errno) +
+                  "; this program does not remove an entry of that "
+                  "name it did not create: remove it."));
     move_result_files(directory_fd, previous.fd, true, previous_run);
     ::unlinkat(previous.fd, moving_name, 0);
   }

@@ -106,10 +106,13 @@ namespace PlateOnHalfspace
 
       std::shared_ptr<const Load>
       on_computed_part(const std::array<bool, 2> &planes,
-                       const double               tolerance) const override
+                       const double) const override
       {
-        if ((planes[0] && patch.centre[0] + patch.radius <= tolerance) ||
-            (planes[1] && patch.centre[1] + patch.radius <= tolerance))
+        // Any part on the computed side stays (the cells clip the patch):
+        // a thin patch across a plane carries its share there, however
+        // thin, where a tolerance would drop it.
+        if ((planes[0] && patch.centre[0] + patch.radius <= 0) ||
+            (planes[1] && patch.centre[1] + patch.radius <= 0))
           return nullptr;
         return std::make_shared<CircularPatchLoad>(*this);
       }

@@ -3,6 +3,8 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
+#include <deal.II/numerics/rtree.h>
+
 #include <plate_on_halfspace/base/error_on_every_rank.h>
 #include <plate_on_halfspace/base/number_list.h>
 #include <plate_on_halfspace/base/quadrilateral_geometry.h>
@@ -283,6 +285,226 @@ namespace PlateOnHalfspace
       AssertThrow(false, ExcMessage(message.str()));
     }
 
+    /**
+     * Refuse a Gmsh mesh with a hanging node (a T-junction): a vertex that
+     * lies inside an edge of a cell without being one of that cell's
+     * vertices. That edge is then a boundary face of its cell, the cells on
+     * the other side share no degree of freedom with it, and the plate
+     * would be cut along it without notice. Every boundary face is checked
+     * against the vertices near it (an R-tree of the vertices, so that a
+     * mesh of 1e5 cells takes O(n log n)); a vertex within 1e-10 of the
+     * face's length of its line and farther than that from both of its end
+     * points lies inside it. Overlapping cells are refused before
+     * (check_cells_do_not_overlap()): a vertex inside a face that two cells
+     * share, or of a cell folded over its neighbour, is one of them.
+     */
+    void
+    check_mesh_is_conforming(const Triangulation<2> &triangulation,
+                             const std::string      &file_name)
+    {
+      namespace bgi                         = boost::geometry::index;
+      const std::vector<Point<2>> &vertices = triangulation.get_vertices();
+      const std::vector<bool>     &used     = triangulation.get_used_vertices();
+      std::vector<Point<2>>        points;
+      std::vector<unsigned int>    index_of_point;
+      for (unsigned int v = 0; v < vertices.size(); ++v)
+        if (used[v])
+          {
+            points.push_back(vertices[v]);
+            index_of_point.push_back(v);
+          }
+      const auto          tree = pack_rtree_of_indices(points);
+      std::vector<bool>   hanging(points.size(), false);
+      std::size_t         count = 0;
+      std::ostringstream  first;
+      std::vector<size_t> near;
+      for (const auto &cell : triangulation.active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          {
+            if (!cell->face(f)->at_boundary())
+              continue;
+            const unsigned int ends[2] = {
+              cell->vertex_index(GeometryInfo<2>::face_to_cell_vertices(f, 0)),
+              cell->vertex_index(GeometryInfo<2>::face_to_cell_vertices(f, 1))};
+            const Point<2>    &a      = vertices[ends[0]];
+            const Point<2>    &b      = vertices[ends[1]];
+            const Tensor<1, 2> edge   = b - a;
+            const double       length = edge.norm();
+            // relative to the face, and no finer than the coordinates'
+            // own digits (a mesh in survey coordinates, 4.5e6 m off)
+            const double tolerance =
+              std::max(1e-10 * length,
+                       16 * std::numeric_limits<double>::epsilon() *
+                         std::max({std::abs(a[0]),
+                                   std::abs(a[1]),
+                                   std::abs(b[0]),
+                                   std::abs(b[1])}));
+            const Point<2> lower(std::min(a[0], b[0]) - tolerance,
+                                 std::min(a[1], b[1]) - tolerance);
+            const Point<2> upper(std::max(a[0], b[0]) + tolerance,
+                                 std::max(a[1], b[1]) + tolerance);
+            near.clear();
+            tree.query(bgi::intersects(BoundingBox<2>({lower, upper})),
+                       std::back_inserter(near));
+            for (const size_t i : near)
+              {
+                if (index_of_point[i] == ends[0] ||
+                    index_of_point[i] == ends[1] || hanging[i])
+                  continue;
+                const Tensor<1, 2> d = points[i] - a;
+                // the distance along the face from a, and from its line
+                const double along = d * edge / length;
+                const double across =
+                  (edge[0] * d[1] - edge[1] * d[0]) / length;
+                if (!(std::abs(across) <= tolerance && along > tolerance &&
+                      along < length - tolerance))
+                  continue;
+                hanging[i] = true;
+                if (count++ > 0)
+                  continue;
+                // the end points in a fixed order, whatever the cell's
+                const bool a_first =
+                  a[0] < b[0] || (a[0] == b[0] && a[1] <= b[1]);
+                const Point<2> &p = a_first ? a : b;
+                const Point<2> &q = a_first ? b : a;
+                first << std::setprecision(12) << "the first at ("
+                      << points[i][0] << ", " << points[i][1]
+                      << "), inside the edge from (" << p[0] << ", " << p[1]
+                      << ") to (" << q[0] << ", " << q[1] << ") of cell "
+                      << cell->active_cell_index() + 1;
+              }
+          }
+      if (count == 0)
+        return;
+      std::ostringstream message;
+      message << "Plate/Mesh file: <" << file_name
+              << "> is not conforming: " << count
+              << (count == 1 ? " vertex lies" : " vertices lie")
+              << " inside an edge of a cell without being a vertex of that "
+                 "cell (a hanging node; "
+              << first.str()
+              << "): the cells on either side of that edge would not be "
+                 "connected, and the plate would be cut there. Cells must "
+                 "share whole edges: mesh the plate conforming, without "
+                 "hanging nodes (in Gmsh: adjoining surfaces on shared "
+                 "curves, Geometry.AutoCoherence = 1).";
+      AssertThrow(false, ExcMessage(message.str()));
+    }
+
+    /**
+     * How far two convex quadrilaterals, their vertices in order around
+     * each, overlap: the least, over the normals of the edges of both, of
+     * the overlap of their projections onto it. Two convex polygons whose
+     * interiors are disjoint have a separating line along one of their
+     * edges, so this is <= 0 (up to rounding) for cells that only touch
+     * (share an edge or a vertex), and the depth of the overlap otherwise.
+     * The coordinates are taken relative to a vertex of @p p, so that a mesh
+     * far from the origin keeps its digits.
+     */
+    double
+    overlap_depth(const std::array<Point<2>, 4> &p,
+                  const std::array<Point<2>, 4> &q)
+    {
+      const Point<2> origin = p[0];
+      double         depth  = std::numeric_limits<double>::infinity();
+      for (const auto *polygon : {&p, &q})
+        for (unsigned int e = 0; e < 4; ++e)
+          {
+            const Tensor<1, 2> edge   = (*polygon)[(e + 1) % 4] - (*polygon)[e];
+            const double       length = edge.norm();
+            if (!(length > 0))
+              continue;
+            double low[2]  = {std::numeric_limits<double>::infinity(),
+                              std::numeric_limits<double>::infinity()};
+            double high[2] = {-low[0], -low[1]};
+            for (unsigned int k = 0; k < 2; ++k)
+              for (const Point<2> &vertex : (k == 0 ? p : q))
+                {
+                  const Tensor<1, 2> d = vertex - origin;
+                  const double s = (edge[1] * d[0] - edge[0] * d[1]) / length;
+                  low[k]         = std::min(low[k], s);
+                  high[k]        = std::max(high[k], s);
+                }
+            depth =
+              std::min(depth,
+                       std::min(high[0], high[1]) - std::max(low[0], low[1]));
+          }
+      return depth;
+    }
+
+    /**
+     * Refuse a Gmsh mesh whose cells overlap: two cells covering the same
+     * area, or a cell folded back over its neighbour (both on the same side
+     * of the edge they share). GridIn accepts either, and the area covered
+     * twice carries its load and its soil twice. Convex cells are assumed
+     * (check_cells_are_valid()); the candidates are the cells whose
+     * bounding boxes meet (an R-tree, O(n log n)), and two cells overlap
+     * when they do by more than 1e-10 of the smaller one's diameter.
+     */
+    void
+    check_cells_do_not_overlap(const Triangulation<2> &triangulation,
+                               const std::string      &file_name)
+    {
+      namespace bgi                          = boost::geometry::index;
+      const unsigned int                   n = triangulation.n_active_cells();
+      std::vector<std::array<Point<2>, 4>> polygons(n);
+      std::vector<BoundingBox<2>>          boxes(n);
+      std::vector<double>                  diameters(n);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          const unsigned int i = cell->active_cell_index();
+          // around the cell (deal.II numbers the vertices lexicographically)
+          polygons[i]  = {{cell->vertex(0),
+                           cell->vertex(1),
+                           cell->vertex(3),
+                           cell->vertex(2)}};
+          boxes[i]     = cell->bounding_box();
+          diameters[i] = std::max(cell->vertex(0).distance(cell->vertex(3)),
+                                  cell->vertex(1).distance(cell->vertex(2)));
+        }
+      const auto          tree     = pack_rtree_of_indices(boxes);
+      std::size_t         pairs    = 0;
+      unsigned int        first[2] = {0, 0};
+      std::vector<size_t> near;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          near.clear();
+          tree.query(bgi::intersects(boxes[i]), std::back_inserter(near));
+          for (const size_t j : near)
+            if (j > i && overlap_depth(polygons[i], polygons[j]) >
+                           1e-10 * std::min(diameters[i], diameters[j]))
+              {
+                if (pairs == 0)
+                  {
+                    first[0] = i;
+                    first[1] = j;
+                  }
+                ++pairs;
+              }
+        }
+      if (pairs == 0)
+        return;
+      std::ostringstream message;
+      message << std::setprecision(12) << "Plate/Mesh file: cells "
+              << first[0] + 1 << " and " << first[1] + 1 << " of <" << file_name
+              << "> overlap (";
+      for (unsigned int k = 0; k < 2; ++k)
+        {
+          message << (k == 0 ? "cell " : "; cell ") << first[k] + 1
+                  << " with the vertices";
+          for (unsigned int v = 0; v < 4; ++v)
+            message << (v == 0 ? " (" : ", (") << polygons[first[k]][v][0]
+                    << ", " << polygons[first[k]][v][1] << ")";
+        }
+      message
+        << "; " << pairs << (pairs == 1 ? " pair" : " pairs")
+        << " of cells in all): cells that overlap or fold over each "
+           "other cover part of the plate twice, and the loads and the "
+           "soil there would be counted twice. Mend the mesh in the mesh generator; the "
+           "cells must cover the plate once, sharing whole edges.";
+      AssertThrow(false, ExcMessage(message.str()));
+    }
+
   } // namespace
 
   void
@@ -406,6 +628,8 @@ namespace PlateOnHalfspace
             check_cells_are_valid(triangulation, plate.mesh_file);
             check_vertices_are_merged(triangulation, plate.mesh_file);
             check_mesh_is_plane(plate.mesh_file, triangulation);
+            check_cells_do_not_overlap(triangulation, plate.mesh_file);
+            check_mesh_is_conforming(triangulation, plate.mesh_file);
             const auto corners = GridTools::compute_bounding_box(triangulation)
                                    .get_boundary_points();
             const std::string problem = plate_width_problem(

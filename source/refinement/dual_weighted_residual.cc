@@ -6,11 +6,14 @@
 #include <deal.II/fe/fe_tools.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/grid/manifold.h>
+
 #include <deal.II/lac/sparse_direct.h>
 
 #include <plate_on_halfspace/base/quadrilateral_geometry.h>
 #include <plate_on_halfspace/refinement/dual_weighted_residual.h>
 #include <plate_on_halfspace/scene/mirror_symmetry.h>
+#include <plate_on_halfspace/soil/soil_model.h>
 
 #include <algorithm>
 #include <array>
@@ -425,6 +428,110 @@ namespace PlateOnHalfspace
                                                    node_estimates);
       }
 
+    // The curved edge's strips (doc/formulation.md, "Goal-oriented
+    // refinement", the plate's outline): between a boundary face's chord
+    // and its arc the plate lacks the loads f that act there. Their work
+    // on the adjoint deflection, int_strip f z_w, is the error that the
+    // missing strip makes in J; the soil's reaction q there cancels on a
+    // continuum (its settlement of the adjoint pressure is z_w on the
+    // contact set) and stays on a dense liquid: int_strip (f - q_h) z_w.
+    // The strip is taken as the rectangle on the chord of the segment's
+    // area (2/3 L H, H the arc's height over the chord's midpoint), z_w and
+    // q_h at the chord beneath each of its points.
+    std::vector<double> strip_terms(triangulation.n_active_cells(), 0.);
+    {
+      const bool local_soil = dynamic_cast<const ElasticSoil *>(
+                                &foundation.foundation.soil()) == nullptr;
+      const auto on_mirror_plane = [&](const Point<2> &a, const Point<2> &b) {
+        return (symmetry.x && std::abs(a[0]) <= symmetry.tolerance &&
+                std::abs(b[0]) <= symmetry.tolerance) ||
+               (symmetry.y && std::abs(a[1]) <= symmetry.tolerance &&
+                std::abs(b[1]) <= symmetry.tolerance);
+      };
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          {
+            const auto face = cell->face(f);
+            if (!face->at_boundary() ||
+                face->manifold_id() == numbers::flat_manifold_id)
+              continue;
+            const Point<2> a = face->vertex(0), b = face->vertex(1);
+            if (on_mirror_plane(a, b))
+              continue;
+            const double   length = a.distance(b);
+            const Point<2> chord_middle((a[0] + b[0]) / 2, (a[1] + b[1]) / 2);
+            const std::vector<Point<2>> ends{a, b};
+            const std::vector<double>   halves{0.5, 0.5};
+            const Point<2>              arc_middle =
+              face->get_manifold().get_new_point(make_array_view(ends),
+                                                 make_array_view(halves));
+            // outward: away from the cell's centre
+            Tensor<1, 2> normal({b[1] - a[1], a[0] - b[0]});
+            normal /= normal.norm();
+            if (normal * (chord_middle - cell->center()) < 0)
+              normal *= -1.;
+            const double height = normal * (arc_middle - chord_middle);
+            if (!(std::abs(height) > 1e-12 * length))
+              continue;
+            // the rectangle on the chord; a concave arc (height < 0) takes
+            // area away, its loads count negative
+            const double       depth = 2. / 3. * std::abs(height);
+            const Tensor<1, 2> lift  = (height > 0 ? depth : -depth) * normal;
+            // counter-clockwise, as a cell (the loads' weights are areas)
+            const bool forward =
+              (b - a)[0] * lift[1] - (b - a)[1] * lift[0] > 0;
+            const Point<2> first = forward ? a : b, second = forward ? b : a;
+            const BilinearQuadrilateral strip(std::array<Point<2>, 4>{
+              {first, second, first + lift, second + lift}});
+            const BilinearQuadrilateral cell_geometry(
+              std::array<Point<2>, 4>{{cell->vertex(0),
+                                       cell->vertex(1),
+                                       cell->vertex(2),
+                                       cell->vertex(3)}});
+            // the pressure on the strip at its points, by each load's own
+            // rule, and (dense liquid) the reaction at 3 x 3 Gauss points
+            std::vector<Point<2>> chord_points;
+            std::vector<double>   densities;
+            for (const auto &load : loads)
+              {
+                const CellLoad part = load->on_cell(strip);
+                for (unsigned int p = 0; p < part.rule.size(); ++p)
+                  {
+                    chord_points.push_back(first + part.rule.point(p)[0] *
+                                                     (second - first));
+                    densities.push_back(part.pressure[p] * part.rule.weight(p));
+                  }
+              }
+            const std::size_t n_load_points = chord_points.size();
+            const QGauss<1>   along(3);
+            if (local_soil)
+              for (unsigned int p = 0; p < along.size(); ++p)
+                chord_points.push_back(a + along.point(p)[0] * (b - a));
+            if (chord_points.empty())
+              continue;
+            std::vector<Point<2>> unit_points;
+            for (const Point<2> &x : chord_points)
+              unit_points.push_back(cell_geometry.inverse_map(x));
+            FEValues<2> at_chord(plate.get_fe(),
+                                 Quadrature<2>(unit_points),
+                                 update_values);
+            at_chord.reinit(cell);
+            std::vector<double> z(unit_points.size()), q(unit_points.size());
+            at_chord[FEValuesExtractors::Scalar(0)].get_function_values(
+              adjoint_solution, z);
+            at_chord[FEValuesExtractors::Scalar(0)].get_function_values(
+              pressure_field, q);
+            const double sign = height > 0 ? 1. : -1.;
+            double       term = 0;
+            for (std::size_t p = 0; p < n_load_points; ++p)
+              term += sign * densities[p] * z[p];
+            for (std::size_t p = n_load_points; p < chord_points.size(); ++p)
+              term -= sign * q[p] * z[p] * along.weight(p - n_load_points) *
+                      length * depth;
+            strip_terms[cell->active_cell_index()] += term;
+          }
+    }
+
     // The goal density's part of rho_F: (u(q_h) - w_h) at the goal's
     // points in contact, given to the cell that holds the point.
     std::vector<double> point_terms(triangulation.n_active_cells(), 0.);
@@ -442,6 +549,11 @@ namespace PlateOnHalfspace
     GoalErrorEstimate estimate;
     estimate.has_dwr = true;
     for (const double term : point_terms)
+      {
+        estimate.dwr += term;
+        estimate.estimated_error += std::abs(term);
+      }
+    for (const double term : strip_terms)
       {
         estimate.dwr += term;
         estimate.estimated_error += std::abs(term);
@@ -470,7 +582,8 @@ namespace PlateOnHalfspace
         for (const auto i : hat_indices)
           if (!hat_constraints.is_constrained(i))
             indicator += std::abs(node_estimates[i]) / valence[i];
-        estimate.cell_indicators[c] = indicator + std::abs(point_terms[c]);
+        estimate.cell_indicators[c] =
+          indicator + std::abs(point_terms[c]) + std::abs(strip_terms[c]);
         ++c;
       }
     return estimate;

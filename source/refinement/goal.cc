@@ -111,15 +111,16 @@ namespace PlateOnHalfspace
        {{"relative_error"},
         "–",
         "the error bound the run reports (`null` when the value is 0): "
-        "max(estimated_error, "
-        "\\|change\\|) / \\|value\\|, estimated_error / \\|value\\| on the "
-        "first cycle ([formulation.md](formulation.md#goal-oriented-"
-        "refinement))"},
+        "max(estimated_error, \\|change\\|, ρ/(1 − ρ) \\|change\\|) / "
+        "\\|value\\|, ρ = change / the previous cycle's change where it "
+        "lies in (1/2, 1); estimated_error / \\|value\\| on the first cycle "
+        "([formulation.md](formulation.md#goal-oriented-refinement))"},
        {{"target_error"}, "–", "`Adaptivity/Target error` (0: none)"},
        {{"target_met"},
         "–",
         "whether `relative_error` met it (never on the first cycle: its "
-        "bound has no change to check the estimate against)",
+        "bound has no change to check the estimate against; nor where the "
+        "value changed at least as much as in the cycle before)",
         ResultKind::flag},
        {{"time_s"},
         "s",
@@ -250,12 +251,31 @@ namespace PlateOnHalfspace
     // "Goal error estimates"): the bound also takes the last change.
     double     bound      = estimate.estimated_error;
     const bool has_change = previous != nullptr && previous->has("goal");
+    // Whether the value's changes shrink (always so with one change).
+    bool converging = true;
     if (has_change)
       {
-        const double change =
-          value.value - previous->object("goal").number("value");
+        const ResultRecord &before = previous->object("goal");
+        const double        change = value.value - before.number("value");
         g.set("change", change);
         bound = std::max(bound, std::abs(change));
+        // Where the changes shrink by a ratio rho, the error left is
+        // rho/(1 - rho) times the last change: more than the change itself
+        // once rho > 1/2 (a convergence order below 1 per halving).
+        // Changes that do not shrink in magnitude (alternating ones
+        // included, and any change after none) are not converging yet.
+        if (before.is_number("change"))
+          {
+            const double previous_change = before.number("change");
+            const double rho =
+              previous_change != 0 ? change / previous_change :
+              change != 0          ? std::numeric_limits<double>::infinity() :
+                                     0.;
+            if (std::abs(rho) >= 1)
+              converging = false;
+            else if (rho > 0.5)
+              bound = std::max(bound, rho / (1 - rho) * std::abs(change));
+          }
       }
     else
       g.set_null("change");
@@ -267,7 +287,8 @@ namespace PlateOnHalfspace
     g.set_or_null("relative_error", relative_error);
     g.set("target_error", target_error);
     g.set("target_met",
-          target_error > 0 && has_change && relative_error <= target_error);
+          target_error > 0 && has_change && converging &&
+            relative_error <= target_error);
     g.set("time_s", time_s);
   }
 } // namespace PlateOnHalfspace

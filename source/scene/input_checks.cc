@@ -236,6 +236,28 @@ namespace PlateOnHalfspace
       collect(tree, "");
       return patterns;
     }
+
+    /**
+     * describe_pattern() of the declared entry @p path ("Plate/Thickness")
+     * with the pattern @p description. deal.II's Patterns::Double has no
+     * exclusive bound: an entry whose allowed values are > 0
+     * (doc/parameters.md) is declared as Double(0), its 0 refused after
+     * parsing ("Plate/Thickness must be > 0 (got 0)."); its message for a
+     * value outside the pattern names the range > 0 as well.
+     */
+    std::string
+    describe_entry_pattern(const std::string &path,
+                           const std::string &description)
+    {
+      static const std::set<std::string> positive = {
+        "Plate/Thickness",
+        "Plate/Young's modulus",
+        "Foundation/Young's modulus"};
+      const std::string words = describe_pattern(description);
+      return positive.count(path) > 0 && words == "a number >= 0" ?
+               "a number > 0" :
+               words;
+    }
   } // namespace
 
   std::string
@@ -484,12 +506,22 @@ namespace PlateOnHalfspace
           std::regex("The entry value (.*) for the entry named (.*) does not "
                      "match the given pattern: (.*)$")))
       return path + std::string(m[2]) + ": the value <" + std::string(m[1]) +
-             "> is not allowed; it must be " + describe_pattern(m[3]) + "." +
+             "> is not allowed; it must be " +
+             describe_entry_pattern(path + std::string(m[2]), m[3]) + "." +
              place;
     if (std::regex_search(flat,
                           m,
                           std::regex("No entry with name <(.*)> was declared")))
-      return no_such_entry(names, path, m[1], place);
+      {
+        // "set  = 5": nothing between "set" and "=" (deal.II looks up the
+        // empty name)
+        if (trimmed(m[1]).empty())
+          return (path.empty() ? std::string("") : section_name(path) + ": ") +
+                 "the line names no entry (nothing stands between set and "
+                 "=); write set NAME = VALUE with NAME one of: " +
+                 list_of(declared_in(names, path, false)) + "." + place;
+        return no_such_entry(names, path, m[1], place);
+      }
     if (std::regex_search(
           flat, m, std::regex("no such subsection to be entered: (.*)$")))
       {
@@ -531,7 +563,8 @@ namespace PlateOnHalfspace
         return path + ": the value <" + text +
                "> cannot be computed with (numbers must be 0 or of "
                "magnitude 1e-307 to 1e308); the entry must be " +
-               describe_pattern(pattern) + ". Check the units of the value.";
+               describe_entry_pattern(path, pattern) +
+               ". Check the units of the value.";
       }
     return "";
   }
@@ -701,7 +734,7 @@ namespace PlateOnHalfspace
                   !Patterns::pattern_factory(pattern->second)->match(text))
                 return path + name + ": the value <" + text +
                        "> is not allowed; it must be " +
-                       describe_pattern(pattern->second) +
+                       describe_entry_pattern(path + name, pattern->second) +
                        (padded ? " (without spaces around it)" : "") + "." +
                        place;
               continue;

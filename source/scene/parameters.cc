@@ -460,6 +460,7 @@ namespace PlateOnHalfspace
       prm.leave_subsection();
     }
 
+
     void
     Joints::parse_parameters(ParameterHandler &prm)
     {
@@ -795,11 +796,17 @@ namespace PlateOnHalfspace
              prm.get("Point loads"), 3, "Loads/Point loads", "x,y,force"))
         point_loads.push_back({Point<2>(v[0], v[1]), v[2]});
       axles.clear();
+      const std::string axle_text = prm.get("Axles");
+      unsigned int      axle_item = 0;
       for (const std::string &item :
-           Utilities::split_string_list(prm.get("Axles"), ';'))
+           Utilities::split_string_list(axle_text, ';'))
         {
-          if (item.empty())
-            continue;
+          ++axle_item;
+          require(!item.empty(),
+                  "Entry <Loads/Axles>: item " + std::to_string(axle_item) +
+                    " of <" + axle_text +
+                    "> is empty (nothing between two ';', or before the "
+                    "first); remove the extra ';'.");
           const std::vector<std::string> fields =
             Utilities::split_string_list(item, ',');
           require(fields.size() == 6,
@@ -1251,10 +1258,15 @@ namespace PlateOnHalfspace
       const std::string text = prm.get("Checks");
       prm.leave_subsection();
       checks.clear();
+      unsigned int check_item = 0;
       for (const std::string &item : Utilities::split_string_list(text, ';'))
         {
-          if (item.empty())
-            continue;
+          ++check_item;
+          require(!item.empty(),
+                  "Entry <Verification/Checks>: item " +
+                    std::to_string(check_item) + " of <" + text +
+                    "> is empty (nothing between two ';', or before the "
+                    "first); remove the extra ';'.");
           std::vector<std::string> fields =
             Utilities::split_string_list(item, ',');
           require(fields.size() == 5 || fields.size() == 3,

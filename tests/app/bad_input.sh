@@ -125,6 +125,28 @@ run_bad "a directory as parameter file" "$program" . && grep -q "<.>" stderr &&
 [ $? -eq 2 ] && grep -q "usage" stderr && passed=$((passed + 1)) ||
   fail "no argument: usage and status 2 expected"
 
+# An argument that begins with '-' and is no option of the program (a
+# misspelt or extended option, a lone '-', a scene named -x.prm even when
+# it exists): the usage, status 2; that scene runs as ./-x.prm.
+sed 's/^set Output directory = .*/set Output directory = dash-results/' base.prm >./-x.prm
+for option in --help=1 --print-parameter -x.prm -; do
+  "$program" "$option" >stdout 2>stderr
+  [ $? -eq 2 ] && grep -q "usage" stderr &&
+    grep -qF -- "unknown option <$option>" stderr && [ ! -s stdout ] &&
+    [ ! -e dash-results ] && passed=$((passed + 1)) ||
+    { fail "$option: unknown option, usage and status 2 expected"; cat stderr; }
+done
+for option in --help -h; do
+  "$program" $option >stdout 2>stderr && grep -q "usage" stdout && [ ! -s stderr ] &&
+    passed=$((passed + 1)) || fail "$option: usage on stdout and status 0 expected"
+done
+if "$program" ./-x.prm >stdout 2>stderr && [ -s dash-results/summary.json ] &&
+   [ ! -s stderr ]; then
+  passed=$((passed + 1))
+else
+  fail "./-x.prm: a scene whose name begins with - must run"; cat stderr
+fi
+
 # A UTF-8 byte-order mark is text: a scene and an included file that begin
 # with one run (doc/errors-and-limits.md, "Include files, encodings and
 # control characters").

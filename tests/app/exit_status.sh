@@ -89,7 +89,7 @@ jsonxml() { # description, file, expected text
 }
 printf '{"Plate": {"Thickness": "-1"}}' >value.json
 jsonxml "JSON value outside its pattern" value.json \
-  "Plate/Thickness: the value <-1> is not allowed; it must be a number >= 0."
+  "Plate/Thickness: the value <-1> is not allowed; it must be a number > 0."
 printf '{"Plate": {"Thikness": {"value": "1"}}}' >name.json
 jsonxml "JSON misspelt entry" name.json "Did you mean <Thickness>?"
 printf '{"Plate": ' >broken.json

@@ -289,7 +289,7 @@ check "a run failing in cycle 1 after a sweep: sweep.csv and the rest restored" 
 
 # 11. Files whose names only look like results (the program writes NN as
 #     two digits, at most 30 cycles): finished runs leave them alone.
-look_alike="profile-2024.csv nodes-7.csv solution-123.vtu gauss-profile-000.csv summary.json.bak notes.txt"
+look_alike="profile-2024.csv nodes-7.csv solution-123.vtu gauss-profile-000.csv summary.json.bak notes.txt profile-99.csv solution-42.vtu nodes-30.csv gauss-profile-75.csv"
 kept_look_alike() {
   local f
   for f in $look_alike; do
@@ -306,6 +306,23 @@ check "files named like results with other digits: the run succeeds and keeps th
 "$program" alike.prm >stdout 2>stderr
 check "files named like results with other digits: a second run keeps them too" \
   eval 'finished_run alike && kept_look_alike'
+echo mine >alike/.profile-99.csv.tmp
+"$program" alike.prm >stdout 2>stderr
+check "a hidden file named like a temporary of a cycle never written (99) is kept" \
+  eval '[ "$(cat alike/.profile-99.csv.tmp)" = mine ] && kept_look_alike'
+
+# 12. A FIFO planted at previous-run/.moving (the marker of results being
+#     moved): the run refuses at once instead of waiting for a reader, and
+#     the earlier results stay.
+quick fifo fifo.prm
+"$program" fifo.prm >stdout 2>stderr
+earlier=$(snapshot fifo)
+mkdir fifo/previous-run
+mkfifo fifo/previous-run/.moving
+timeout 60 "$program" fifo.prm >stdout 2>stderr
+status=$?
+check "a FIFO at previous-run/.moving: refused (status 1, no wait), the marker named, earlier results kept" \
+  eval '[ $status -eq 1 ] && grep -q "previous-run/.moving" stderr && same_snapshot fifo "$earlier" && [ -p fifo/previous-run/.moving ]'
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -4,7 +4,7 @@
 // q = const is exact and the deflection is the L2 projection of the exact
 // settlement u = alpha ∫ q / r (doc/formulation.md, "Default variant"):
 //  - the mean settlement, 1^T M w / area = 1^T A 1 / area, is exact up to
-//    the quadrature of A: 0.946409 q B (1-nu0^2)/E0 (doc/verification.md; exact
+//    the quadrature of A: 0.946402 q B (1-nu0^2)/E0 (doc/verification.md; exact
 //    value (4 ln(1+sqrt 2) - 4 (sqrt 2 - 1)/3) / pi);
 //  - the L2 error of w against the exact settlement (closed-form rectangle
 //    integral at every quadrature point) must fall on every refinement;

@@ -3,7 +3,7 @@
 // a rectangle), with the Galerkin operator: its singular quadrature must
 // work on any straight-sided cell. The mean settlement is exact up to the
 // quadrature of A whatever the mesh (1^T M w = 1^T A 1, see
-// flexible_square_galerkin.cc): 0.946409 q B (1-nu0^2)/E0. Equilibrium to
+// flexible_square_galerkin.cc): 0.946402 q B (1-nu0^2)/E0. Equilibrium to
 // 1e-10. The paper's collocation operator must refuse this mesh with a
 // message naming the entry.
 

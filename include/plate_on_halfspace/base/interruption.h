@@ -33,7 +33,9 @@ namespace PlateOnHalfspace
   class Interrupted : public std::exception
   {
   public:
-    explicit Interrupted(const int signal_number);
+    /** @p committed: the signal came after the results were written whole
+     *  (ResultsOutput::commit()), which then stay. */
+    explicit Interrupted(const int signal_number, const bool committed = false);
 
     /** "interrupted by SIGINT" (or SIGTERM). */
     const char *
@@ -46,8 +48,16 @@ namespace PlateOnHalfspace
       return number;
     }
 
+    /** Whether the results were already written whole when it came. */
+    bool
+    results_committed() const
+    {
+      return committed;
+    }
+
   private:
     int         number;
+    bool        committed;
     std::string message;
   };
 

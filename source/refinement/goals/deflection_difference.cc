@@ -83,6 +83,14 @@ namespace PlateOnHalfspace
                     second = parse_goal_point(words[4]);
          if (!first || !second)
            return nullptr;
+         // the same point twice: J = 0 on every mesh, with no relative
+         // error and no target it could meet
+         AssertThrow(first->distance(*second) > 0,
+                     ExcMessage("Adaptivity/Goal: <" + text +
+                                "> names the same point twice; the "
+                                "difference is 0 on every mesh and has no "
+                                "relative error. Name two different "
+                                "points."));
          return std::make_unique<DeflectionDifferenceGoal>(text,
                                                            *first,
                                                            *second);
