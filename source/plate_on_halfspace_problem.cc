@@ -237,8 +237,24 @@ namespace PlateOnHalfspace
                                              communicator);
     if (!output->recovery_note().empty() && parameters.output.verbosity > 0)
       log << output->recovery_note() << std::endl;
-    // A run that fails or is interrupted keeps the earlier run's results
-    // (results_output.h).
+    // A run that fails (a failed check included) or is interrupted keeps
+    // the earlier run's results (results_output.h): its files go to
+    // failed-run/, and the log says where each went.
+    const auto abandon_run = [&]() {
+      std::string note;
+      try
+        {
+          note = output->abandon();
+        }
+      catch (const std::exception &e)
+        {
+          note =
+            "Restoring the earlier results failed: " + one_line_message(e) +
+            " They are in <" + parameters.output_directory + "/previous-run>.";
+        }
+      if (!note.empty())
+        log << note << std::endl;
+    };
     bool checks_passed = true;
     try
       {
@@ -294,38 +310,12 @@ namespace PlateOnHalfspace
       }
     catch (...)
       {
-        std::string note;
-        try
-          {
-            note = output->abandon();
-          }
-        catch (const std::exception &e)
-          {
-            note =
-              "Restoring the earlier results failed: " + one_line_message(e) +
-              " They are in <" + parameters.output_directory +
-              "/previous-run>.";
-          }
-        if (!note.empty())
-          log << note << std::endl;
+        abandon_run();
         throw;
       }
     if (!checks_passed)
       {
-        std::string note;
-        try
-          {
-            note = output->abandon();
-          }
-        catch (const std::exception &e)
-          {
-            note =
-              "Restoring the earlier results failed: " + one_line_message(e) +
-              " They are in <" + parameters.output_directory +
-              "/previous-run>.";
-          }
-        if (!note.empty())
-          log << note << std::endl;
+        abandon_run();
         return false;
       }
     output->commit();
