@@ -53,7 +53,7 @@ int
 main()
 {
   initlog();
-  const double exact = 2 * 100 * 1 * (1 - 0.3 * 0.3) / 1e4;
+  const double                    exact = 2 * 100 * 1 * (1 - 0.3 * 0.3) / 1e4;
   const std::vector<ResultRecord> half_space =
     run("half-space",
         " set Young's modulus = 1e4\n set Poisson's ratio = 0.3\n",
@@ -62,8 +62,8 @@ main()
   for (const ResultRecord &c : half_space)
     {
       const double error = exact - c.object("goal").number("value");
-      const double ratio = c.object("goal").number("estimated_error") /
-                           std::abs(error);
+      const double ratio =
+        c.object("goal").number("estimated_error") / std::abs(error);
       const bool ok = ratio >= 0.5 && ratio <= 2;
       bracketed     = bracketed && ok;
       deallog << "half-space cycle " << c.count("cycle")

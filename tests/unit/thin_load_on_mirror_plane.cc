@@ -62,7 +62,5 @@ main()
   check("strip across x = 0",
         "set Rectangular patches = -1e-10,-0.5,1e-10,0.5,1e10",
         42);
-  check("disk on y = 0",
-        "set Circular patches = 0.3,0,1e-11,1e22",
-        40 + M_PI);
+  check("disk on y = 0", "set Circular patches = 0.3,0,1e-11,1e22", 40 + M_PI);
 }
