@@ -7,6 +7,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <iomanip>
+#include <sstream>
 
 namespace PlateOnHalfspace
 {
@@ -32,6 +34,42 @@ namespace PlateOnHalfspace
     return DecimalReading::number;
   }
 
+  std::vector<std::string>
+  list_items(const std::string &text, const std::string &entry_name)
+  {
+    // split_string_list() keeps an empty item between two ';' (or before
+    // the first) and drops one after the last: "a ; ; b" is a slip (an
+    // item deleted in part?), refused like an empty field; a trailing ';'
+    // stays allowed.
+    const std::vector<std::string> items =
+      Utilities::split_string_list(text, ';');
+    for (std::size_t i = 0; i < items.size(); ++i)
+      AssertThrow(!items[i].empty(),
+                  ExcMessage("Entry <" + entry_name + ">: item " +
+                             std::to_string(i + 1) + " of <" + text +
+                             "> is empty (nothing between two ';', or "
+                             "before the first); remove the extra ';'."));
+    return items;
+  }
+
+  std::vector<std::string>
+  item_fields(const std::string &item, const std::string &entry_name)
+  {
+    const std::vector<std::string> fields =
+      Utilities::split_string_list(item, ',');
+    // split_string_list() drops a trailing empty field: a comma with
+    // nothing after it is a malformed item, not a shorter one.
+    AssertThrow(
+      static_cast<std::size_t>(std::count(item.begin(), item.end(), ',')) + 1 ==
+          fields.size() &&
+        std::none_of(fields.begin(),
+                     fields.end(),
+                     [](const std::string &f) { return f.empty(); }),
+      ExcMessage("Entry <" + entry_name + ">: the item <" + item +
+                 "> has an empty field."));
+    return fields;
+  }
+
   std::vector<std::vector<double>>
   parse_number_list(const std::string &text,
                     const unsigned int n_fields,
@@ -39,30 +77,9 @@ namespace PlateOnHalfspace
                     const std::string &field_names)
   {
     std::vector<std::vector<double>> items;
-    // split_string_list() keeps an empty item between two ';' (or before
-    // the first) and drops one after the last: "a ; ; b" is a slip (an
-    // item deleted in part?), refused like an empty field; a trailing ';'
-    // stays allowed.
-    const std::vector<std::string> list =
-      Utilities::split_string_list(text, ';');
-    for (std::size_t i = 0; i < list.size(); ++i)
+    for (const std::string &item : list_items(text, entry_name))
       {
-        const std::string &item = list[i];
-        AssertThrow(!Utilities::trim(item).empty(),
-                    ExcMessage("Entry <" + entry_name + ">: item " +
-                               std::to_string(i + 1) + " of <" + text +
-                               "> is empty (nothing between two ';', or "
-                               "before the first); remove the extra ';'."));
-        const std::vector<std::string> fields =
-          Utilities::split_string_list(item, ',');
-        // split_string_list() drops a trailing empty field: a comma
-        // with nothing after it is a malformed item, not a shorter one.
-        AssertThrow(static_cast<std::size_t>(
-                      std::count(item.begin(), item.end(), ',')) +
-                        1 ==
-                      fields.size(),
-                    ExcMessage("Entry <" + entry_name + ">: the item <" + item +
-                               "> has an empty field."));
+        const std::vector<std::string> fields = item_fields(item, entry_name);
         AssertThrow(n_fields == 0 || fields.size() == n_fields,
                     ExcMessage("Entry <" + entry_name + ">: the item <" + item +
                                "> must have " + std::to_string(n_fields) +
@@ -87,5 +104,13 @@ namespace PlateOnHalfspace
         items.push_back(numbers);
       }
     return items;
+  }
+
+  std::string
+  point_text(const double x, const double y)
+  {
+    std::ostringstream text;
+    text << std::setprecision(12) << "(" << x << ", " << y << ")";
+    return text.str();
   }
 } // namespace PlateOnHalfspace

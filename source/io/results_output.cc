@@ -8,6 +8,7 @@
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <plate_on_halfspace/base/interruption.h>
+#include <plate_on_halfspace/base/number_list.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/contact/contact_results.h>
 #include <plate_on_halfspace/io/results_output.h>
@@ -114,7 +115,7 @@ namespace PlateOnHalfspace
       0,
       {{{"quantity"}, "–", "the goal as written", ResultKind::text},
        {{"target_error"}, "–", "`Adaptivity/Target error`"},
-       {{"relative_error"}, "–", "the last cycle's error bound"},
+       {{"relative_error"}, "–", "the last cycle's reported error"},
        {{"met"},
         "–",
         "whether the run stopped on reaching the target",
@@ -257,10 +258,9 @@ namespace PlateOnHalfspace
         catch (...)
           {
             AssertThrow(false,
-                        ExcMessage("Output/Probe points: (" +
-                                   std::to_string(x[0]) + ", " +
-                                   std::to_string(x[1]) +
-                                   ") is not on the plate."));
+                        ExcMessage(
+                          "Output/Probe points: " + point_text(x[0], x[1]) +
+                          " is not on the plate."));
           }
         ResultRecord &probe = record.add_item("probes");
         probe.set("x", x[0]);

@@ -216,11 +216,14 @@ namespace PlateOnHalfspace
             const Point<2> x = cell.map(rule.point(q));
             pressure[q]      = function->value(x);
             AssertThrow(std::isfinite(pressure[q]),
-                        ExcMessage(entry + ": " + quoted(settings.expression) +
-                                   " is " + number(pressure[q]) + " at (" +
-                                   number(x[0]) + ", " + number(x[1]) +
-                                   ") on the plate; the pressure must be "
-                                   "finite wherever it applies."));
+                        ExcMessage(
+                          entry + ": " + quoted(settings.expression) + " is " +
+                          (std::isnan(pressure[q]) ?
+                             std::string("not a number") :
+                             number(pressure[q])) +
+                          " at (" + number(x[0]) + ", " + number(x[1]) +
+                          ") on the plate; the pressure must be "
+                          "finite wherever it applies."));
           }
         return {std::move(rule), std::move(pressure)};
       }
@@ -332,14 +335,20 @@ namespace PlateOnHalfspace
                            "not by ; (got " +
                            quoted(constants_text) + ")."));
     const auto items = Utilities::split_string_list(constants_text, ',');
-    AssertThrow(items.empty() ||
-                  static_cast<std::size_t>(std::count(constants_text.begin(),
-                                                      constants_text.end(),
-                                                      ',')) +
-                      1 ==
-                    items.size(),
-                ExcMessage("Entry <Loads/Function constants>: " +
-                           quoted(constants_text) + " has an empty item."));
+    // split_string_list() keeps an empty item between two commas and drops
+    // one after the last: both are slips.
+    AssertThrow(
+      items.empty() ||
+        (static_cast<std::size_t>(
+           std::count(constants_text.begin(), constants_text.end(), ',')) +
+             1 ==
+           items.size() &&
+         std::none_of(items.begin(),
+                      items.end(),
+                      [](const std::string &item) { return item.empty(); })),
+      ExcMessage("Entry <Loads/Function constants>: " + quoted(constants_text) +
+                 " has an empty constant (nothing between two "
+                 "commas, or after the last)."));
     // muparser's and deal.II's functions, which a constant would hide
     static const std::vector<std::string> functions = {
       "sin",  "cos",   "tan",   "asin",      "acos",  "atan",  "sinh", "cosh",

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace PlateOnHalfspace
 {
@@ -51,17 +52,32 @@ namespace PlateOnHalfspace
       extent = std::max(extent, points[dof].distance(centre));
     extent = std::max(extent, 1e-300);
 
-    // The slab of each DoF (material id): each slab of a grid moves on its
-    // own where its joints allow.
-    std::vector<types::material_id> slab_of(n_dofs, 0);
-    types::material_id              n_slabs = 1;
+    // The body of each DoF: the cells joined by the DoFs they share (a
+    // slab of a grid, whose joint faces have DoFs of their own, or a piece
+    // of a Gmsh mesh). Each body moves on its own where its joints allow.
+    std::vector<unsigned int> root(n_dofs);
+    std::iota(root.begin(), root.end(), 0u);
+    const auto find = [&](unsigned int i) {
+      while (root[i] != i)
+        i = root[i] = root[root[i]];
+      return i;
+    };
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         cell->get_dof_indices(dofs);
         for (const auto dof : dofs)
-          slab_of[dof] = cell->material_id();
-        n_slabs =
-          std::max<types::material_id>(n_slabs, cell->material_id() + 1);
+          root[find(dof)] = find(dofs[0]);
+      }
+    std::vector<unsigned int> body_of(n_dofs);
+    std::vector<unsigned int> body_of_root(n_dofs,
+                                           numbers::invalid_unsigned_int);
+    unsigned int              n_bodies = 0;
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      {
+        unsigned int &body = body_of_root[find(i)];
+        if (body == numbers::invalid_unsigned_int)
+          body = n_bodies++;
+        body_of[i] = body;
       }
 
     const double stiffness_scale     = stiffness.linfty_norm();
@@ -88,13 +104,13 @@ namespace PlateOnHalfspace
     };
 
     std::vector<Vector<double>> failed, failed_defects;
-    for (types::material_id slab = 0; slab < n_slabs; ++slab)
+    for (unsigned int body = 0; body < n_bodies; ++body)
       for (unsigned int mode = 0; mode < 3; ++mode)
         {
           Vector<double> motion(n_dofs);
           for (unsigned int i = 0; i < n_dofs; ++i)
             {
-              if (slab_of[i] != slab)
+              if (body_of[i] != body)
                 continue;
               if (component[i] == 0)
                 motion[i] =
@@ -109,12 +125,10 @@ namespace PlateOnHalfspace
           // tied joints may not) and in the kernel of the stiffness (the
           // constrained rows and columns of K only hold a diagonal entry;
           // joints' springs may hold a slab's motion).
-          if (motion.linfty_norm() == 0)
-            continue; // a slab of the mirrored part: no DoFs here
           Vector<double> d = defect(motion);
           if (d.linfty_norm() <= 1e-8 * motion.linfty_norm())
             motions.push_back(without_constrained(motion));
-          else if (n_slabs > 1)
+          else if (n_bodies > 1)
             {
               failed.push_back(motion);
               failed_defects.push_back(d);

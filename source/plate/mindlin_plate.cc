@@ -16,6 +16,7 @@
 #include <boost/accumulators/statistics/stats.hpp>
 #include <boost/accumulators/statistics/sum_kahan.hpp>
 
+#include <plate_on_halfspace/base/number_list.h>
 #include <plate_on_halfspace/base/sum_over_ranks.h>
 #include <plate_on_halfspace/plate/generalized_inverse.h>
 #include <plate_on_halfspace/plate/mindlin_plate.h>
@@ -24,6 +25,8 @@
 #include <atomic>
 #include <cmath>
 #include <iterator>
+#include <limits>
+#include <map>
 
 namespace PlateOnHalfspace
 {
@@ -504,26 +507,31 @@ namespace PlateOnHalfspace
             continue;
           }
         const auto &[location, value] = *force;
-        std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
+        std::vector<
+          std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
           located;
         try
           {
-            located = locate(location);
+            located = locate_on_each_slab(location);
           }
         catch (...)
           {
             AssertThrow(false,
-                        ExcMessage(loads[k]->label() + ": the point (" +
-                                   std::to_string(location[0]) + ", " +
-                                   std::to_string(location[1]) +
-                                   ") is not on the plate."));
+                        ExcMessage(loads[k]->label() + ": the point " +
+                                   point_text(location[0], location[1]) +
+                                   " is not on the plate."));
           }
-        local          = 0;
-        const auto phi = q2_shape_values(located.second);
-        for (unsigned int i = 0; i < 9; ++i)
-          local[fe.component_to_system_index(0, i)] = value * phi[i];
-        located.first->get_dof_indices(dofs);
-        constraints.distribute_local_to_global(local, dofs, load);
+        // on a joint, each slab's face carries its share
+        const double share = value / located.size();
+        for (const auto &[cell, reference_point] : located)
+          {
+            local          = 0;
+            const auto phi = q2_shape_values(reference_point);
+            for (unsigned int i = 0; i < 9; ++i)
+              local[fe.component_to_system_index(0, i)] = share * phi[i];
+            cell->get_dof_indices(dofs);
+            constraints.distribute_local_to_global(local, dofs, load);
+          }
       }
     return load;
   }
@@ -694,13 +702,13 @@ namespace PlateOnHalfspace
     return values;
   }
 
-  std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
-  MindlinPlate::locate(const Point<2> &x) const
+  std::vector<std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
+  MindlinPlate::locate_on_each_slab(const Point<2> &x) const
   {
     // The cells whose bounding boxes come within the tolerance below of x,
-    // in the order of the active cells: the first cell that holds x
-    // wins, as on a search through all of them, and a cell further than
-    // the tolerance could not be taken.
+    // in the order of the active cells: on each slab the first of the
+    // nearest cells wins, as on a search through all of them, and a cell
+    // further than the tolerance could not be taken.
     AssertThrow(cell_boxes, ExcMessage("MindlinPlate::locate before setup()."));
     const double tolerance = 1e-10 * (1. + x.norm());
     std::vector<std::pair<BoundingBox<2>, unsigned int>> near;
@@ -714,32 +722,53 @@ namespace PlateOnHalfspace
     std::sort(near.begin(), near.end(), [](const auto &a, const auto &b) {
       return a.second < b.second;
     });
-    typename DoFHandler<2>::active_cell_iterator best;
-    double   best_distance = std::numeric_limits<double>::max();
-    Point<2> best_point;
+    struct Nearest
+    {
+      typename DoFHandler<2>::active_cell_iterator cell;
+      Point<2>                                     point;
+      double       distance = std::numeric_limits<double>::max();
+      unsigned int index    = 0;
+    };
+    std::map<types::material_id, Nearest> on_slab;
     for (const auto &[box, index] : near)
       {
         const auto                 &cell     = cell_boxes->cells[index];
+        Nearest                    &best     = on_slab[cell->material_id()];
         const BilinearQuadrilateral geometry = cell_geometry(cell);
         Point<2>                    p        = geometry.inverse_map(x);
         for (unsigned int d = 0; d < 2; ++d)
           p[d] = std::min(1., std::max(0., p[d]));
         const double distance = geometry.map(p).distance(x);
-        if (distance < best_distance)
-          {
-            best_distance = distance;
-            best          = cell;
-            best_point    = p;
-          }
-        if (distance == 0.)
-          break;
+        if (distance < best.distance)
+          best = {cell, p, distance, index};
       }
+    // the nearest first (the first in the order of the cells among equals):
+    // locate()'s one
+    std::vector<Nearest> holding;
+    for (const auto &[slab, best] : on_slab)
+      if (best.distance <= tolerance)
+        holding.push_back(best);
+    std::sort(holding.begin(),
+              holding.end(),
+              [](const Nearest &a, const Nearest &b) {
+                return std::make_pair(a.distance, a.index) <
+                       std::make_pair(b.distance, b.index);
+              });
+    std::vector<
+      std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
+      located;
+    for (const Nearest &n : holding)
+      located.emplace_back(n.cell, n.point);
     // a point so far away that its distances overflow is off the plate
     // too (no cell was nearest)
-    AssertThrow(best_distance < std::numeric_limits<double>::max() &&
-                  best_distance <= tolerance,
-                ExcMessage("The point is not on the plate."));
-    return {best, best_point};
+    AssertThrow(!located.empty(), ExcMessage("The point is not on the plate."));
+    return located;
+  }
+
+  std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
+  MindlinPlate::locate(const Point<2> &x) const
+  {
+    return locate_on_each_slab(x).front();
   }
 
   double

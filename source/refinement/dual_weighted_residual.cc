@@ -416,16 +416,22 @@ namespace PlateOnHalfspace
         const auto force = load->concentrated_force();
         if (!force)
           continue;
-        const auto located = plate.locate(force->first);
-        local              = 0;
-        add_load(located.first,
-                 CellLoad{Quadrature<2>(std::vector<Point<2>>{located.second},
-                                        std::vector<double>{1.}),
-                          {force->second}});
-        same_cell(located.first, hat_dofs)->get_dof_indices(hat_indices);
-        hat_constraints.distribute_local_to_global(local,
-                                                   hat_indices,
-                                                   node_estimates);
+        // on a joint, each slab's face carries its share (as assembled)
+        const auto   located = plate.locate_on_each_slab(force->first);
+        const double share   = force->second / located.size();
+        for (const auto &[cell, reference_point] : located)
+          {
+            local = 0;
+            add_load(
+              cell,
+              CellLoad{Quadrature<2>(std::vector<Point<2>>{reference_point},
+                                     std::vector<double>{1.}),
+                       {share}});
+            same_cell(cell, hat_dofs)->get_dof_indices(hat_indices);
+            hat_constraints.distribute_local_to_global(local,
+                                                       hat_indices,
+                                                       node_estimates);
+          }
       }
 
     // The curved edge's strips (doc/formulation.md, "Goal-oriented

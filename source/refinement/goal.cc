@@ -73,7 +73,7 @@ namespace PlateOnHalfspace
          2),
        goal_column(
          "goal error",
-         "with `Adaptivity/Goal`: the reported bound `relative_error`",
+         "with `Adaptivity/Goal`: the reported error `relative_error`",
          [](const ResultRecord &g) {
            return g.is_number("relative_error") ?
                     g.number("relative_error") :
@@ -110,17 +110,19 @@ namespace PlateOnHalfspace
         "value minus the previous cycle's; `null` on the first"},
        {{"relative_error"},
         "–",
-        "the error bound the run reports (`null` when the value is 0): "
+        "the error the run reports (`null` when the value is 0): "
         "max(estimated_error, \\|change\\|, ρ/(1 − ρ) \\|change\\|) / "
         "\\|value\\|, ρ = change / the previous cycle's change where it "
-        "lies in (1/2, 1); estimated_error / \\|value\\| on the first cycle "
+        "lies in (1/2, 1); estimated_error / \\|value\\| on the first cycle. "
+        "An estimate, not a guaranteed bound: on coarse meshes the true "
+        "error has been up to 1.5 times it "
         "([formulation.md](formulation.md#goal-oriented-refinement))"},
        {{"target_error"}, "–", "`Adaptivity/Target error` (0: none)"},
        {{"target_met"},
         "–",
-        "whether `relative_error` met it (never on the first cycle: its "
-        "bound has no change to check the estimate against; nor where the "
-        "value changed at least as much as in the cycle before)",
+        "whether it was met: `relative_error` below it, the previous "
+        "cycle's at most 4 times it, and the changes shrinking (never on "
+        "the first two cycles: the changes' ratio needs two changes)",
         ResultKind::flag},
        {{"time_s"},
         "s",
@@ -155,9 +157,9 @@ namespace PlateOnHalfspace
     catch (...)
       {
         AssertThrow(false,
-                    ExcMessage(
-                      "Adaptivity/Goal: the point (" + std::to_string(x[0]) +
-                      ", " + std::to_string(x[1]) + ") is not on the plate."));
+                    ExcMessage("Adaptivity/Goal: the point " +
+                               point_text(x[0], x[1]) +
+                               " is not on the plate."));
       }
     return e;
   }
@@ -251,8 +253,8 @@ namespace PlateOnHalfspace
     // "Goal error estimates"): the bound also takes the last change.
     double     bound      = estimate.estimated_error;
     const bool has_change = previous != nullptr && previous->has("goal");
-    // Whether the value's changes shrink (always so with one change).
-    bool converging = true;
+    // Whether the value's changes shrink: known from the second change on.
+    bool converging = false;
     if (has_change)
       {
         const ResultRecord &before = previous->object("goal");
@@ -271,9 +273,8 @@ namespace PlateOnHalfspace
               previous_change != 0 ? change / previous_change :
               change != 0          ? std::numeric_limits<double>::infinity() :
                                      0.;
-            if (std::abs(rho) >= 1)
-              converging = false;
-            else if (rho > 0.5)
+            converging = std::abs(rho) < 1;
+            if (converging && rho > 0.5)
               bound = std::max(bound, rho / (1 - rho) * std::abs(change));
           }
       }
@@ -286,8 +287,18 @@ namespace PlateOnHalfspace
                                     std::numeric_limits<double>::quiet_NaN();
     g.set_or_null("relative_error", relative_error);
     g.set("target_error", target_error);
+    // A sudden drop below the target is not yet evidence: on coarse meshes
+    // the estimate and one change can both be small while the value still
+    // moves, or overshoots (doc/formulation.md, "Goal-oriented
+    // refinement"). The target is met when the changes shrink (from the
+    // third cycle on) and the previous cycle's error was within 4 times
+    // the target: an error falls by at most 4 in a cycle of global
+    // second-order refinement, and by less in an adaptive one.
+    const bool previous_near =
+      has_change && previous->object("goal").is_number("relative_error") &&
+      previous->object("goal").number("relative_error") <= 4 * target_error;
     g.set("target_met",
-          target_error > 0 && has_change && converging &&
+          target_error > 0 && converging && previous_near &&
             relative_error <= target_error);
     g.set("time_s", time_s);
   }

@@ -243,20 +243,25 @@ namespace PlateOnHalfspace
      * exclusive bound: an entry whose allowed values are > 0
      * (doc/parameters.md) is declared as Double(0), its 0 refused after
      * parsing ("Plate/Thickness must be > 0 (got 0)."); its message for a
-     * value outside the pattern names the range > 0 as well.
+     * value outside the pattern names the open bound as well
+     * (Parameters::entries_excluding_lower_bound()).
      */
     std::string
     describe_entry_pattern(const std::string &path,
                            const std::string &description)
     {
-      static const std::set<std::string> positive = {
-        "Plate/Thickness",
-        "Plate/Young's modulus",
-        "Foundation/Young's modulus"};
-      const std::string words = describe_pattern(description);
-      return positive.count(path) > 0 && words == "a number >= 0" ?
-               "a number > 0" :
-               words;
+      std::string                     words = describe_pattern(description);
+      const std::vector<std::string> &open =
+        Parameters::entries_excluding_lower_bound();
+      if (std::find(open.begin(), open.end(), path) == open.end())
+        return words;
+      // "a number >= 0" -> "a number > 0", "in [0, 1]" -> "in (0, 1]"
+      for (const auto &[closed, opened] :
+           {std::pair<std::string, std::string>{" >= ", " > "},
+            {" in [", " in ("}})
+        if (const auto at = words.find(closed); at != std::string::npos)
+          return words.replace(at, closed.size(), opened);
+      return words;
     }
   } // namespace
 

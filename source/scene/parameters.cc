@@ -42,6 +42,15 @@ namespace PlateOnHalfspace
       return s.str();
     }
 
+    /** @p value to 6 significant digits, as a bound in a message. */
+    std::string
+    rounded_text(const double value)
+    {
+      std::ostringstream s;
+      s << value;
+      return s.str();
+    }
+
     std::string
     to_text(const double value)
     {
@@ -485,7 +494,7 @@ namespace PlateOnHalfspace
     }
 
     void
-    Joints::check() const
+    Joints::check(const Plate &plate) const
     {
       const bool interlock = transverse == LoadTransfer::aggregate_interlock ||
                              longitudinal == LoadTransfer::aggregate_interlock;
@@ -514,6 +523,111 @@ namespace PlateOnHalfspace
                   "Joints/Dowel support modulus must be > 0 with dowels" +
                     got(dowel_support_modulus) + ".");
         }
+
+      // The bounds against the slabs, for the joints that exist: transverse
+      // ones (x = const, as long as the slab sizes along y) between columns
+      // of slabs, longitudinal ones (y = const, as long as the sizes along
+      // x) between rows.
+      std::vector<double> dowelled_lengths;
+      bool                interlocked = false;
+      const auto          joints      = [&](const LoadTransfer         transfer,
+                              const std::vector<double> &lengths,
+                              const bool                 exist) {
+        if (!exist)
+          return;
+        interlocked =
+          interlocked || transfer == LoadTransfer::aggregate_interlock;
+        if (transfer == LoadTransfer::dowels)
+          dowelled_lengths.insert(dowelled_lengths.end(),
+                                  lengths.begin(),
+                                  lengths.end());
+      };
+      joints(transverse, plate.slab_lengths_y, plate.slab_lengths_x.size() > 1);
+      joints(longitudinal,
+             plate.slab_lengths_x,
+             plate.slab_lengths_y.size() > 1);
+      const double E = plate.youngs_modulus;
+      const double t = plate.thickness;
+      // Stiffness bounds: a joint spring k_s (and a bar's modulus, and its
+      // support per length of bar K d) beyond 1e6 times the slabs' own
+      // modulus is rigid in every digit the slabs' stiffness can carry:
+      // k_s = 1e7 E ran on 0.2 m slabs with cells from 0.5 m to 4.5 m
+      // long, k_s = 1e8 E failed in the contact iteration, naming no
+      // entry. With K d and the bar's modulus at 1e6 E, a bar per its
+      // spacing (> d) is below about 2e5 E per length of joint.
+      const std::string rigid =
+        ": a stiffer joint is rigid in every digit the slabs' stiffness "
+        "can carry; to join the slabs rigidly use Joints/Load transfer = "
+        "tied.";
+      if (interlocked)
+        require(shear_stiffness <= 1e6 * E,
+                "Joints/Shear stiffness must be at most 1e6 times "
+                "Plate/Young's modulus = " +
+                  rounded_text(1e6 * E) + " for this plate" +
+                  got(shear_stiffness) + rigid);
+      if (dowelled_lengths.empty())
+        return;
+      // A bar below 1e-6 t carries nothing the slabs can feel, and its
+      // d^4 underflows (1e-300 gave "The plate is a mechanism").
+      require(dowel_diameter >= 1e-6 * t,
+              "Joints/Dowel diameter must be at least 1e-6 times "
+              "Plate/Thickness = " +
+                rounded_text(1e-6 * t) + " for this plate" +
+                got(dowel_diameter) +
+                ": so thin a bar transfers no load in any digit; for joints "
+                "without load transfer use Joints/Load transfer = free.");
+      require(dowel_diameter < t,
+              "Joints/Dowel diameter must be less than Plate/Thickness = " +
+                rounded_text(t) + got(dowel_diameter) +
+                ": the bar lies inside the slab.");
+      require(dowel_diameter < dowel_spacing,
+              "Joints/Dowel diameter must be less than Joints/Dowel "
+              "spacing = " +
+                rounded_text(dowel_spacing) + got(dowel_diameter) +
+                ": neighbouring bars would overlap.");
+      const double longest =
+        *std::max_element(dowelled_lengths.begin(), dowelled_lengths.end());
+      require(dowel_spacing <= longest,
+              "Joints/Dowel spacing must be at most the length of the "
+              "longest dowelled joint, " +
+                rounded_text(longest) + " for these slabs" +
+                got(dowel_spacing) +
+                ": a joint shorter than the spacing has one bar at its "
+                "middle, so a larger spacing means nothing; check the "
+                "units.");
+      require(dowel_modulus <= 1e6 * E,
+              "Joints/Dowel modulus must be at most 1e6 times Plate/Young's "
+              "modulus = " +
+                rounded_text(1e6 * E) + " for this plate" + got(dowel_modulus) +
+                rigid);
+      // The model puts both slabs' faces on the joint line and the opening
+      // into the bar's compliance only (doc/formulation.md, "Joints"): a
+      // gap narrow against the slab. A gap as wide as the slab is thick is
+      // no joint.
+      require(joint_opening < t,
+              "Joints/Joint opening must be less than Plate/Thickness = " +
+                rounded_text(t) + got(joint_opening) +
+                ": the model puts both slabs' faces on the joint line and "
+                "the opening into the bar's bending only, which holds for a "
+                "gap narrow against the slab.");
+      // K d is the support per length of bar [force/length^2], as E.
+      require(dowel_support_modulus <= 1e6 * E / dowel_diameter,
+              "Joints/Dowel support modulus must be at most 1e6 times "
+              "Plate/Young's modulus / Joints/Dowel diameter = " +
+                rounded_text(1e6 * E / dowel_diameter) +
+                " for this plate and bar" + got(dowel_support_modulus) + rigid);
+    }
+
+    const std::vector<std::string> &
+    entries_excluding_lower_bound()
+    {
+      // Each of them has a check "> bound" below, after its declaration.
+      static const std::vector<std::string> names = {
+        "Plate/Thickness",
+        "Plate/Young's modulus",
+        "Foundation/Young's modulus",
+        "Contact/Tolerance"};
+      return names;
     }
 
     const std::vector<std::string> &
@@ -796,19 +910,11 @@ namespace PlateOnHalfspace
              prm.get("Point loads"), 3, "Loads/Point loads", "x,y,force"))
         point_loads.push_back({Point<2>(v[0], v[1]), v[2]});
       axles.clear();
-      const std::string axle_text = prm.get("Axles");
-      unsigned int      axle_item = 0;
       for (const std::string &item :
-           Utilities::split_string_list(axle_text, ';'))
+           list_items(prm.get("Axles"), "Loads/Axles"))
         {
-          ++axle_item;
-          require(!item.empty(),
-                  "Entry <Loads/Axles>: item " + std::to_string(axle_item) +
-                    " of <" + axle_text +
-                    "> is empty (nothing between two ';', or before the "
-                    "first); remove the extra ';'.");
           const std::vector<std::string> fields =
-            Utilities::split_string_list(item, ',');
+            item_fields(item, "Loads/Axles");
           require(fields.size() == 6,
                   "Entry <Loads/Axles>: the item <" + item +
                     "> must have 6 fields (type,x,y,angle,load,tyre "
@@ -1158,6 +1264,14 @@ namespace PlateOnHalfspace
       require(target_error < 1,
               "Adaptivity/Target error is relative and must lie in [0, 1)" +
                 got(target_error) + ".");
+      // met only once the changes are seen to shrink (add_goal_results())
+      require(target_error == 0 || cycles >= 3,
+              "Adaptivity/Target error needs Adaptivity/Cycles >= 3 (got " +
+                std::to_string(cycles) +
+                "): a target is met only once the changes of the goal "
+                "between cycles are seen to shrink, which the third cycle "
+                "shows first. Raise Cycles, or set Target error = 0 and read "
+                "the reported error (summary.json's relative_error).");
     }
 
     Goal
@@ -1258,17 +1372,10 @@ namespace PlateOnHalfspace
       const std::string text = prm.get("Checks");
       prm.leave_subsection();
       checks.clear();
-      unsigned int check_item = 0;
-      for (const std::string &item : Utilities::split_string_list(text, ';'))
+      for (const std::string &item : list_items(text, "Verification/Checks"))
         {
-          ++check_item;
-          require(!item.empty(),
-                  "Entry <Verification/Checks>: item " +
-                    std::to_string(check_item) + " of <" + text +
-                    "> is empty (nothing between two ';', or before the "
-                    "first); remove the extra ';'.");
           std::vector<std::string> fields =
-            Utilities::split_string_list(item, ',');
+            item_fields(item, "Verification/Checks");
           require(fields.size() == 5 || fields.size() == 3,
                   "Verification/Checks: <" + item +
                     "> must be 'quantity,x,y,reference,tolerance' or "

@@ -27,122 +27,6 @@ namespace PlateOnHalfspace
       AssertThrow(condition, ExcMessage(message));
     }
 
-    /** " (got X)" for the messages of the checks below. */
-    std::string
-    got(const double value)
-    {
-      std::ostringstream s;
-      s << " (got " << value << ")";
-      return s.str();
-    }
-
-    /** The bounds of the joints' entries against the slabs of @p plate
-     *  (Plate/Shape = slabs), after Joints::check(). */
-    void
-    check_joints_against(const Parameters::Joints &entries,
-                         const Parameters::Plate  &plate)
-    {
-      // The joints that exist: transverse ones (x = const, as long as the
-      // slab sizes along y) between columns of slabs, longitudinal ones
-      // (y = const, as long as the sizes along x) between rows.
-      std::vector<double> dowelled_lengths;
-      bool                interlock = false;
-      const auto joints = [&](const Parameters::Joints::LoadTransfer transfer,
-                              const std::vector<double>             &lengths,
-                              const bool                             exist) {
-        if (!exist)
-          return;
-        interlock =
-          interlock ||
-          transfer == Parameters::Joints::LoadTransfer::aggregate_interlock;
-        if (transfer == Parameters::Joints::LoadTransfer::dowels)
-          dowelled_lengths.insert(dowelled_lengths.end(),
-                                  lengths.begin(),
-                                  lengths.end());
-      };
-      joints(entries.transverse,
-             plate.slab_lengths_y,
-             plate.slab_lengths_x.size() > 1);
-      joints(entries.longitudinal,
-             plate.slab_lengths_x,
-             plate.slab_lengths_y.size() > 1);
-      const double E     = plate.youngs_modulus;
-      const double t     = plate.thickness;
-      const auto   value = [](const double x) {
-        std::ostringstream s;
-        s << x;
-        return s.str();
-      };
-      // Stiffness bounds: a joint spring k_s (and a bar's modulus, and its
-      // support per length of bar K d) beyond 1e6 times the slabs' own
-      // modulus is rigid in every digit the slabs' stiffness can carry:
-      // k_s = 1e7 E ran on 0.2 m slabs with cells from 0.5 m to 4.5 m
-      // long, k_s = 1e8 E failed in the contact iteration, naming no
-      // entry. With K d and the bar's modulus at 1e6 E, a bar per its
-      // spacing (> d) is below about 2e5 E per length of joint.
-      const std::string rigid =
-        ": a stiffer joint is rigid in every digit the slabs' stiffness "
-        "can carry; to join the slabs rigidly use Joints/Load transfer = "
-        "tied.";
-      if (interlock)
-        require(entries.shear_stiffness <= 1e6 * E,
-                "Joints/Shear stiffness must be at most 1e6 times "
-                "Plate/Young's modulus = " +
-                  value(1e6 * E) + " for this plate" +
-                  got(entries.shear_stiffness) + rigid);
-      if (dowelled_lengths.empty())
-        return;
-      // A bar below 1e-6 t carries nothing the slabs can feel, and its
-      // d^4 underflows (1e-300 gave "The plate is a mechanism").
-      require(entries.dowel_diameter >= 1e-6 * t,
-              "Joints/Dowel diameter must be at least 1e-6 times "
-              "Plate/Thickness = " +
-                value(1e-6 * t) + " for this plate" +
-                got(entries.dowel_diameter) +
-                ": so thin a bar transfers no load in any digit; for joints "
-                "without load transfer use Joints/Load transfer = free.");
-      require(entries.dowel_diameter < t,
-              "Joints/Dowel diameter must be less than Plate/Thickness = " +
-                value(t) + got(entries.dowel_diameter) +
-                ": the bar lies inside the slab.");
-      require(entries.dowel_diameter < entries.dowel_spacing,
-              "Joints/Dowel diameter must be less than Joints/Dowel "
-              "spacing = " +
-                value(entries.dowel_spacing) + got(entries.dowel_diameter) +
-                ": neighbouring bars would overlap.");
-      const double longest =
-        *std::max_element(dowelled_lengths.begin(), dowelled_lengths.end());
-      require(entries.dowel_spacing <= longest,
-              "Joints/Dowel spacing must be at most the length of the "
-              "longest dowelled joint, " +
-                value(longest) + " for these slabs" +
-                got(entries.dowel_spacing) +
-                ": a joint shorter than the spacing has one bar at its "
-                "middle, so a larger spacing means nothing; check the "
-                "units.");
-      require(entries.dowel_modulus <= 1e6 * E,
-              "Joints/Dowel modulus must be at most 1e6 times Plate/Young's "
-              "modulus = " +
-                value(1e6 * E) + " for this plate" +
-                got(entries.dowel_modulus) + rigid);
-      // The model puts both slabs' faces on the joint line and the opening
-      // into the bar's compliance only (doc/formulation.md, "Joints"): a
-      // gap narrow against the slab. A gap as wide as the slab is thick is
-      // no joint.
-      require(entries.joint_opening < t,
-              "Joints/Joint opening must be less than Plate/Thickness = " +
-                value(t) + got(entries.joint_opening) +
-                ": the model puts both slabs' faces on the joint line and "
-                "the opening into the bar's bending only, which holds for a "
-                "gap narrow against the slab.");
-      // K d is the support per length of bar [force/length^2], as E.
-      require(entries.dowel_support_modulus <= 1e6 * E / entries.dowel_diameter,
-              "Joints/Dowel support modulus must be at most 1e6 times "
-              "Plate/Young's modulus / Joints/Dowel diameter = " +
-                value(1e6 * E / entries.dowel_diameter) +
-                " for this plate and bar" + got(entries.dowel_support_modulus) +
-                rigid);
-    }
   } // namespace
 
   void
@@ -231,10 +115,7 @@ namespace PlateOnHalfspace
     verification.parse_parameters(prm);
 
     if (plate.shape == Parameters::Plate::Shape::slabs)
-      {
-        joints.check();
-        check_joints_against(joints, plate);
-      }
+      joints.check(plate);
     for (const Parameters::Check &check : verification.checks)
       require(check.quantity.rfind("goal.", 0) != 0 ||
                 adaptivity.goal.functional,

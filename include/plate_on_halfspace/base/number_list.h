@@ -36,6 +36,22 @@ namespace PlateOnHalfspace
   read_decimal_number(const std::string &text, double &value);
 
   /**
+   * The items of a list entry "a,b,c ; d,e,f" (split at ';'), each
+   * trimmed. An empty item (between two ';', or before the first) is
+   * refused naming @p entry_name; a ';' after the last item is allowed.
+   */
+  std::vector<std::string>
+  list_items(const std::string &text, const std::string &entry_name);
+
+  /**
+   * The fields of one item "a, b, c" of a list entry (split at ','), each
+   * trimmed. An empty field, a trailing ',' included, is refused naming
+   * @p entry_name.
+   */
+  std::vector<std::string>
+  item_fields(const std::string &item, const std::string &entry_name);
+
+  /**
    * Split a list entry "a,b,c ; d,e,f" into items of exactly @p n_fields
    * decimal numbers each (any number if @p n_fields is 0). Errors name the
    * entry @p entry_name and its @p field_names.
@@ -45,6 +61,13 @@ namespace PlateOnHalfspace
                     const unsigned int n_fields,
                     const std::string &entry_name,
                     const std::string &field_names);
+
+  /**
+   * "(x, y)" with 12 significant digits, for messages about a point a
+   * scene gave: enough to show the offset that puts it just off the plate.
+   */
+  std::string
+  point_text(const double x, const double y);
 } // namespace PlateOnHalfspace
 
 #endif

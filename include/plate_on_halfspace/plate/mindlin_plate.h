@@ -357,6 +357,17 @@ namespace PlateOnHalfspace
     std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>
     locate(const Point<2> &x) const;
 
+    /**
+     * locate() on every slab (cell material id) that holds @p x: one cell
+     * inside a slab, one on each side of a joint, up to four where joints
+     * cross. A force at a point on a joint is shared equally by the slabs
+     * there (doc/loads.md, "Point loads"), so that its answer does not
+     * depend on which side a search meets first, nor on a mirror plane.
+     */
+    std::vector<
+      std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
+    locate_on_each_slab(const Point<2> &x) const;
+
     /** Value of component @p component of @p solution at @p x. */
     double
     point_value(const Vector<double> &solution,

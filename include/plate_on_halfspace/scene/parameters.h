@@ -167,10 +167,11 @@ namespace PlateOnHalfspace
       double       dowel_diameter, dowel_spacing, dowel_modulus, joint_opening;
       double dowel_support_modulus; ///< K of the concrete [force/length^3]
 
-      /** The range checks of the entries the joints use (the scene checks
-       *  them for Plate/Shape = slabs only). */
+      /** The range checks of the entries the joints use, and their bounds
+       *  against the slabs of @p plate (the scene checks them for Plate/
+       *  Shape = slabs only). */
       void
-      check() const;
+      check(const Plate &plate) const;
 
       /** The entry's text of @p transfer ("aggregate interlock", ...). */
       static std::string
@@ -404,6 +405,15 @@ namespace PlateOnHalfspace
      */
     const std::vector<std::string> &
     fibre_stress_names();
+
+    /**
+     * The entries (Section/Name) whose checks exclude their pattern's
+     * lower bound: deal.II's patterns have inclusive bounds only, so
+     * Plate/Thickness is declared >= 0 and checked > 0. Messages about
+     * such an entry's pattern name the open bound (describe_pattern()).
+     */
+    const std::vector<std::string> &
+    entries_excluding_lower_bound();
 
     /**
      * A value the run must reproduce: quantity at a probe point or a summary
