@@ -52,22 +52,34 @@ namespace PlateOnHalfspace
     return items;
   }
 
+  std::optional<std::vector<std::string>>
+  split_without_empty(const std::string &text, const char separator)
+  {
+    std::vector<std::string> pieces =
+      Utilities::split_string_list(text, separator);
+    if (pieces.empty())
+      return pieces;
+    // split_string_list() drops a trailing empty piece: a separator with
+    // nothing after it is a slip, not a shorter list.
+    if (static_cast<std::size_t>(
+          std::count(text.begin(), text.end(), separator)) +
+            1 !=
+          pieces.size() ||
+        std::any_of(pieces.begin(), pieces.end(), [](const std::string &p) {
+          return p.empty();
+        }))
+      return std::nullopt;
+    return pieces;
+  }
+
   std::vector<std::string>
   item_fields(const std::string &item, const std::string &entry_name)
   {
-    const std::vector<std::string> fields =
-      Utilities::split_string_list(item, ',');
-    // split_string_list() drops a trailing empty field: a comma with
-    // nothing after it is a malformed item, not a shorter one.
-    AssertThrow(
-      static_cast<std::size_t>(std::count(item.begin(), item.end(), ',')) + 1 ==
-          fields.size() &&
-        std::none_of(fields.begin(),
-                     fields.end(),
-                     [](const std::string &f) { return f.empty(); }),
-      ExcMessage("Entry <" + entry_name + ">: the item <" + item +
-                 "> has an empty field."));
-    return fields;
+    const auto fields = split_without_empty(item, ',');
+    AssertThrow(fields && !fields->empty(),
+                ExcMessage("Entry <" + entry_name + ">: the item <" + item +
+                           "> has an empty field."));
+    return *fields;
   }
 
   std::vector<std::vector<double>>

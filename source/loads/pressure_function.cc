@@ -334,21 +334,12 @@ namespace PlateOnHalfspace
                            "constants by commas (name=value, name=value), "
                            "not by ; (got " +
                            quoted(constants_text) + ")."));
-    const auto items = Utilities::split_string_list(constants_text, ',');
-    // split_string_list() keeps an empty item between two commas and drops
-    // one after the last: both are slips.
-    AssertThrow(
-      items.empty() ||
-        (static_cast<std::size_t>(
-           std::count(constants_text.begin(), constants_text.end(), ',')) +
-             1 ==
-           items.size() &&
-         std::none_of(items.begin(),
-                      items.end(),
-                      [](const std::string &item) { return item.empty(); })),
-      ExcMessage("Entry <Loads/Function constants>: " + quoted(constants_text) +
-                 " has an empty constant (nothing between two "
-                 "commas, or after the last)."));
+    const auto items = split_without_empty(constants_text, ',');
+    AssertThrow(items,
+                ExcMessage("Entry <Loads/Function constants>: " +
+                           quoted(constants_text) +
+                           " has an empty constant (nothing between two "
+                           "commas, or after the last)."));
     // muparser's and deal.II's functions, which a constant would hide
     static const std::vector<std::string> functions = {
       "sin",  "cos",   "tan",   "asin",      "acos",  "atan",  "sinh", "cosh",
@@ -356,7 +347,7 @@ namespace PlateOnHalfspace
       "exp",  "sqrt",  "sign",  "rint",      "abs",   "min",   "max",  "sum",
       "avg",  "if",    "int",   "ceil",      "floor", "cot",   "csc",  "sec",
       "pow",  "erfc",  "rand",  "rand_seed", "atan2", "fmod",  "pi"};
-    for (const std::string &item : items)
+    for (const std::string &item : *items)
       {
         const auto equals = item.find('=');
         AssertThrow(equals != std::string::npos,

@@ -33,15 +33,6 @@ namespace PlateOnHalfspace
       AssertThrow(condition, ExcMessage(message));
     }
 
-    /** " (got X)" for the messages of the checks below. */
-    std::string
-    got(const double value)
-    {
-      std::ostringstream s;
-      s << " (got " << value << ")";
-      return s.str();
-    }
-
     /** @p value to 6 significant digits, as a bound in a message. */
     std::string
     rounded_text(const double value)
@@ -49,6 +40,13 @@ namespace PlateOnHalfspace
       std::ostringstream s;
       s << value;
       return s.str();
+    }
+
+    /** " (got X)" for the messages of the checks below. */
+    std::string
+    got(const double value)
+    {
+      return " (got " + rounded_text(value) + ")";
     }
 
     std::string

@@ -4,6 +4,7 @@
 #ifndef plate_on_halfspace_base_number_list_h
 #define plate_on_halfspace_base_number_list_h
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,15 @@ namespace PlateOnHalfspace
    */
   DecimalReading
   read_decimal_number(const std::string &text, double &value);
+
+  /**
+   * @p text split at @p separator, each piece trimmed (an empty list for a
+   * blank text), or nullopt if a piece is empty: between two separators,
+   * before the first or after the last, which Utilities::split_string_list()
+   * keeps or drops silently.
+   */
+  std::optional<std::vector<std::string>>
+  split_without_empty(const std::string &text, const char separator);
 
   /**
    * The items of a list entry "a,b,c ; d,e,f" (split at ';'), each
