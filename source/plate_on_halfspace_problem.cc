@@ -300,6 +300,9 @@ namespace PlateOnHalfspace
                 break;
               }
           }
+        // Said of the last cycle's mesh, whose results the run reports.
+        if (!unresolved_deflection_length.empty())
+          warn(unresolved_deflection_length);
         if (parameters.loads.sweep_steps > 0)
           run_sweep();
         // A run whose checks fail is a failed run: its files go to
@@ -374,6 +377,7 @@ namespace PlateOnHalfspace
       // that a failure leaves no half-written line in the log.
       const double l = soil->radius_of_relative_stiffness(
         parameters.plate.flexural_rigidity());
+      relative_stiffness_radius = l;
       if (parameters.output.verbosity > 0)
         log << "radius of relative stiffness on the " << soil->name()
             << " soil: l = " << l
@@ -1259,6 +1263,8 @@ namespace PlateOnHalfspace
                         "on " + std::to_string(n) + " foundation nodes");
     warn_unresolved_contact_region();
     warn_knife_edge();
+    if (!coarse_solve_running)
+      unresolved_deflection_length = cells_larger_than_deflection_length();
     // The solver's factorisation of the flexibility belongs to the
     // foundation's time (doc/outputs.md, the time split); so does a
     // rebuild after failed iterations, whose time the solve had.
@@ -1316,6 +1322,129 @@ namespace PlateOnHalfspace
             "this mesh. Refine there (Adaptivity/Refinement = adaptive, or "
             "goal with Adaptivity/Goal = contact area).";
     warn(text.str());
+  }
+
+  std::string
+  PlateOnHalfspaceProblem::cells_larger_than_deflection_length() const
+  {
+    const double l = relative_stiffness_radius;
+    if (!(l > 0) || !std::isfinite(l))
+      return "";
+    const FoundationSpace &space    = mindlin_plate->get_foundation_space();
+    const bool             lift_off = parameters.foundation.tensionless &&
+                          contact.converged &&
+                          contact.in_contact.size() == space.n_nodes();
+    // How many times the length the cells may be before the results near
+    // each feature are off by more than a few percent, measured in
+    // doc/errors-and-limits.md, "Cells larger than l": a load's edge
+    // (6 % to 22 % at 1.67), a curled free edge (2 % at 1.5, 26 % at 3),
+    // a lift-off line (3 % at 2.8, 60 % at 16).
+    constexpr double load_edge_ratio = 1.5, curled_edge_ratio = 2,
+                     lift_off_ratio = 4;
+    // A thermal moment bends the plate only within about l of its free
+    // edges: every boundary face but a mirror plane's and a tied joint's
+    // (a mesh file's outline keeps its own boundary ids).
+    std::vector<bool> on_free_edge(space.cells.size(), false);
+    if (mindlin_plate->get_thermal_load().moment != 0)
+      {
+        const auto &joints    = slab_grid->get_joints();
+        const auto  free_edge = [&](const auto &face) {
+          const types::boundary_id id = face->boundary_id();
+          if ((symmetry.x && id == mirror_plane_x_boundary_id) ||
+              (symmetry.y && id == mirror_plane_y_boundary_id))
+            return false;
+          if (id != joint_boundary_id || joints.empty())
+            return true;
+          const unsigned int joint = slab_grid->joint_at(face->center());
+          return joint == joints.size() ||
+                 joints[joint].transfer !=
+                   Parameters::Joints::LoadTransfer::tied;
+        };
+        unsigned int k = 0;
+        for (const auto &cell :
+             mindlin_plate->get_dof_handler().active_cell_iterators())
+          {
+            for (const unsigned int f : cell->face_indices())
+              if (cell->at_boundary(f) && free_edge(cell->face(f)))
+                on_free_edge[k] = true;
+            ++k;
+          }
+      }
+    // The worst cell: how far it exceeds its feature's ratio.
+    double      worst = 1, worst_size = 0, worst_length = 0, worst_ratio = 0;
+    std::string worst_what, worst_length_name;
+    const std::string l_name = "the plate's radius of relative stiffness l";
+    for (unsigned int k = 0; k < space.cells.size(); ++k)
+      {
+        const auto &cell = space.cells[k];
+        // a square cell's side; every length below is at least l
+        const double size = cell.geometry.diameter() / std::sqrt(2.);
+        if (size <= worst * load_edge_ratio * l)
+          continue;
+        const auto consider = [&](const double       length,
+                                  const double       ratio,
+                                  const std::string &what,
+                                  const std::string &length_name) {
+          if (size > worst * ratio * length)
+            {
+              worst             = size / (ratio * length);
+              worst_size        = size;
+              worst_length      = length;
+              worst_ratio       = ratio;
+              worst_what        = what;
+              worst_length_name = length_name;
+            }
+        };
+        for (const auto &load : computed_loads)
+          if (load->jump_on(cell.geometry.get_vertices(),
+                            cell.geometry.area()) > 0)
+            {
+              const std::optional<double> width = load->region_width();
+              if (width && *width > l)
+                consider(*width,
+                         load_edge_ratio,
+                         "the edge of " + load->label(),
+                         "the load's width");
+              else
+                consider(l,
+                         load_edge_ratio,
+                         (load->concentrated_force() ? "" : "the edge of ") +
+                           load->label(),
+                         l_name);
+            }
+        if (on_free_edge[k])
+          consider(l,
+                   curled_edge_ratio,
+                   "the edge of the plate that the temperature difference "
+                   "curls",
+                   l_name);
+        if (lift_off)
+          {
+            bool touching = false, lifted = false;
+            for (const unsigned int i : cell.nodes())
+              (contact.in_contact[i] ? touching : lifted) = true;
+            if (touching && lifted)
+              consider(l,
+                       lift_off_ratio,
+                       "the line where the plate lifts off",
+                       l_name);
+          }
+      }
+    if (worst_what.empty())
+      return "";
+    std::ostringstream text;
+    text << std::setprecision(3) << "the last cycle's mesh (cycle "
+         << summary.count("cycle") << "): cells of " << worst_size << " carry "
+         << worst_what << ", " << worst_size / worst_length
+         << " times the length over which the deflection varies there ("
+         << worst_length_name << ", " << worst_length << "; more than "
+         << worst_ratio
+         << " times is not resolved): w, q, the moments and the contact area "
+            "near it are not converged (off by 6 % to 60 % in "
+            "doc/errors-and-limits.md, \"Cells larger than l\"). Refine "
+            "there (Discretization/Initial refinements, or "
+            "Adaptivity/Refinement = adaptive with more Cycles).";
+    return text.str();
   }
 
   void
@@ -1607,17 +1736,34 @@ namespace PlateOnHalfspace
       }
     const Vector<double> &solution = contact.plate_solution;
     const unsigned int    cycle    = summary.count("cycle");
+    // The files describe the whole plate (doc/outputs.md): a tested gap on
+    // a mirror plane is the integral over the basis function's support, of
+    // which the computed part holds one half (a quarter at the planes'
+    // crossing).
+    ContactState           whole_plate;
+    const FoundationSpace &space = plate.get_foundation_space();
+    const bool             rescale =
+      symmetry.n_copies() > 1 && foundation_operator->gap_is_tested();
+    if (rescale)
+      {
+        whole_plate = contact;
+        for (unsigned int i = 0; i < whole_plate.gap.size(); ++i)
+          whole_plate.gap[i] *=
+            static_cast<double>(symmetry.n_copies()) /
+            space.symmetry.images(space.node_locations[i]).size();
+      }
+    const ContactState &written = rescale ? whole_plate : contact;
     output->write_profile(cycle,
                           plate,
                           solution,
-                          contact,
+                          written,
                           start,
                           end,
                           parameters.output.profile_points);
     output->write_nodes_and_gauss_profile(
-      cycle, plate, solution, contact, start, end);
+      cycle, plate, solution, written, start, end);
     if (parameters.output.vtu)
-      output->write_vtu(cycle, plate, solution, contact);
+      output->write_vtu(cycle, plate, solution, written);
     summary.set("output_time_s", phase.wall_time());
     summary.set("wall_time_s",
                 cycle_timer.wall_time() + setup_time_s + nested_start_time_s);

@@ -235,6 +235,16 @@ namespace PlateOnHalfspace
     warn_knife_edge();
 
     /**
+     * Why the cycle's mesh does not resolve the length over which the
+     * deflection varies (doc/errors-and-limits.md, "Cells larger than l"):
+     * a cell carrying a load's edge (Load::jump_on()) larger than the
+     * larger of l and the load's size, or a cell on the line where a
+     * tensionless plate lifts off larger than l. Empty where none is.
+     */
+    std::string
+    cells_larger_than_deflection_length() const;
+
+    /**
      * The goal's value and the dual-weighted residual estimate of its
      * error (doc/formulation.md, "Goal-oriented refinement"): the adjoint
      * problem on the cycle's contact set, solved by the cycle's contact
@@ -329,6 +339,10 @@ namespace PlateOnHalfspace
     bool unresolved_contact_warned = false;
     /** Whether a cycle has warned about a plate on a knife edge. */
     bool knife_edge_warned = false;
+    /** The plate's radius of relative stiffness l on the soil. */
+    double relative_stiffness_radius = 0;
+    /** cells_larger_than_deflection_length() of the last cycle. */
+    std::string unresolved_deflection_length;
     /** The nested start's coarse solve is running: warn() holds its text
      *  back (the first cycle checks that mesh again), and the contact
      *  solve stops at the contact set, a seed needing no more. */

@@ -581,15 +581,16 @@ namespace PlateOnHalfspace
               // The boundary leaves the edge at a point on the circle and
               // follows the circle counterclockwise to the next piece. The
               // opening from the chord, not from a difference of angles
-              // (which loses every digit for a large disk): the minor arc
-              // if the centre lies left of the chord end -> next.
-              const double half_chord =
-                std::min(1., end.distance(next) / (2. * radius));
-              const double minor       = 2. * std::asin(half_chord);
-              const bool   centre_left = cross(next - end, centre - end) > 0.;
-              add_arc(end,
-                      next,
-                      centre_left ? minor : 2. * numbers::PI - minor);
+              // (which loses every digit for a large disk), and from the
+              // centre's signed distance to the chord (positive left of
+              // end -> next: the minor arc), not from the arc sine of the
+              // half chord over the radius, which loses half the digits
+              // near a half circle (an arc of pi + 4e-8 for a disk centred
+              // on a cell's edge).
+              const double chord = end.distance(next);
+              const double signed_distance =
+                cross(next - end, centre - end) / chord;
+              add_arc(end, next, 2. * std::atan2(0.5 * chord, signed_distance));
             }
         }
 

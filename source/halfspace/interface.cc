@@ -189,6 +189,7 @@ namespace PlateOnHalfspace
     tests.reinit(tests_sparsity);
     for (unsigned int i = 0; i < n; ++i)
       tests.set(i, i, 1.);
+    identity_tests = true;
   }
 
   void

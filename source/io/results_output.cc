@@ -289,17 +289,32 @@ namespace PlateOnHalfspace
     const Point<2> y =
       plate.get_foundation_space().symmetry.to_computed_part(x);
     PointValues values;
-    values.location    = x;
-    values.w           = plate.point_value(solution, y, 0);
-    values.q           = plate.point_value(pressure_field, y, 0);
-    const auto located = plate.locate(y);
-    Moments    m       = plate.moments(located.first, located.second, solution);
-    values.mx          = m.mx;
-    values.my          = m.my;
+    values.location = x;
+    values.w        = plate.point_value(solution, y, 0);
+    values.q        = plate.point_value(pressure_field, y, 0);
+    // The moments jump across cell edges and joints: at a point on an
+    // edge, a vertex or a joint, the mean of the cells there, as on the
+    // whole plate, where a mirror plane's cells on the other side have the
+    // same Mx and My and the opposite Mxy.
+    const auto cells = plate.cells_at(y);
+    Moments    m;
+    for (const auto &[cell, reference] : cells)
+      {
+        const Moments in_cell = plate.moments(cell, reference, solution);
+        m.mx += in_cell.mx / cells.size();
+        m.my += in_cell.my / cells.size();
+        m.mxy += in_cell.mxy / cells.size();
+      }
+    const MirrorSymmetry &symmetry = plate.get_foundation_space().symmetry;
+    if ((symmetry.x && std::abs(y[0]) <= symmetry.tolerance) ||
+        (symmetry.y && std::abs(y[1]) <= symmetry.tolerance))
+      m.mxy = 0;
+    values.mx = m.mx;
+    values.my = m.my;
     // Mxy, and with it sxy, is odd across each mirror plane the point was
     // reflected in.
     for (unsigned int d = 0; d < 2; ++d)
-      if (x[d] != y[d])
+      if (x[d] != y[d] && m.mxy != 0)
         m.mxy = -m.mxy;
     values.stresses = plate.fibre_stresses(m);
     return values;

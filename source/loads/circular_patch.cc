@@ -79,6 +79,12 @@ namespace PlateOnHalfspace
       }
 
       std::optional<double>
+      region_width() const override
+      {
+        return 2 * patch.radius;
+      }
+
+      std::optional<double>
       nominal_force() const override
       {
         return patch.pressure * *region_area();

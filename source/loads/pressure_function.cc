@@ -252,6 +252,13 @@ namespace PlateOnHalfspace
                               std::optional<double>();
       }
 
+      std::optional<double>
+      region_width() const override
+      {
+        return region_shape ? region_shape->region_width() :
+                              std::optional<double>();
+      }
+
       bool
       standing() const override
       {

@@ -78,6 +78,13 @@ namespace PlateOnHalfspace
       }
 
       std::optional<double>
+      region_width() const override
+      {
+        return std::min(patch.upper[0] - patch.lower[0],
+                        patch.upper[1] - patch.lower[1]);
+      }
+
+      std::optional<double>
       nominal_force() const override
       {
         return patch.pressure * *region_area();

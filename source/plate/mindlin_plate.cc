@@ -702,15 +702,20 @@ namespace PlateOnHalfspace
     return values;
   }
 
-  std::vector<std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
-  MindlinPlate::locate_on_each_slab(const Point<2> &x) const
+  struct MindlinPlate::NearCell
   {
-    // The cells whose bounding boxes come within the tolerance below of x,
-    // in the order of the active cells: on each slab the first of the
-    // nearest cells wins, as on a search through all of them, and a cell
-    // further than the tolerance could not be taken.
+    typename DoFHandler<2>::active_cell_iterator cell;
+    Point<2>                                     point;
+    double       distance = std::numeric_limits<double>::max();
+    unsigned int index    = 0; ///< among the active cells
+  };
+
+  std::vector<MindlinPlate::NearCell>
+  MindlinPlate::cells_near(const Point<2> &x, const double tolerance) const
+  {
+    // The cells whose bounding boxes come within the tolerance of x, in
+    // the order of the active cells.
     AssertThrow(cell_boxes, ExcMessage("MindlinPlate::locate before setup()."));
-    const double tolerance = 1e-10 * (1. + x.norm());
     std::vector<std::pair<BoundingBox<2>, unsigned int>> near;
     if (std::isfinite(tolerance))
       {
@@ -722,47 +727,67 @@ namespace PlateOnHalfspace
     std::sort(near.begin(), near.end(), [](const auto &a, const auto &b) {
       return a.second < b.second;
     });
-    struct Nearest
-    {
-      typename DoFHandler<2>::active_cell_iterator cell;
-      Point<2>                                     point;
-      double       distance = std::numeric_limits<double>::max();
-      unsigned int index    = 0;
-    };
-    std::map<types::material_id, Nearest> on_slab;
+    std::vector<NearCell> cells;
     for (const auto &[box, index] : near)
       {
         const auto                 &cell     = cell_boxes->cells[index];
-        Nearest                    &best     = on_slab[cell->material_id()];
         const BilinearQuadrilateral geometry = cell_geometry(cell);
         Point<2>                    p        = geometry.inverse_map(x);
         for (unsigned int d = 0; d < 2; ++d)
           p[d] = std::min(1., std::max(0., p[d]));
-        const double distance = geometry.map(p).distance(x);
-        if (distance < best.distance)
-          best = {cell, p, distance, index};
+        cells.push_back({cell, p, geometry.map(p).distance(x), index});
+      }
+    return cells;
+  }
+
+  std::vector<std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
+  MindlinPlate::locate_on_each_slab(const Point<2> &x) const
+  {
+    // On each slab the first of the nearest cells wins, as on a search
+    // through all of them, and a cell further than the tolerance could not
+    // be taken.
+    const double                           tolerance = 1e-10 * (1. + x.norm());
+    std::map<types::material_id, NearCell> on_slab;
+    for (const NearCell &near : cells_near(x, tolerance))
+      {
+        NearCell &best = on_slab[near.cell->material_id()];
+        if (near.distance < best.distance)
+          best = near;
       }
     // the nearest first (the first in the order of the cells among equals):
     // locate()'s one
-    std::vector<Nearest> holding;
+    std::vector<NearCell> holding;
     for (const auto &[slab, best] : on_slab)
       if (best.distance <= tolerance)
         holding.push_back(best);
     std::sort(holding.begin(),
               holding.end(),
-              [](const Nearest &a, const Nearest &b) {
+              [](const NearCell &a, const NearCell &b) {
                 return std::make_pair(a.distance, a.index) <
                        std::make_pair(b.distance, b.index);
               });
     std::vector<
       std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
       located;
-    for (const Nearest &n : holding)
+    for (const NearCell &n : holding)
       located.emplace_back(n.cell, n.point);
     // a point so far away that its distances overflow is off the plate
     // too (no cell was nearest)
     AssertThrow(!located.empty(), ExcMessage("The point is not on the plate."));
     return located;
+  }
+
+  std::vector<std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
+  MindlinPlate::cells_at(const Point<2> &x) const
+  {
+    const auto first = locate(x);
+    std::vector<
+      std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
+      cells{first};
+    for (const NearCell &near : cells_near(x, 1e-10 * (1. + x.norm())))
+      if (near.cell != first.first && near.distance <= 1e-10 * (1. + x.norm()))
+        cells.emplace_back(near.cell, near.point);
+    return cells;
   }
 
   std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>

@@ -150,6 +150,9 @@ namespace PlateOnHalfspace
     Evaluation e;
     e.location     = plate.get_foundation_space().symmetry.to_computed_part(x);
     e.has_location = true;
+    for (unsigned int d = 0; d < 2; ++d)
+      if (e.location[d] != x[d])
+        e.odd_field_sign = -e.odd_field_sign;
     try
       {
         std::tie(e.cell, e.reference_point) = plate.locate(e.location);

@@ -10,7 +10,9 @@
 # - a point load 1 mm from the corner of a weightless plate on a
 #   tensionless soil: the warning that the cells are too large to carry it;
 # - a narrow strip: no such warning for a central load, which the whole
-#   width carries, but for one near a long edge or near an end.
+#   width carries, but for one near a long edge or near an end;
+# - cells larger than the length over which the deflection varies at a
+#   lift-off line and at a patch's edge, and none once refined.
 # usage: load_warnings.sh PROGRAM
 set -u
 program=$1
@@ -178,6 +180,105 @@ subsection Output
 end'
 grep -q '^Warning: The resultant of the loads on the plate, 300 at (5.6, [^)]*), lies 0.4 from the outline, less than a third of the cells there' strip_near_end.stderr ||
   { fail "strip_near_end: no warning about the cells"; cat strip_near_end.stderr; }
+
+# Cells larger than the length over which the deflection varies
+# (doc/errors-and-limits.md, "Cells larger than l"). A weightless plate of
+# D = 0.011 curled on a soil of E0 = 1e10 (l = 1.2e-4) rests on a few
+# nodes of its 0.5 m cells and bends by metres between them.
+run curled_on_rigid 'set Output directory = results
+subsection Plate
+  set Length x        = 4
+  set Length y        = 4
+  set Thickness       = 0.05
+  set Young'"'"'s modulus = 1e3
+  set Unit weight     = 0
+end
+subsection Foundation
+  set Young'"'"'s modulus = 1e10
+  set Contact         = tensionless
+end
+subsection Temperature
+  set Difference = -20
+end
+subsection Loads
+  set Rectangular patches = -0.1,-0.1,0.1,0.1,100
+end
+subsection Discretization
+  set Subdivisions x = 8
+  set Subdivisions y = 8
+end
+subsection Output
+  set VTU       = false
+  set Verbosity = 0
+end'
+grep -q '^Warning: the last cycle.s mesh (cycle 0): cells of 0.5 carry the edge of the plate that the temperature difference curls, 4.0[0-9]e+03 times the length over which the deflection varies there (the plate.s radius of relative stiffness l, 0.000125; more than 2 times is not resolved)' curled_on_rigid.stderr ||
+  { fail "curled_on_rigid: no warning about the cells against l"; cat curled_on_rigid.stderr; }
+
+# A heavy 1 m patch near a corner of a slab on a stiff soil (l = 0.01,
+# far below the patch's width): the far part lifts off, and its line
+# crosses cells of 49 l.
+run lift_off_coarse 'set Output directory = results
+subsection Plate
+  set Length x        = 4
+  set Length y        = 4
+  set Thickness       = 0.25
+  set Young'"'"'s modulus = 3e7
+  set Unit weight     = 24
+end
+subsection Foundation
+  set Young'"'"'s modulus = 7e10
+  set Contact         = tensionless
+end
+subsection Loads
+  set Rectangular patches = 1,1,2,2,700
+end
+subsection Discretization
+  set Subdivisions x = 8
+  set Subdivisions y = 8
+end
+subsection Output
+  set VTU       = false
+  set Verbosity = 0
+end'
+grep -q '^Warning: the last cycle.s mesh (cycle 0): cells of 0.5 carry the line where the plate lifts off, 49.4 times the length over which the deflection varies there (the plate.s radius of relative stiffness l, 0.0101; more than 4 times is not resolved)' lift_off_coarse.stderr ||
+  { fail "lift_off_coarse: no warning about the cells on the lift-off line"; cat lift_off_coarse.stderr; }
+
+# A 0.3 m patch on 0.5 m cells, bonded, l = 0.125: 1.67 times the patch's
+# width (the deflection under the patch is 6 % off, the moment 17 %); one
+# refinement more (0.25 m cells) resolves it, and no warning is due.
+patch='set Output directory = results
+subsection Plate
+  set Length x        = 4
+  set Length y        = 4
+  set Thickness       = 0.25
+  set Young'"'"'s modulus = 3e7
+end
+subsection Foundation
+  set Young'"'"'s modulus = 3.6e7
+  set Contact         = bonded
+end
+subsection Loads
+  set Rectangular patches = -0.15,-0.15,0.15,0.15,700
+end
+subsection Output
+  set VTU       = false
+  set Verbosity = 0
+end'
+run patch_coarse "$patch
+subsection Discretization
+  set Subdivisions x = 8
+  set Subdivisions y = 8
+end"
+grep -q '^Warning: the last cycle.s mesh (cycle 0): cells of 0.5 carry the edge of Loads/Rectangular patches: patch 1, 1.67 times the length over which the deflection varies there (the load.s width, 0.3; more than 1.5 times is not resolved)' patch_coarse.stderr ||
+  { fail "patch_coarse: no warning about the cells against the patch"; cat patch_coarse.stderr; }
+run patch_refined "$patch
+subsection Discretization
+  set Subdivisions x      = 8
+  set Subdivisions y      = 8
+  set Initial refinements = 1
+end"
+! grep -q 'over which the deflection varies' patch_refined.stderr ||
+  { fail "patch_refined: a warning about cells that resolve the patch"; cat patch_refined.stderr; }
 
 echo "$failed failed"
 [ $failed -eq 0 ]

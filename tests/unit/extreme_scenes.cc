@@ -88,6 +88,17 @@ namespace
       << " = " << v << "\nend\n";
     return s.str();
   }
+  /** The run's warnings but the mesh's resolution of l (checked by
+   *  app/load_warnings), which these coarse meshes draw as well. */
+  std::vector<std::string>
+  warnings_but_resolution(const std::vector<std::string> &all)
+  {
+    std::vector<std::string> others;
+    for (const std::string &w : all)
+      if (w.find("over which the deflection varies") == std::string::npos)
+        others.push_back(w);
+    return others;
+  }
 } // namespace
 
 int
@@ -251,7 +262,7 @@ main()
         1e-12);
   {
     const auto problem  = solve_scene("flexible-square.prm", slab + half_off);
-    const auto warnings = problem->warnings();
+    const auto warnings = warnings_but_resolution(problem->warnings());
     AssertThrow(warnings.size() == 1 &&
                   warnings[0].find("lies partly off the plate") !=
                     std::string::npos,
@@ -365,7 +376,7 @@ main()
     // The whole plate (no mirror plane) balances on the line x = 0: the
     // third node that holds its tilt carries no pressure, either side's
     // is as valid, and the run says so.
-    const auto warnings = problem->warnings();
+    const auto warnings = warnings_but_resolution(problem->warnings());
     AssertThrow(warnings.size() == 1 &&
                   warnings[0].find("a knife edge") != std::string::npos,
                 ExcMessage("no warning for a plate on a knife edge"));
@@ -393,7 +404,7 @@ main()
                                                 s.number("applied_load")) <=
                                          1e-12 * s.number("applied_load"),
                 ExcMessage("the slab on two nodes is not carried"));
-    const auto warnings = problem->warnings();
+    const auto warnings = warnings_but_resolution(problem->warnings());
     AssertThrow(warnings.size() == 1 &&
                   warnings[0].find("smaller than one of the cells") !=
                     std::string::npos,

@@ -7,6 +7,7 @@
 //   1e-12; it was 2.9e66 / 0 when the tolerance grew with the radius).
 // - A huge disk whose circle crosses the plate: the covered area is finite
 //   and right to the precision of its centre's coordinates (1e-3 here).
+// - Disks centred on a cell's edge or vertex cover exactly their area.
 // - A 1e-9 square and disks of radius 1e-8 inside a cell and across an
 //   edge (to the precision of the centre's coordinates, 1e-6), and of
 //   radius 1e-12 1e-11 beside an edge are covered exactly once (they were
@@ -101,6 +102,24 @@ main()
               disk_area_on(cells, Point<2>(0.3, -0.2), radius),
               12,
               1e-12);
+    }
+  // Disks centred on a cell's edge or vertex, whose arcs in a cell are
+  // half or quarter circles: the covered area is exact (it was 1.3e-9 to
+  // 2.6e-9 too large where the arc's opening came out as pi + 4e-8).
+  for (const auto &[x, y, radius] :
+       std::vector<std::array<double, 3>>{{0.5, 0.4, 0.05},
+                                          {0.5, 0.5, 0.1},
+                                          {0, 0.3, 0.2},
+                                          {-1, -0.5, 0.45},
+                                          {0.5 + 1e-7, 0.4, 0.15}})
+    {
+      std::ostringstream name;
+      name << "disk of radius " << radius << " centred at (" << x << ", " << y
+           << "), covered area";
+      verdict(name.str(),
+              disk_area_on(cells, Point<2>(x, y), radius),
+              numbers::PI * radius * radius,
+              1e-13);
     }
   {
     // the circle crosses the plate near x = 0.5; the centre's last digit

@@ -273,6 +273,17 @@ namespace
                                std::to_string(solve.relative_residual)));
       }
   }
+  /** The run's warnings but the mesh's resolution of l (checked by
+   *  app/load_warnings), which these coarse meshes draw as well. */
+  std::vector<std::string>
+  warnings_but_resolution(const std::vector<std::string> &all)
+  {
+    std::vector<std::string> others;
+    for (const std::string &w : all)
+      if (w.find("over which the deflection varies") == std::string::npos)
+        others.push_back(w);
+    return others;
+  }
 } // namespace
 
 int
@@ -548,9 +559,10 @@ main()
                        std::abs(a.number(key) - b.number(key)) /
                          std::abs(b.number(key)));
     const bool fell_back = a.text("foundation_storage") == "dense";
+    const auto warnings  = warnings_but_resolution(automatic->warnings());
     const bool warned =
-      automatic->warnings().size() == 1 &&
-      automatic->warnings()[0].find(
+      warnings.size() == 1 &&
+      warnings[0].find(
         "Contact/Solver = auto: the conjugate gradients failed") == 0;
     deallog << "l = h/10 with the soil inverse, auto: the direct solver "
                "after the iterations fail: "

@@ -273,6 +273,17 @@ namespace PlateOnHalfspace
     }
 
     /**
+     * Whether the gap is tested with the pressure basis (Galerkin: a node's
+     * gap is an integral over its basis function's support) rather than
+     * taken at the node (collocation).
+     */
+    bool
+    gap_is_tested() const
+    {
+      return !identity_tests;
+    }
+
+    /**
      * The forces' matrix: M T (M without the positive basis), the nodal
      * forces M T q of pressure coefficients q (nodal_forces()).
      */
@@ -376,8 +387,9 @@ namespace PlateOnHalfspace
 
     bool                 positive_basis = false;
     SparsityPattern      transform_sparsity, tests_sparsity, force_sparsity;
-    SparseMatrix<double> transform;  ///< T: nodal values from coefficients
-    SparseMatrix<double> tests;      ///< B
+    SparseMatrix<double> transform; ///< T: nodal values from coefficients
+    SparseMatrix<double> tests;     ///< B
+    bool                 identity_tests = false;
     SparseMatrix<double> force_mass; ///< M T
   };
 

@@ -107,6 +107,18 @@ namespace PlateOnHalfspace
       return {};
     }
 
+    /**
+     * The smallest width of the region it covers when that region is its
+     * own (a rectangle's shorter side, a disk's diameter), the length the
+     * cells must resolve at its edge; none for a load over the whole
+     * plate or at a point.
+     */
+    virtual std::optional<double>
+    region_width() const
+    {
+      return {};
+    }
+
     /** Its load as given when its pressure is uniform over its own
      *  region (a patch: pressure times area); none otherwise. */
     virtual std::optional<double>

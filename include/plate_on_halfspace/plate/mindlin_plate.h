@@ -368,6 +368,16 @@ namespace PlateOnHalfspace
       std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
     locate_on_each_slab(const Point<2> &x) const;
 
+    /**
+     * Every cell that holds @p x, locate()'s first: one inside a cell, two
+     * on an edge, more at a vertex, of every slab on a joint. The moments
+     * jump across cell edges, so a value at such a point is their mean
+     * (doc/outputs.md, "Probe and profile values").
+     */
+    std::vector<
+      std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
+    cells_at(const Point<2> &x) const;
+
     /** Value of component @p component of @p solution at @p x. */
     double
     point_value(const Vector<double> &solution,
@@ -508,6 +518,14 @@ namespace PlateOnHalfspace
      *  setup(); defined in the source, so that the header stays lean. */
     struct CellBoxes;
     std::shared_ptr<const CellBoxes> cell_boxes;
+
+    /** A cell near a point (cells_near()), defined in the source. */
+    struct NearCell;
+    /** The cells whose bounding boxes come within @p tolerance of @p x, in
+     *  the order of the active cells, with the point's reference
+     *  coordinates clamped to each and their distance from @p x. */
+    std::vector<NearCell>
+    cells_near(const Point<2> &x, const double tolerance) const;
   };
 } // namespace PlateOnHalfspace
 

@@ -46,6 +46,10 @@ namespace PlateOnHalfspace
        *  of the computed part). */
       Point<2> location;
       bool     has_location = false;
+      /** The sign a field odd across the mirror planes (Mxy) takes at the
+       *  requested point against its image at location: -1 where the
+       *  point was reflected in one plane, 1 otherwise. */
+      double odd_field_sign = 1;
       /** The cell and reference point the value was taken in. */
       typename DoFHandler<2>::active_cell_iterator cell;
       Point<2>                                     reference_point;

@@ -107,6 +107,8 @@ namespace PlateOnHalfspace
             local[i] = field == Field::mx ? dm[i].mx :
                        field == Field::my ? dm[i].my :
                                             dm[i].mxy;
+          if (field == Field::mxy)
+            local *= evaluation.odd_field_sign;
           break;
         case Field::principal_moment:
         case Field::stress_bottom:

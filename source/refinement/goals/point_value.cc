@@ -56,6 +56,8 @@ namespace PlateOnHalfspace
                                            field_quantity(),
                                            result.cell,
                                            result.reference_point);
+        if (field == Field::mxy)
+          result.value *= result.odd_field_sign;
         return result;
       }
 

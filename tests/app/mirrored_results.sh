@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# What a symmetric run (Discretization/Symmetry = auto, x, y) writes about
+# the whole plate must be what the whole-plate run (none) writes
+# (doc/outputs.md): the goal Mxy at a point of the mirrored-away part,
+# which changes sign in one mirror plane and not in two, and the tested
+# gap of nodes-00.csv on the mirror planes, whose basis functions the
+# computed part holds only in part, and probes on cell edges and vertices
+# (the mean of the cells there; on a mirror plane, of the mirrored cells
+# too). Compared to 1e-9 of the field's scale.
+# usage: mirrored_results.sh PROGRAM
+set -u
+program=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failed=0
+fail() { echo "FAILED: $*"; failed=$((failed + 1)); }
+
+for symmetry in none auto x y; do
+  cat >"$symmetry.prm" <<EOF2
+set Output directory = $symmetry
+subsection Plate
+  set Length x    = 6
+  set Length y    = 4
+  set Thickness   = 0.25
+  set Young's modulus = 3e7
+  set Unit weight = 24
+end
+subsection Foundation
+  set Young's modulus = 1e5
+  set Contact         = tensionless
+end
+subsection Temperature
+  set Difference = -10
+end
+subsection Loads
+  set Circular patches = 1,0.5,0.3,700 ; -1,0.5,0.3,700 ; 1,-0.5,0.3,700 ; -1,-0.5,0.3,700
+end
+subsection Discretization
+  set Subdivisions x = 4
+  set Subdivisions y = 4
+  set Symmetry       = $symmetry
+end
+subsection Adaptivity
+  set Goal = Mxy at -1.2,0.7
+end
+subsection Output
+  set Probe points = -1.5,-0.83 ; -1.5,1 ; 0,0.5 ; 0.7,0 ; 1.2,-0.3
+  set VTU          = false
+  set Verbosity    = 0
+end
+EOF2
+  "$program" "$symmetry.prm" >"$symmetry.log" 2>&1 ||
+    fail "$symmetry: exit status $?"
+done
+
+python3 - <<'EOF' || failed=$((failed + 1))
+import csv, json, sys
+
+def goal(symmetry):
+    run = json.load(open(symmetry + "/summary.json"))
+    return run["symmetry"], run["cycles"][-1]["goal"]["value"]
+
+def nodes(symmetry):
+    rows = {}
+    for r in csv.DictReader(open(symmetry + "/nodes-00.csv")):
+        rows[(round(float(r["x"]), 9), round(float(r["y"]), 9))] = r
+    return rows
+
+bad = 0
+_, reference = goal("none")
+whole = nodes("none")
+for symmetry in ["auto", "x", "y"]:
+    used, value = goal(symmetry)
+    ok = abs(value - reference) <= 1e-9 * abs(reference)
+    print("Symmetry = %s (%s): goal Mxy at -1.2,0.7 %s the whole plate's: %s"
+          % (symmetry, used, "equals" if ok else "differs from",
+             "ok" if ok else "FAILED (%.9g against %.9g)" % (value, reference)))
+    bad += not ok
+    probes = json.load(open(symmetry + "/summary.json"))["cycles"][-1]["probes"]
+    whole_probes = json.load(open("none/summary.json"))["cycles"][-1]["probes"]
+    scale = max(max(abs(p["Mx"]), abs(p["My"])) for p in whole_probes)
+    worst = 0
+    for p, r in zip(probes, whole_probes):
+        values = [p["Mx"], p["My"]] + p["stress_bottom"] + p["stress_top"]
+        expected = [r["Mx"], r["My"]] + r["stress_bottom"] + r["stress_top"]
+        worst = max([worst] + [abs(a - b) / scale for a, b in
+                               zip(values[:2], expected[:2])])
+        stress_scale = max(abs(v) for v in expected[2:])
+        worst = max([worst] + [abs(a - b) / stress_scale for a, b in
+                               zip(values[2:], expected[2:])])
+    ok = len(probes) == len(whole_probes) == 5 and worst <= 1e-9
+    print("Symmetry = %s: probes on cell edges and vertices within 1e-9 of "
+          "the whole plate's: %s" % (symmetry, "ok" if ok else
+                                     "FAILED (%.2g)" % worst))
+    bad += not ok
+    part = nodes(symmetry)
+    if sorted(part) != sorted(whole):
+        print("Symmetry = %s: nodes-00.csv lists other nodes: FAILED" % symmetry)
+        bad += 1
+        continue
+    for column in ["w", "q", "gap"]:
+        scale = max(abs(float(r[column])) for r in whole.values())
+        worst = max(abs(float(part[k][column]) - float(whole[k][column]))
+                    for k in whole) / scale
+        ok = worst <= 1e-9
+        print("Symmetry = %s: nodes-00.csv %s within 1e-9 of the whole "
+              "plate's: %s" % (symmetry, column, "ok" if ok else
+                               "FAILED (%.2g)" % worst))
+        bad += not ok
+sys.exit(1 if bad else 0)
+EOF
+
+[ $failed -eq 0 ] || { echo "$failed failed"; exit 1; }
+echo "all passed"
