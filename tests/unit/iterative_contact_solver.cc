@@ -273,17 +273,6 @@ namespace
                                std::to_string(solve.relative_residual)));
       }
   }
-  /** The run's warnings but the mesh's resolution of l (checked by
-   *  app/load_warnings), which these coarse meshes draw as well. */
-  std::vector<std::string>
-  warnings_but_resolution(const std::vector<std::string> &all)
-  {
-    std::vector<std::string> others;
-    for (const std::string &w : all)
-      if (w.find("over which the deflection varies") == std::string::npos)
-        others.push_back(w);
-    return others;
-  }
 } // namespace
 
 int
