@@ -305,9 +305,9 @@ namespace PlateOnHalfspace
         m.my += in_cell.my / cells.size();
         m.mxy += in_cell.mxy / cells.size();
       }
+    // on a mirror plane: fewer distinct images than copies
     const MirrorSymmetry &symmetry = plate.get_foundation_space().symmetry;
-    if ((symmetry.x && std::abs(y[0]) <= symmetry.tolerance) ||
-        (symmetry.y && std::abs(y[1]) <= symmetry.tolerance))
+    if (symmetry.images(y).size() < symmetry.n_copies())
       m.mxy = 0;
     values.mx = m.mx;
     values.my = m.my;
