@@ -148,26 +148,9 @@ namespace PlateOnHalfspace
         grad_beta[0][1] = (-xt[0] * gx[0] + xs[0] * gx[1]) / det;
         grad_beta[1][0] = (xt[1] * gy[0] - xs[1] * gy[1]) / det;
         grad_beta[1][1] = (-xt[0] * gy[0] + xs[0] * gy[1]) / det;
-        const Moments m = plate.moments_of_rotation_gradient(grad_beta);
-        switch (quantity)
-          {
-            case PlateQuantity::mx:
-              return m.mx;
-            case PlateQuantity::my:
-              return m.my;
-            case PlateQuantity::mxy:
-              return m.mxy;
-            case PlateQuantity::principal_moment:
-              // hypot: no overflow for any finite moments
-              return 0.5 * (m.mx + m.my) +
-                     std::hypot(0.5 * (m.mx - m.my), m.mxy);
-            case PlateQuantity::principal_stress_bottom:
-              return plate.fibre_stresses(m).principal_bottom;
-            case PlateQuantity::principal_stress_top:
-              return plate.fibre_stresses(m).principal_top;
-            default:
-              return std::numeric_limits<double>::quiet_NaN();
-          }
+        return moment_quantity(plate,
+                               plate.moments_of_rotation_gradient(grad_beta),
+                               quantity);
       }
 
       /** The quantity at any reference point @p p. */
@@ -563,6 +546,31 @@ namespace PlateOnHalfspace
       return extrema;
     }
   } // namespace
+
+  double
+  moment_quantity(const MindlinPlate &plate,
+                  const Moments      &m,
+                  const PlateQuantity quantity)
+  {
+    switch (quantity)
+      {
+        case PlateQuantity::mx:
+          return m.mx;
+        case PlateQuantity::my:
+          return m.my;
+        case PlateQuantity::mxy:
+          return m.mxy;
+        case PlateQuantity::principal_moment:
+          // hypot: no overflow for any finite moments
+          return 0.5 * (m.mx + m.my) + std::hypot(0.5 * (m.mx - m.my), m.mxy);
+        case PlateQuantity::principal_stress_bottom:
+          return plate.fibre_stresses(m).principal_bottom;
+        case PlateQuantity::principal_stress_top:
+          return plate.fibre_stresses(m).principal_top;
+        default:
+          return std::numeric_limits<double>::quiet_NaN();
+      }
+  }
 
   double
   plate_quantity(const MindlinPlate                                 &plate,

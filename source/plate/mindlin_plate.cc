@@ -780,13 +780,27 @@ namespace PlateOnHalfspace
   std::vector<std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
   MindlinPlate::cells_at(const Point<2> &x) const
   {
-    const auto first = locate(x);
+    // the tolerance and the first cell of locate_on_each_slab(): the
+    // nearest, the first in the order of the cells among equals
+    const double          tolerance = 1e-10 * (1. + x.norm());
+    std::vector<NearCell> holding;
+    for (const NearCell &near : cells_near(x, tolerance))
+      if (near.distance <= tolerance)
+        holding.push_back(near);
+    AssertThrow(!holding.empty(), ExcMessage("The point is not on the plate."));
+    const auto first =
+      std::min_element(holding.begin(),
+                       holding.end(),
+                       [](const NearCell &a, const NearCell &b) {
+                         return std::make_pair(a.distance, a.index) <
+                                std::make_pair(b.distance, b.index);
+                       });
+    std::rotate(holding.begin(), first, first + 1);
     std::vector<
       std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
-      cells{first};
-    for (const NearCell &near : cells_near(x, 1e-10 * (1. + x.norm())))
-      if (near.cell != first.first && near.distance <= 1e-10 * (1. + x.norm()))
-        cells.emplace_back(near.cell, near.point);
+      cells;
+    for (const NearCell &n : holding)
+      cells.emplace_back(n.cell, n.point);
     return cells;
   }
 

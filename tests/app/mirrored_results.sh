@@ -6,7 +6,8 @@
 # gap of nodes-00.csv on the mirror planes, whose basis functions the
 # computed part holds only in part, and probes on cell edges and vertices
 # (the mean of the cells there; on a mirror plane, of the mirrored cells
-# too). Compared to 1e-9 of the field's scale.
+# too), and goals at such points, which must equal the probe there.
+# Compared to 1e-9 of the field's scale.
 # usage: mirrored_results.sh PROGRAM
 set -u
 program=$1
@@ -16,9 +17,10 @@ cd "$work"
 failed=0
 fail() { echo "FAILED: $*"; failed=$((failed + 1)); }
 
-for symmetry in none auto x y; do
-  cat >"$symmetry.prm" <<EOF2
-set Output directory = $symmetry
+# scene SYMMETRY DIRECTORY GOAL PROBES
+scene() {
+  cat >"$2.prm" <<EOF2
+set Output directory = $2
 subsection Plate
   set Length x    = 6
   set Length y    = 4
@@ -39,22 +41,36 @@ end
 subsection Discretization
   set Subdivisions x = 4
   set Subdivisions y = 4
-  set Symmetry       = $symmetry
+  set Symmetry       = $1
 end
 subsection Adaptivity
-  set Goal = Mxy at -1.2,0.7
+  set Goal = $3
 end
 subsection Output
-  set Probe points = -1.5,-0.83 ; -1.5,1 ; 0,0.5 ; 0.7,0 ; 1.2,-0.3
+  set Probe points = $4
   set VTU          = false
   set Verbosity    = 0
 end
 EOF2
-  "$program" "$symmetry.prm" >"$symmetry.log" 2>&1 ||
-    fail "$symmetry: exit status $?"
+  "$program" "$2.prm" >"$2.log" 2>&1 || fail "$2: exit status $?"
+}
+
+for symmetry in none auto x y; do
+  scene $symmetry $symmetry "Mxy at -1.2,0.7" \
+    "-1.5,-0.83 ; -1.5,1 ; 0,0.5 ; 0.7,0 ; 1.2,-0.3"
 done
 
-python3 - <<'EOF' || failed=$((failed + 1))
+# Goals at a point on a cell edge (x = 1.5), a vertex (1.5,1) and a mirror
+# plane (x = 0, y = 0): the mean of the cells there, as the probe there.
+edge_goals="Mx:1.5,0.7 Mxy:1.5,1 stress_bottom:1.5,1 Mxy:0,0.7 Mx:0,-1"
+for goal in $edge_goals; do
+  for symmetry in none auto; do
+    scene $symmetry "edge-$symmetry-${goal/:/-}" "${goal%%:*} at ${goal#*:}" \
+      "${goal#*:}"
+  done
+done
+
+python3 - $edge_goals <<'EOF' || failed=$((failed + 1))
 import csv, json, sys
 
 def goal(symmetry):
@@ -108,6 +124,34 @@ for symmetry in ["auto", "x", "y"]:
               "plate's: %s" % (symmetry, column, "ok" if ok else
                                "FAILED (%.2g)" % worst))
         bad += not ok
+
+# the goal against the probe at its point, and the symmetric run's against
+# the whole plate's
+thickness = 0.25
+for goal in sys.argv[1:]:
+    field, point = goal.split(":")
+    values = {}
+    for symmetry in ["none", "auto"]:
+        cycle = json.load(open("edge-%s-%s-%s/summary.json"
+                               % (symmetry, field, point)))["cycles"][-1]
+        probe = cycle["probes"][0]
+        sx, sy, sxy = probe["stress_bottom"]
+        from_probe = {"Mx": probe["Mx"], "Mxy": sxy * thickness ** 2 / 6,
+                      "stress_bottom": 0.5 * (sx + sy) +
+                      ((0.5 * (sx - sy)) ** 2 + sxy ** 2) ** 0.5}[field]
+        scale = max(abs(probe["Mx"]), abs(probe["My"])) * (
+            6 / thickness ** 2 if field == "stress_bottom" else 1)
+        values[symmetry] = cycle["goal"]["value"]
+        ok = abs(values[symmetry] - from_probe) <= 1e-9 * scale
+        print("Symmetry = %s: goal %s at %s equals the probe's: %s"
+              % (symmetry, field, point, "ok" if ok else "FAILED (%.9g "
+                 "against %.9g)" % (values[symmetry], from_probe)))
+        bad += not ok
+    ok = abs(values["auto"] - values["none"]) <= 1e-9 * scale
+    print("Symmetry = auto: goal %s at %s equals the whole plate's: %s"
+          % (field, point, "ok" if ok else "FAILED (%.9g against %.9g)"
+             % (values["auto"], values["none"])))
+    bad += not ok
 sys.exit(1 if bad else 0)
 EOF
 

@@ -69,6 +69,16 @@ namespace PlateOnHalfspace
                  const typename DoFHandler<2>::active_cell_iterator &cell,
                  const Point<2> &reference_point);
 
+  /**
+   * The value of @p quantity, one of the moments or stresses, for the
+   * bending moments @p m (MindlinPlate::moments(), thermal moment
+   * included): what plate_quantity() gives from the moments at its point.
+   */
+  double
+  moment_quantity(const MindlinPlate &plate,
+                  const Moments      &m,
+                  const PlateQuantity quantity);
+
   /** A peak of a field and where it is. */
   struct FieldExtremum
   {

@@ -50,9 +50,20 @@ namespace PlateOnHalfspace
        *  requested point against its image at location: -1 where the
        *  point was reflected in one plane, 1 otherwise. */
       double odd_field_sign = 1;
-      /** The cell and reference point the value was taken in. */
-      typename DoFHandler<2>::active_cell_iterator cell;
-      Point<2>                                     reference_point;
+      /**
+       * The cells the value was taken in, with the point's reference
+       * coordinates in each: every cell that holds a point value's point,
+       * MindlinPlate::locate()'s first (two on a cell edge, more at a
+       * vertex or a joint), whose mean a moment is (doc/outputs.md, "Probe
+       * and profile values"); w and q are read in the first. A peak has
+       * the one cell it was found in.
+       */
+      std::vector<
+        std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
+        cells;
+      /** Whether the point lies on a mirror plane, where Mxy of the whole
+       *  plate, the mean of the cells on both sides, is 0. */
+      bool on_mirror_plane = false;
     };
 
     /** How the goal's error is estimated. */
@@ -130,7 +141,7 @@ namespace PlateOnHalfspace
   protected:
     /**
      * The evaluation at the whole-plate point @p x: its image on the
-     * computed part, the cell and reference point there. Throws naming
+     * computed part and the cells that hold it there. Throws naming
      * Adaptivity/Goal if @p x is off the plate.
      */
     static Evaluation

@@ -34,17 +34,18 @@ namespace PlateOnHalfspace
       {
         const Evaluation other  = at_point(plate, second);
         Evaluation       result = at_point(plate, first);
+        // w is read in the first cell, as a probe reads it
         result.value =
           PlateOnHalfspace::plate_quantity(plate,
                                            solution,
                                            PlateQuantity::w,
-                                           result.cell,
-                                           result.reference_point) -
+                                           result.cells.front().first,
+                                           result.cells.front().second) -
           PlateOnHalfspace::plate_quantity(plate,
                                            solution,
                                            PlateQuantity::w,
-                                           other.cell,
-                                           other.reference_point);
+                                           other.cells.front().first,
+                                           other.cells.front().second);
         return result;
       }
 
@@ -59,10 +60,10 @@ namespace PlateOnHalfspace
             const Evaluation   e  = at_point(plate, x);
             const FESystem<2> &fe = plate.get_fe();
             Vector<double>     local(fe.n_dofs_per_cell());
-            const auto         phi = q2_shape_values(e.reference_point);
+            const auto         phi = q2_shape_values(e.cells.front().second);
             for (unsigned int i = 0; i < 9; ++i)
               local[fe.component_to_system_index(0, i)] = sign * phi[i];
-            add_cell_vector(plate, e.cell, local, load);
+            add_cell_vector(plate, e.cells.front().first, local, load);
           }
         return load;
       }

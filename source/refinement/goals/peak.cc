@@ -24,11 +24,10 @@ namespace PlateOnHalfspace
         const FieldExtremum peak =
           field_maximum(plate, solution, field_quantity());
         Evaluation result;
-        result.value           = peak.value;
-        result.location        = peak.location;
-        result.has_location    = true;
-        result.cell            = peak.cell;
-        result.reference_point = peak.reference_point;
+        result.value        = peak.value;
+        result.location     = peak.location;
+        result.has_location = true;
+        result.cells        = {{peak.cell, peak.reference_point}};
         return result;
       }
     };

@@ -43,9 +43,10 @@ namespace PlateOnHalfspace
     PlateFieldGoal(const std::string &text, const Field field);
 
     /**
-     * The field's derivative at the evaluation's cell and reference point
+     * The field's derivative at the evaluation: of w and q in its first
+     * cell, of a moment or stress through the mean of its cells' moments
      * (the larger principal moment and the fibres' principal stresses
-     * linearised at the solution there).
+     * linearised at that mean; Mxy's is 0 on a mirror plane).
      */
     Vector<double>
     derivative(const MindlinPlate   &plate,
@@ -56,6 +57,19 @@ namespace PlateOnHalfspace
     /** The field as field_extrema.h evaluates it. */
     PlateQuantity
     field_quantity() const;
+
+    /**
+     * The field at @p evaluation's point: w of @p solution, or q of
+     * @p pressure_field, in its first cell; a moment or stress from the
+     * mean of its cells' moments (Mxy 0 on a mirror plane), with Mxy's
+     * sign for a point reflected in one plane (doc/outputs.md, "Probe and
+     * profile values").
+     */
+    double
+    value_at(const MindlinPlate   &plate,
+             const Vector<double> &solution,
+             const Vector<double> &pressure_field,
+             const Evaluation     &evaluation) const;
 
     const Field field;
   };

@@ -49,15 +49,7 @@ namespace PlateOnHalfspace
                const ContactState &) const override
       {
         Evaluation result = at_point(plate, point);
-        result.value =
-          PlateOnHalfspace::plate_quantity(plate,
-                                           field == Field::q ? pressure_field :
-                                                               solution,
-                                           field_quantity(),
-                                           result.cell,
-                                           result.reference_point);
-        if (field == Field::mxy)
-          result.value *= result.odd_field_sign;
+        result.value      = value_at(plate, solution, pressure_field, result);
         return result;
       }
 
