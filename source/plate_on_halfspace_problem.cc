@@ -1264,7 +1264,14 @@ namespace PlateOnHalfspace
     warn_unresolved_contact_region();
     warn_knife_edge();
     if (!coarse_solve_running)
-      unresolved_deflection_length = cells_larger_than_deflection_length();
+      unresolved_deflection_length =
+        cells_larger_than_deflection_length(
+          computed_loads,
+          contact,
+          false,
+          "the last cycle's mesh (cycle " +
+            std::to_string(summary.count("cycle")) + ")")
+          .warning;
     // The solver's factorisation of the flexibility belongs to the
     // foundation's time (doc/outputs.md, the time split); so does a
     // rebuild after failed iterations, whose time the solve had.
@@ -1324,16 +1331,20 @@ namespace PlateOnHalfspace
     warn(text.str());
   }
 
-  std::string
-  PlateOnHalfspaceProblem::cells_larger_than_deflection_length() const
+  PlateOnHalfspaceProblem::UnresolvedCells
+  PlateOnHalfspaceProblem::cells_larger_than_deflection_length(
+    const LoadList     &loads,
+    const ContactState &state,
+    const bool          moving_features_only,
+    const std::string  &mesh) const
   {
     const double l = relative_stiffness_radius;
     if (!(l > 0) || !std::isfinite(l))
-      return "";
+      return {};
     const FoundationSpace &space    = mindlin_plate->get_foundation_space();
     const bool             lift_off = parameters.foundation.tensionless &&
-                          contact.converged &&
-                          contact.in_contact.size() == space.n_nodes();
+                          state.converged &&
+                          state.in_contact.size() == space.n_nodes();
     // How many times the length the cells may be before the results near
     // each feature are off by more than a few percent, measured in
     // doc/errors-and-limits.md, "Cells larger than l": a load's edge
@@ -1345,7 +1356,7 @@ namespace PlateOnHalfspace
     // edges: every boundary face but a mirror plane's and a tied joint's
     // (a mesh file's outline keeps its own boundary ids).
     std::vector<bool> on_free_edge(space.cells.size(), false);
-    if (mindlin_plate->get_thermal_load().moment != 0)
+    if (mindlin_plate->get_thermal_load().moment != 0 && !moving_features_only)
       {
         const auto &joints    = slab_grid->get_joints();
         const auto  free_edge = [&](const auto &face) {
@@ -1395,7 +1406,7 @@ namespace PlateOnHalfspace
               worst_length_name = length_name;
             }
         };
-        for (const auto &load : computed_loads)
+        for (const auto &load : loads)
           if (load->jump_on(cell.geometry.get_vertices(),
                             cell.geometry.area()) > 0)
             {
@@ -1422,7 +1433,7 @@ namespace PlateOnHalfspace
           {
             bool touching = false, lifted = false;
             for (const unsigned int i : cell.nodes())
-              (contact.in_contact[i] ? touching : lifted) = true;
+              (state.in_contact[i] ? touching : lifted) = true;
             if (touching && lifted)
               consider(l,
                        lift_off_ratio,
@@ -1431,20 +1442,23 @@ namespace PlateOnHalfspace
           }
       }
     if (worst_what.empty())
-      return "";
+      return {};
     std::ostringstream text;
-    text << std::setprecision(3) << "the last cycle's mesh (cycle "
-         << summary.count("cycle") << "): cells of " << worst_size << " carry "
-         << worst_what << ", " << worst_size / worst_length
+    text << std::setprecision(3) << mesh << ": cells of " << worst_size
+         << " carry " << worst_what << ", " << worst_size / worst_length
          << " times the length over which the deflection varies there ("
          << worst_length_name << ", " << worst_length << "; more than "
          << worst_ratio
          << " times is not resolved): w, q, the moments and the contact area "
             "near it are not converged (off by 6 % to 60 % in "
-            "doc/errors-and-limits.md, \"Cells larger than l\"). Refine "
-            "there (Discretization/Initial refinements, or "
-            "Adaptivity/Refinement = adaptive with more Cycles).";
-    return text.str();
+            "doc/errors-and-limits.md, \"Cells larger than l\"). "
+         << (moving_features_only ?
+               // the cycles refine for the loads without an offset
+               "Refine along the loads' path (Discretization/Initial "
+               "refinements, or Subdivisions x and y)." :
+               "Refine there (Discretization/Initial refinements, or "
+               "Adaptivity/Refinement = adaptive with more Cycles).");
+    return {worst, text.str()};
   }
 
   void
@@ -1613,14 +1627,16 @@ namespace PlateOnHalfspace
     std::vector<bool>        warm_start = contact.active_set;
     std::vector<SweepRow>    rows;
     double                   rounding_limited_residual = 0;
+    // the position whose loads the mesh resolves worst
+    UnresolvedCells unresolved;
     for (unsigned int step = 0; step < loads.sweep_steps; ++step)
       {
         Interruption::check();
         Timer                phase;
-        const Point<2>       offset = loads.sweep_position(step);
-        const Vector<double> load =
-          mindlin_plate->load_vector(loads_at(offset, true));
-        ContactState state;
+        const Point<2>       offset         = loads.sweep_position(step);
+        const LoadList       position_loads = loads_at(offset, true);
+        const Vector<double> load = mindlin_plate->load_vector(position_loads);
+        ContactState         state;
         if (parameters.foundation.tensionless)
           {
             state = contact_solver->solve(*mindlin_plate,
@@ -1641,6 +1657,15 @@ namespace PlateOnHalfspace
           }
         rounding_limited_residual =
           std::max(rounding_limited_residual, state.rounding_limited_residual);
+        {
+          std::ostringstream mesh;
+          mesh << "Loads/Sweep: the last cycle's mesh at position " << step
+               << " (offset " << offset[0] << ", " << offset[1] << ")";
+          UnresolvedCells here = cells_larger_than_deflection_length(
+            position_loads, state, true, mesh.str());
+          if (here.excess > unresolved.excess)
+            unresolved = std::move(here);
+        }
         SweepRow row;
         row.position     = offset;
         row.applied_load = symmetry.n_copies() * mindlin_plate->resultant(load);
@@ -1702,6 +1727,10 @@ namespace PlateOnHalfspace
                                "errors-and-limits.md, \"Finite results\")."));
     warn_rounding_floor(rounding_limited_residual,
                         "at the worst of the sweep's positions");
+    // the moving loads' edges and lift-off lines (the curled edges stay
+    // where the cycles' warning found them)
+    if (!unresolved.warning.empty())
+      warn(unresolved.warning);
     output->write_sweep(rows);
     bool all_converged = true;
     for (const auto &s : cycle_summaries)

@@ -234,15 +234,29 @@ namespace PlateOnHalfspace
     void
     warn_knife_edge();
 
+    /** Cells too coarse for a feature they carry: how many times its
+     *  allowed ratio the worst exceeds (0 where none does), and why. */
+    struct UnresolvedCells
+    {
+      double      excess = 0;
+      std::string warning;
+    };
+
     /**
-     * Why the cycle's mesh does not resolve the length over which the
-     * deflection varies (doc/errors-and-limits.md, "Cells larger than l"):
-     * a cell carrying a load's edge (Load::jump_on()) larger than the
-     * larger of l and the load's size, or a cell on the line where a
-     * tensionless plate lifts off larger than l. Empty where none is.
+     * Why the mesh, solved for @p loads with the contact @p state, does
+     * not resolve the length over which the deflection varies
+     * (doc/errors-and-limits.md, "Cells larger than l"): a cell carrying
+     * a load's edge (Load::jump_on()) larger than the larger of l and the
+     * load's size, a cell on a free edge the temperature curls (unless
+     * @p moving_features_only: the features a sweep's position moves), or
+     * a cell on the line where a tensionless plate lifts off larger than
+     * l. @p mesh names the mesh and position in the warning.
      */
-    std::string
-    cells_larger_than_deflection_length() const;
+    UnresolvedCells
+    cells_larger_than_deflection_length(const LoadList     &loads,
+                                        const ContactState &state,
+                                        const bool         moving_features_only,
+                                        const std::string &mesh) const;
 
     /**
      * The goal's value and the dual-weighted residual estimate of its

@@ -12,7 +12,8 @@
 # - a narrow strip: no such warning for a central load, which the whole
 #   width carries, but for one near a long edge or near an end;
 # - cells larger than the length over which the deflection varies at a
-#   lift-off line and at a patch's edge, and none once refined.
+#   lift-off line, at a patch's edge and along a sweep's path, and none
+#   once refined.
 # usage: load_warnings.sh PROGRAM
 set -u
 program=$1
@@ -279,6 +280,52 @@ subsection Discretization
 end"
 ! grep -q 'over which the deflection varies' patch_refined.stderr ||
   { fail "patch_refined: a warning about cells that resolve the patch"; cat patch_refined.stderr; }
+
+# A sweep over a mesh refined for the loads without an offset: the tyres
+# at x = -2 sit on refined cells, at 0 and 2 on cells of 0.5 = 1.75 l.
+# Uniform cells of 0.25 give s1 bottom 504.5 at every position; these
+# 475.5, 425.8 and 425.7 (and s1 top 96.9 against 170.8 off the refined
+# part).
+sweep_scene='set Output directory = results
+subsection Plate
+  set Length x  = 6
+  set Length y  = 4
+  set Thickness = 0.25
+end
+subsection Foundation
+  set Model                        = dense liquid
+  set Modulus of subgrade reaction = 5e6
+  set Contact                      = bonded
+end
+subsection Loads
+  set Axles = single, -2, 0, 0, 80, 700
+  set Sweep = 0, 0, 4, 0, 3
+end
+subsection Output
+  set VTU       = false
+  set Verbosity = 0
+end'
+run sweep_coarse "$sweep_scene
+subsection Discretization
+  set Subdivisions x      = 6
+  set Subdivisions y      = 4
+  set Initial refinements = 1
+end
+subsection Adaptivity
+  set Cycles     = 4
+  set Refinement = adaptive
+end"
+[ "$(grep -c '^Warning: ' sweep_coarse.stderr)" -eq 1 ] &&
+  grep -q '^Warning: Loads/Sweep: the last cycle.s mesh at position 1 (offset 2, 0): cells of 0.5 carry the edge of Loads/Axles: group 1 (single), tyre [12], 1.75 times the length over which the deflection varies there (the plate.s radius of relative stiffness l, 0.286; more than 1.5 times is not resolved).*Refine along the loads. path' sweep_coarse.stderr ||
+  { fail "sweep_coarse: not one warning naming the worst position"; cat sweep_coarse.stderr; }
+run sweep_refined "$sweep_scene
+subsection Discretization
+  set Subdivisions x      = 6
+  set Subdivisions y      = 4
+  set Initial refinements = 2
+end"
+! grep -q 'over which the deflection varies' sweep_refined.stderr ||
+  { fail "sweep_refined: a warning about cells that resolve the path"; cat sweep_refined.stderr; }
 
 echo "$failed failed"
 [ $failed -eq 0 ]
