@@ -234,6 +234,15 @@ namespace PlateOnHalfspace
     void
     warn_knife_edge();
 
+    /**
+     * Why the goal's estimated error leaves out part of the cycle's error
+     * (doc/errors-and-limits.md, "Goal error estimates"): element exclusion
+     * stops with nodes in tension, and the estimate is of the
+     * discretisation on that contact set only. Empty otherwise.
+     */
+    std::string
+    goal_estimate_beside_tensile_nodes() const;
+
     /** Cells too coarse for a feature they carry: how many times its
      *  allowed ratio the worst exceeds (0 where none does), and why. */
     struct UnresolvedCells
@@ -357,6 +366,8 @@ namespace PlateOnHalfspace
     double relative_stiffness_radius = 0;
     /** cells_larger_than_deflection_length() of the last cycle. */
     std::string unresolved_deflection_length;
+    /** goal_estimate_beside_tensile_nodes() of the last cycle. */
+    std::string unmet_contact_conditions;
     /** The nested start's coarse solve is running: warn() holds its text
      *  back (the first cycle checks that mesh again), and the contact
      *  solve stops at the contact set, a seed needing no more. */

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Scenes that run with a warning about their loads (doc/errors-and-limits.md,
-# "What you wrote and what you get"), through the real executable: each
-# must exit 0 and print its "Warning: ..." lines on stderr, and the files
-# must report what the plate carries.
+# Scenes that run with a warning about their loads, their mesh or their
+# estimate (doc/errors-and-limits.md, "What you wrote and what you get"),
+# through the real executable: each must exit 0 and print its
+# "Warning: ..." lines on stderr, and the files must report what the plate
+# carries.
 # - a tyre 0.05 m over the long edge of a grid of slabs (the grid's outline
 #   used to be taken from Plate/Length x and y, and no warning came);
 # - Loads/Sweep moving that axle over the edge: one warning per position
@@ -13,10 +14,13 @@
 #   width carries, but for one near a long edge or near an end;
 # - cells larger than the length over which the deflection varies at a
 #   lift-off line, at a patch's edge and along a sweep's path, and none
-#   once refined.
+#   once refined;
+# - a goal with element exclusion, whose estimate leaves out the nodes it
+#   leaves in tension.
 # usage: load_warnings.sh PROGRAM
 set -u
 program=$1
+shipped=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../parameters" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -326,6 +330,42 @@ subsection Discretization
 end"
 ! grep -q 'over which the deflection varies' sweep_refined.stderr ||
   { fail "sweep_refined: a warning about cells that resolve the path"; cat sweep_refined.stderr; }
+
+# A goal estimated beside element exclusion's tensile nodes: the estimate
+# is of the discretisation on that contact set, and the active set's value
+# on the same mesh lies further off than it (doc/errors-and-limits.md,
+# "Goal error estimates").
+for method in "element exclusion" "active set"; do
+  name=goal_${method// /_}
+  run "$name" "include $shipped/example2.prm
+set Output directory = $name
+subsection Discretization
+  set Flexibility = galerkin
+end
+subsection Contact
+  set Method = $method
+end
+subsection Adaptivity
+  set Goal = w at 3.9,2.9
+end
+subsection Output
+  set VTU       = false
+  set Verbosity = 0
+end"
+done
+[ "$(grep -c '^Warning: ' goal_element_exclusion.stderr)" -eq 1 ] &&
+  grep -q '^Warning: Adaptivity/Goal with Contact/Method = element exclusion: cycle 0 leaves [1-9][0-9]* nodes in tension (complementarity violation .*). The goal.s estimated_error covers the discretisation on that contact set, not the error of the contact conditions it leaves unmet' goal_element_exclusion.stderr ||
+  { fail "goal_element_exclusion: no warning that the estimate leaves out the tensile nodes"; cat goal_element_exclusion.stderr; }
+! grep -q '^Warning: ' goal_active_set.stderr ||
+  { fail "goal_active_set: a warning"; cat goal_active_set.stderr; }
+python3 - goal_element_exclusion/summary.json goal_active_set/summary.json <<'EOF' ||
+import json, sys
+excluded, exact = (json.load(open(f))["cycles"][-1] for f in sys.argv[1:])
+off = abs(excluded["goal"]["value"] - exact["goal"]["value"])
+print("element exclusion: %d tensile nodes, w at 3.9,2.9 %.3g off the active set's, estimated %.3g" % (excluded["tensile_nodes"], off, excluded["goal"]["estimated_error"]))
+sys.exit(0 if excluded["tensile_nodes"] > 0 and exact["tensile_nodes"] == 0 and off > excluded["goal"]["estimated_error"] else 1)
+EOF
+  fail "goal_element_exclusion: the active set's value is not further off than the estimate"
 
 echo "$failed failed"
 [ $failed -eq 0 ]
