@@ -56,6 +56,17 @@ run() { # name, scene text; the run must succeed
   local status=$?
   [ $status -eq 0 ] || { fail "$1: exit status $status"; cat "$1.stderr"; }
 }
+expect_warning() { # name, grep pattern, what is missing
+  grep -q "$2" "$1.stderr" || { fail "$1: $3"; cat "$1.stderr"; }
+}
+expect_no_warning() { # name, grep pattern, what is not expected
+  ! grep -q "$2" "$1.stderr" || { fail "$1: $3"; cat "$1.stderr"; }
+}
+discretization() { # subdivisions x and y, initial refinements
+  printf 'subsection Discretization\n  set Subdivisions x      = %s\n' "$1"
+  printf '  set Subdivisions y      = %s\n  set Initial refinements = %s\nend\n' \
+    "$2" "$3"
+}
 
 # the outer tyre of a single axle at y = 0.935 + 0.915 = 1.85, 0.05 m over
 run tyre_over_edge 'include slabs.prm
@@ -270,20 +281,13 @@ subsection Output
   set Verbosity = 0
 end'
 run patch_coarse "$patch
-subsection Discretization
-  set Subdivisions x = 8
-  set Subdivisions y = 8
-end"
-grep -q '^Warning: the last cycle.s mesh (cycle 0): cells of 0.5 carry the edge of Loads/Rectangular patches: patch 1, 1.67 times the length over which the deflection varies there (the load.s width, 0.3; more than 1.5 times is not resolved)' patch_coarse.stderr ||
-  { fail "patch_coarse: no warning about the cells against the patch"; cat patch_coarse.stderr; }
+$(discretization 8 8 0)"
+expect_warning patch_coarse '^Warning: the last cycle.s mesh (cycle 0): cells of 0.5 carry the edge of Loads/Rectangular patches: patch 1, 1.67 times the length over which the deflection varies there (the load.s width, 0.3; more than 1.5 times is not resolved)' \
+  "no warning about the cells against the patch"
 run patch_refined "$patch
-subsection Discretization
-  set Subdivisions x      = 8
-  set Subdivisions y      = 8
-  set Initial refinements = 1
-end"
-! grep -q 'over which the deflection varies' patch_refined.stderr ||
-  { fail "patch_refined: a warning about cells that resolve the patch"; cat patch_refined.stderr; }
+$(discretization 8 8 1)"
+expect_no_warning patch_refined 'over which the deflection varies' \
+  "a warning about cells that resolve the patch"
 
 # A sweep over a mesh refined for the loads without an offset: the tyres
 # at x = -2 sit on refined cells, at 0 and 2 on cells of 0.5 = 1.75 l.
@@ -310,26 +314,19 @@ subsection Output
   set Verbosity = 0
 end'
 run sweep_coarse "$sweep_scene
-subsection Discretization
-  set Subdivisions x      = 6
-  set Subdivisions y      = 4
-  set Initial refinements = 1
-end
+$(discretization 6 4 1)
 subsection Adaptivity
   set Cycles     = 4
   set Refinement = adaptive
 end"
-[ "$(grep -c '^Warning: ' sweep_coarse.stderr)" -eq 1 ] &&
-  grep -q '^Warning: Loads/Sweep: the last cycle.s mesh at position 1 (offset 2, 0): cells of 0.5 carry the edge of Loads/Axles: group 1 (single), tyre [12], 1.75 times the length over which the deflection varies there (the plate.s radius of relative stiffness l, 0.286; more than 1.5 times is not resolved).*Refine along the loads. path' sweep_coarse.stderr ||
-  { fail "sweep_coarse: not one warning naming the worst position"; cat sweep_coarse.stderr; }
+[ "$(grep -c '^Warning: ' sweep_coarse.stderr)" -eq 1 ] ||
+  fail "sweep_coarse: not one warning"
+expect_warning sweep_coarse '^Warning: Loads/Sweep: the last cycle.s mesh at position 1 (offset 2, 0): cells of 0.5 carry the edge of Loads/Axles: group 1 (single), tyre [12], 1.75 times the length over which the deflection varies there (the plate.s radius of relative stiffness l, 0.286; more than 1.5 times is not resolved).*Refine along the loads. path' \
+  "no warning naming the worst position"
 run sweep_refined "$sweep_scene
-subsection Discretization
-  set Subdivisions x      = 6
-  set Subdivisions y      = 4
-  set Initial refinements = 2
-end"
-! grep -q 'over which the deflection varies' sweep_refined.stderr ||
-  { fail "sweep_refined: a warning about cells that resolve the path"; cat sweep_refined.stderr; }
+$(discretization 6 4 2)"
+expect_no_warning sweep_refined 'over which the deflection varies' \
+  "a warning about cells that resolve the path"
 
 # A goal estimated beside element exclusion's tensile nodes: the estimate
 # is of the discretisation on that contact set, and the active set's value
@@ -353,11 +350,11 @@ subsection Output
   set Verbosity = 0
 end"
 done
-[ "$(grep -c '^Warning: ' goal_element_exclusion.stderr)" -eq 1 ] &&
-  grep -q '^Warning: Adaptivity/Goal with Contact/Method = element exclusion: cycle 0 leaves [1-9][0-9]* nodes in tension (complementarity violation .*). The goal.s estimated_error covers the discretisation on that contact set, not the error of the contact conditions it leaves unmet' goal_element_exclusion.stderr ||
-  { fail "goal_element_exclusion: no warning that the estimate leaves out the tensile nodes"; cat goal_element_exclusion.stderr; }
-! grep -q '^Warning: ' goal_active_set.stderr ||
-  { fail "goal_active_set: a warning"; cat goal_active_set.stderr; }
+[ "$(grep -c '^Warning: ' goal_element_exclusion.stderr)" -eq 1 ] ||
+  fail "goal_element_exclusion: not one warning"
+expect_warning goal_element_exclusion '^Warning: Adaptivity/Goal with Contact/Method = element exclusion: cycle 0 leaves [1-9][0-9]* nodes in tension (complementarity violation .*). The goal.s estimated_error covers the discretisation on that contact set, not the error of the contact conditions it leaves unmet' \
+  "no warning that the estimate leaves out the tensile nodes"
+expect_no_warning goal_active_set '^Warning: ' "a warning"
 python3 - goal_element_exclusion/summary.json goal_active_set/summary.json <<'EOF' ||
 import json, sys
 excluded, exact = (json.load(open(f))["cycles"][-1] for f in sys.argv[1:])
