@@ -1802,9 +1802,8 @@ namespace PlateOnHalfspace
       {
         whole_plate = contact;
         for (unsigned int i = 0; i < whole_plate.gap.size(); ++i)
-          whole_plate.gap[i] *=
-            static_cast<double>(symmetry.n_copies()) /
-            space.symmetry.images(space.node_locations[i]).size();
+          whole_plate.gap[i] *= static_cast<double>(symmetry.n_copies()) /
+                                space.node_images(i).size();
       }
     const ContactState &written = rescale ? whole_plate : contact;
     output->write_profile(cycle,

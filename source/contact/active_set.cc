@@ -100,7 +100,7 @@ namespace PlateOnHalfspace
     std::vector<Point<2>> points;
     for (unsigned int i = 0; i < in_contact.size(); ++i)
       if (in_contact[i])
-        for (const Point<2> &x : space.symmetry.images(space.node_locations[i]))
+        for (const Point<2> &x : space.node_images(i))
           points.push_back(x);
     const unsigned int n = points.size();
     if (n < 3)

@@ -101,8 +101,7 @@ namespace PlateOnHalfspace
     unsigned long long contact_nodes = 0, tensile_nodes = 0;
     for (unsigned int i = 0; i < space.n_nodes(); ++i)
       {
-        const unsigned int images =
-          space.symmetry.images(space.node_locations[i]).size();
+        const unsigned int images = space.node_images(i).size();
         if (contact.in_contact[i])
           contact_nodes += images;
         if (contact.pressure_coefficients[i] < 0)

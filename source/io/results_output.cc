@@ -305,9 +305,7 @@ namespace PlateOnHalfspace
         m.my += in_cell.my / cells.size();
         m.mxy += in_cell.mxy / cells.size();
       }
-    // on a mirror plane: fewer distinct images than copies
-    const MirrorSymmetry &symmetry = plate.get_foundation_space().symmetry;
-    if (symmetry.images(y).size() < symmetry.n_copies())
+    if (plate.on_mirror_plane(y))
       m.mxy = 0;
     values.mx = m.mx;
     values.my = m.my;
@@ -520,28 +518,27 @@ namespace PlateOnHalfspace
   {
     const FoundationSpace &space = plate.get_foundation_space();
     // The whole plate: the nodes of the computed part and, for a symmetric
-    // scene, their distinct mirror images; written in parts of 4096 nodes
-    // (at 10^5 nodes the whole text is 60 MB).
-    unsigned int next = 0;
-    std::string  text;
-    write_file_in_parts(
-      "nodes-" + two_digits(cycle) + ".csv", [&](std::string_view &part) {
-        Interruption::check_if_alone();
-        std::ostringstream rows;
-        rows << std::setprecision(10);
-        if (next == 0)
-          rows << "x,y,w,q,gap,contact\n";
-        const unsigned int end = std::min(space.n_nodes(), next + 4096);
-        for (; next < end; ++next)
-          for (const Point<2> &x :
-               space.symmetry.images(space.node_locations[next]))
-            rows << x[0] << ',' << x[1] << ',' << contact.w[next] << ','
-                 << contact.q[next] << ',' << contact.gap[next] << ','
-                 << (contact.in_contact[next] ? 1 : 0) << '\n';
-        text = rows.str();
-        part = text;
-        return next < space.n_nodes();
-      });
+    // scene, their distinct mirror images (FoundationSpace::node_images());
+    // written in parts of 4096 nodes (at 10^5 nodes the whole text is 60 MB).
+    unsigned int      next = 0;
+    std::string       text;
+    const std::string name = "nodes-" + two_digits(cycle) + ".csv";
+    write_file_in_parts(name, [&](std::string_view &part) {
+      Interruption::check_if_alone();
+      std::ostringstream rows;
+      rows << std::setprecision(10);
+      if (next == 0)
+        rows << "x,y,w,q,gap,contact\n";
+      const unsigned int end = std::min(space.n_nodes(), next + 4096);
+      for (; next < end; ++next)
+        for (const Point<2> &x : space.node_images(next))
+          rows << x[0] << ',' << x[1] << ',' << contact.w[next] << ','
+               << contact.q[next] << ',' << contact.gap[next] << ','
+               << (contact.in_contact[next] ? 1 : 0) << '\n';
+      text = rows.str();
+      part = text;
+      return next < space.n_nodes();
+    });
 
     // Gauss points of the cells the segment from start to end crosses or
     // borders, keeping those nearest to it in each cell among those that

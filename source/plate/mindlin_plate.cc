@@ -259,6 +259,39 @@ namespace PlateOnHalfspace
           foundation_dofs.push_back(dof);
           foundation_space.node_locations.push_back(support_points[dof]);
         }
+    // A joint that is not tied keeps its faces' joint id on a mirror plane
+    // (SlabGrid::mark_joint_faces()): its nodes there stand for the other
+    // slab's nodes too.
+    if (symmetry.n_copies() > 1)
+      {
+        foundation_space.joint_planes.assign(foundation_dofs.size(), 0);
+        std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
+        const auto in_plane = [&](const Point<2> &x, const unsigned int axis) {
+          return (axis == 0 ? symmetry.x : symmetry.y) &&
+                 std::abs(x[axis]) <= symmetry.tolerance;
+        };
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->at_boundary(f) &&
+                cell->face(f)->boundary_id() == joint_boundary_id)
+              {
+                // a face in the plane, not one of a joint across it that
+                // ends there
+                const Point<2>     centre = cell->face(f)->center();
+                const unsigned int planes =
+                  (in_plane(centre, 0) ? 1 : 0) | (in_plane(centre, 1) ? 2 : 0);
+                if (planes == 0)
+                  continue;
+                cell->face(f)->get_dof_indices(face_dofs);
+                for (unsigned int k = 0; k < face_dofs.size(); ++k)
+                  {
+                    const auto node = foundation_index[face_dofs[k]];
+                    if (fe.face_system_to_component_index(k).first == 0 &&
+                        node >= 0)
+                      foundation_space.joint_planes[node] |= planes;
+                  }
+              }
+      }
     foundation_space.owned_nodes.set_size(foundation_dofs.size());
     foundation_space.owned_nodes.add_indices(owned_nodes.begin(),
                                              owned_nodes.end());
@@ -740,13 +773,23 @@ namespace PlateOnHalfspace
     return cells;
   }
 
+  namespace
+  {
+    /** How far from a cell a point may lie and count as in it. */
+    double
+    point_tolerance(const Point<2> &x)
+    {
+      return 1e-10 * (1. + x.norm());
+    }
+  } // namespace
+
   std::vector<std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
   MindlinPlate::locate_on_each_slab(const Point<2> &x) const
   {
     // On each slab the first of the nearest cells wins, as on a search
     // through all of them, and a cell further than the tolerance could not
     // be taken.
-    const double                           tolerance = 1e-10 * (1. + x.norm());
+    const double                           tolerance = point_tolerance(x);
     std::map<types::material_id, NearCell> on_slab;
     for (const NearCell &near : cells_near(x, tolerance))
       {
@@ -782,7 +825,7 @@ namespace PlateOnHalfspace
   {
     // the tolerance and the first cell of locate_on_each_slab(): the
     // nearest, the first in the order of the cells among equals
-    const double          tolerance = 1e-10 * (1. + x.norm());
+    const double          tolerance = point_tolerance(x);
     std::vector<NearCell> holding;
     for (const NearCell &near : cells_near(x, tolerance))
       if (near.distance <= tolerance)
@@ -802,6 +845,14 @@ namespace PlateOnHalfspace
     for (const NearCell &n : holding)
       cells.emplace_back(n.cell, n.point);
     return cells;
+  }
+
+  bool
+  MindlinPlate::on_mirror_plane(const Point<2> &x) const
+  {
+    const MirrorSymmetry &symmetry = foundation_space.symmetry;
+    return (symmetry.x && std::abs(x[0]) <= point_tolerance(x)) ||
+           (symmetry.y && std::abs(x[1]) <= point_tolerance(x));
   }
 
   std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>

@@ -6,7 +6,6 @@
 #include <plate_on_halfspace/plate/mindlin_plate.h>
 #include <plate_on_halfspace/refinement/dual_weighted_residual.h>
 #include <plate_on_halfspace/refinement/goal.h>
-#include <plate_on_halfspace/scene/mirror_symmetry.h>
 
 #include <algorithm>
 #include <cmath>
@@ -165,10 +164,7 @@ namespace PlateOnHalfspace
                                point_text(x[0], x[1]) +
                                " is not on the plate."));
       }
-    // on a mirror plane: fewer distinct images than copies
-    const MirrorSymmetry &symmetry = plate.get_foundation_space().symmetry;
-    e.on_mirror_plane =
-      symmetry.images(e.location).size() < symmetry.n_copies();
+    e.on_mirror_plane = plate.on_mirror_plane(e.location);
     return e;
   }
 

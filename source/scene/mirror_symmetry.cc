@@ -46,13 +46,15 @@ namespace PlateOnHalfspace
   }
 
   std::vector<Point<2>>
-  MirrorSymmetry::images(const Point<2> &p) const
+  MirrorSymmetry::images(const Point<2>    &p,
+                         const unsigned int split_planes) const
   {
     std::vector<Point<2>> result = {p};
     for (const auto &signs : reflections())
-      // a point on a plane is its own image across that plane
-      if ((signs[0] > 0 || std::abs(p[0]) > tolerance) &&
-          (signs[1] > 0 || std::abs(p[1]) > tolerance))
+      // a point on a plane is its own image across that plane, but for a
+      // joint's two sides
+      if ((signs[0] > 0 || std::abs(p[0]) > tolerance || (split_planes & 1)) &&
+          (signs[1] > 0 || std::abs(p[1]) > tolerance || (split_planes & 2)))
         result.emplace_back(signs[0] * p[0], signs[1] * p[1]);
     return result;
   }

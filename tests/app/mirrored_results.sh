@@ -6,7 +6,8 @@
 # gap of nodes-00.csv on the mirror planes, whose basis functions the
 # computed part holds only in part, and probes on cell edges and vertices
 # (the mean of the cells there; on a mirror plane, of the mirrored cells
-# too), and goals at such points, which must equal the probe there.
+# too), goals at such points, which must equal the probe there, and the
+# nodes of a joint on a mirror plane, one on each side.
 # Compared to 1e-9 of the field's scale.
 # usage: mirrored_results.sh PROGRAM
 set -u
@@ -61,8 +62,11 @@ for symmetry in none auto x y; do
 done
 
 # Goals at a point on a cell edge (x = 1.5), a vertex (1.5,1) and a mirror
-# plane (x = 0, y = 0): the mean of the cells there, as the probe there.
-edge_goals="Mx:1.5,0.7 Mxy:1.5,1 stress_bottom:1.5,1 Mxy:0,0.7 Mx:0,-1"
+# plane (x = 0, y = 0): the mean of the cells there, as the probe there;
+# and 2e-10 off the plane, beyond the tolerance 1.7e-10 of a point on an
+# edge, where the whole plate's reading is one cell's.
+edge_goals="Mx:1.5,0.7 Mxy:1.5,1 stress_bottom:1.5,1 Mxy:0,0.7 Mx:0,-1
+Mxy:-2e-10,0.7"
 for goal in $edge_goals; do
   for symmetry in none auto; do
     scene $symmetry "edge-$symmetry-${goal/:/-}" "${goal%%:*} at ${goal#*:}" \
@@ -151,6 +155,66 @@ for goal in sys.argv[1:]:
     print("Symmetry = auto: goal %s at %s equals the whole plate's: %s"
           % (field, point, "ok" if ok else "FAILED (%.9g against %.9g)"
              % (values["auto"], values["none"])))
+    bad += not ok
+sys.exit(1 if bad else 0)
+EOF
+
+# A free joint on the mirror plane y = 0 (and one tied): its two sides are
+# distinct nodes of the whole plate, the computed part's and its image's.
+for transfer in free tied; do
+  for symmetry in none auto; do
+    cat >"joint-$transfer-$symmetry.prm" <<EOF2
+set Output directory = joint-$transfer-$symmetry
+subsection Plate
+  set Shape          = slabs
+  set Slab lengths x = 3, 3, 3
+  set Slab lengths y = 2, 2
+  set Thickness      = 0.25
+end
+subsection Joints
+  set Load transfer = $transfer
+end
+subsection Foundation
+  set Model                        = dense liquid
+  set Modulus of subgrade reaction = 5e4
+  set Contact                      = tensionless
+end
+subsection Loads
+  set Circular patches = 1.2,0.6,0.15,700 ; -1.2,0.6,0.15,700 ; 1.2,-0.6,0.15,700 ; -1.2,-0.6,0.15,700
+end
+subsection Discretization
+  set Subdivisions x = 3
+  set Subdivisions y = 3
+  set Symmetry       = $symmetry
+end
+subsection Output
+  set VTU       = false
+  set Verbosity = 0
+end
+EOF2
+    "$program" "joint-$transfer-$symmetry.prm" >"joint-$transfer-$symmetry.log" 2>&1 ||
+      fail "joint-$transfer-$symmetry: exit status $?"
+  done
+done
+python3 - <<'EOF' || failed=$((failed + 1))
+import csv, json, sys
+bad = 0
+for transfer in ["free", "tied"]:
+    rows, counts = {}, {}
+    for symmetry in ["none", "auto"]:
+        out = "joint-%s-%s/" % (transfer, symmetry)
+        cycle = json.load(open(out + "summary.json"))["cycles"][-1]
+        counts[symmetry] = (cycle["contact_nodes"], cycle["tensile_nodes"])
+        rows[symmetry] = sorted(
+            (round(float(r["x"]), 9), round(float(r["y"]), 9),
+             round(float(r["w"]) * 1e6, 3), int(r["contact"]))
+            for r in csv.DictReader(open(out + "nodes-00.csv")))
+    ok = counts["auto"] == counts["none"] and rows["auto"] == rows["none"]
+    print("%s joint on the mirror plane: Symmetry = auto's node counts and "
+          "nodes-00.csv (%d rows) equal the whole plate's: %s"
+          % (transfer, len(rows["none"]), "ok" if ok else "FAILED (%s, %d "
+             "rows, against %s, %d)" % (counts["auto"], len(rows["auto"]),
+                                        counts["none"], len(rows["none"]))))
     bad += not ok
 sys.exit(1 if bad else 0)
 EOF

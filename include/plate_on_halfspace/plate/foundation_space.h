@@ -105,6 +105,24 @@ namespace PlateOnHalfspace
     std::vector<Cell>
     mirror_image_cells() const;
 
+    /**
+     * For each node (or empty: none), the mirror planes it lies on along a
+     * joint that is not tied (bit 0: x = 0, bit 1: y = 0). The joint's
+     * other slab is the image, whose node at the same place is another
+     * node of the whole plate (SlabGrid::mark_joint_faces()).
+     */
+    std::vector<unsigned char> joint_planes;
+
+    /** The points of the whole plate that node @p i stands for: its
+     *  location and its distinct mirror images (MirrorSymmetry::images(),
+     *  with a node on a joint in a mirror plane imaged across it). */
+    std::vector<Point<2>>
+    node_images(const unsigned int i) const
+    {
+      return symmetry.images(node_locations[i],
+                             joint_planes.empty() ? 0 : joint_planes[i]);
+    }
+
     unsigned int
     n_nodes() const
     {

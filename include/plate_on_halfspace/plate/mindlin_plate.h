@@ -378,6 +378,15 @@ namespace PlateOnHalfspace
       std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
     cells_at(const Point<2> &x) const;
 
+    /**
+     * Whether @p x of the computed part lies on a mirror plane of a
+     * symmetric scene, to the tolerance by which cells_at() takes a cell
+     * as holding a point: exactly where the whole plate's cells_at() meets
+     * the mirrored cells too, whose Mxy is the opposite.
+     */
+    bool
+    on_mirror_plane(const Point<2> &x) const;
+
     /** Value of component @p component of @p solution at @p x. */
     double
     point_value(const Vector<double> &solution,

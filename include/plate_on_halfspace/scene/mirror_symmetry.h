@@ -80,10 +80,13 @@ namespace PlateOnHalfspace
     /**
      * The points of the whole plate that @p p of the computed part stands
      * for: p itself and its distinct mirror images (1, 2 or 4 points; a
-     * point on a mirror plane is its own image there).
+     * point on a mirror plane is its own image there, unless bit 0 (plane
+     * x = 0) or bit 1 (y = 0) of @p split_planes is set: a node on a joint
+     * in that plane, whose image is the other slab's node at the same
+     * place).
      */
     std::vector<Point<2>>
-    images(const Point<2> &p) const;
+    images(const Point<2> &p, const unsigned int split_planes = 0) const;
   };
 
   /**

@@ -101,7 +101,10 @@ namespace PlateOnHalfspace
       moment_quantity(plate,
                       mean_moments(plate, solution, evaluation),
                       field_quantity());
-    return field == Field::mxy ? evaluation.odd_field_sign * value : value;
+    // a zero stays +0, as a probe's
+    return field == Field::mxy && value != 0 ?
+             evaluation.odd_field_sign * value :
+             value;
   }
 
   Vector<double>
