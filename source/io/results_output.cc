@@ -296,24 +296,15 @@ namespace PlateOnHalfspace
     // edge, a vertex or a joint, the mean of the cells there, as on the
     // whole plate, where a mirror plane's cells on the other side have the
     // same Mx and My and the opposite Mxy.
-    const auto cells = plate.cells_at(y);
-    Moments    m;
-    for (const auto &[cell, reference] : cells)
-      {
-        const Moments in_cell = plate.moments(cell, reference, solution);
-        m.mx += in_cell.mx / cells.size();
-        m.my += in_cell.my / cells.size();
-        m.mxy += in_cell.mxy / cells.size();
-      }
+    Moments m = plate.mean_moments(plate.cells_at(y), solution);
     if (plate.on_mirror_plane(y))
       m.mxy = 0;
     values.mx = m.mx;
     values.my = m.my;
     // Mxy, and with it sxy, is odd across each mirror plane the point was
-    // reflected in.
-    for (unsigned int d = 0; d < 2; ++d)
-      if (x[d] != y[d] && m.mxy != 0)
-        m.mxy = -m.mxy;
+    // reflected in (a zero stays +0).
+    if (m.mxy != 0)
+      m.mxy *= plate.get_foundation_space().symmetry.odd_field_sign(x);
     values.stresses = plate.fibre_stresses(m);
     return values;
   }

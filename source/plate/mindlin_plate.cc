@@ -741,6 +741,15 @@ namespace PlateOnHalfspace
     Point<2>                                     point;
     double       distance = std::numeric_limits<double>::max();
     unsigned int index    = 0; ///< among the active cells
+
+    /** Whether @p a is nearer than @p b, or as near and first in the
+     *  order of the cells: the order locate() takes cells in. */
+    static bool
+    nearer(const NearCell &a, const NearCell &b)
+    {
+      return std::make_pair(a.distance, a.index) <
+             std::make_pair(b.distance, b.index);
+    }
   };
 
   std::vector<MindlinPlate::NearCell>
@@ -783,66 +792,56 @@ namespace PlateOnHalfspace
     }
   } // namespace
 
+  std::vector<MindlinPlate::NearCell>
+  MindlinPlate::cells_holding(const Point<2> &x) const
+  {
+    const double          tolerance = point_tolerance(x);
+    std::vector<NearCell> holding;
+    for (const NearCell &near : cells_near(x, tolerance))
+      if (near.distance <= tolerance)
+        holding.push_back(near);
+    // a point so far away that its distances overflow is off the plate
+    // too (no cell was near)
+    AssertThrow(!holding.empty(), ExcMessage("The point is not on the plate."));
+    const auto first =
+      std::min_element(holding.begin(), holding.end(), NearCell::nearer);
+    std::rotate(holding.begin(), first, first + 1);
+    return holding;
+  }
+
   std::vector<std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
   MindlinPlate::locate_on_each_slab(const Point<2> &x) const
   {
-    // On each slab the first of the nearest cells wins, as on a search
-    // through all of them, and a cell further than the tolerance could not
-    // be taken.
-    const double                           tolerance = point_tolerance(x);
+    // On each slab the nearest cell wins, the first in the order of the
+    // cells among equals, as on a search through all of them.
     std::map<types::material_id, NearCell> on_slab;
-    for (const NearCell &near : cells_near(x, tolerance))
+    for (const NearCell &near : cells_holding(x))
       {
-        NearCell &best = on_slab[near.cell->material_id()];
-        if (near.distance < best.distance)
-          best = near;
+        const auto [best, added] =
+          on_slab.emplace(near.cell->material_id(), near);
+        if (!added && NearCell::nearer(near, best->second))
+          best->second = near;
       }
-    // the nearest first (the first in the order of the cells among equals):
-    // locate()'s one
+    // the nearest first: locate()'s one
     std::vector<NearCell> holding;
     for (const auto &[slab, best] : on_slab)
-      if (best.distance <= tolerance)
-        holding.push_back(best);
-    std::sort(holding.begin(),
-              holding.end(),
-              [](const NearCell &a, const NearCell &b) {
-                return std::make_pair(a.distance, a.index) <
-                       std::make_pair(b.distance, b.index);
-              });
+      holding.push_back(best);
+    std::sort(holding.begin(), holding.end(), NearCell::nearer);
     std::vector<
       std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
       located;
     for (const NearCell &n : holding)
       located.emplace_back(n.cell, n.point);
-    // a point so far away that its distances overflow is off the plate
-    // too (no cell was nearest)
-    AssertThrow(!located.empty(), ExcMessage("The point is not on the plate."));
     return located;
   }
 
   std::vector<std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
   MindlinPlate::cells_at(const Point<2> &x) const
   {
-    // the tolerance and the first cell of locate_on_each_slab(): the
-    // nearest, the first in the order of the cells among equals
-    const double          tolerance = point_tolerance(x);
-    std::vector<NearCell> holding;
-    for (const NearCell &near : cells_near(x, tolerance))
-      if (near.distance <= tolerance)
-        holding.push_back(near);
-    AssertThrow(!holding.empty(), ExcMessage("The point is not on the plate."));
-    const auto first =
-      std::min_element(holding.begin(),
-                       holding.end(),
-                       [](const NearCell &a, const NearCell &b) {
-                         return std::make_pair(a.distance, a.index) <
-                                std::make_pair(b.distance, b.index);
-                       });
-    std::rotate(holding.begin(), first, first + 1);
     std::vector<
       std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>>
       cells;
-    for (const NearCell &n : holding)
+    for (const NearCell &n : cells_holding(x))
       cells.emplace_back(n.cell, n.point);
     return cells;
   }
@@ -892,6 +891,23 @@ namespace PlateOnHalfspace
     values[FEValuesExtractors::Vector(1)].get_function_gradients(solution,
                                                                  grad);
     return moments_of_rotation_gradient(grad[0]);
+  }
+
+  Moments
+  MindlinPlate::mean_moments(
+    const std::vector<
+      std::pair<typename DoFHandler<2>::active_cell_iterator, Point<2>>> &cells,
+    const Vector<double> &solution) const
+  {
+    Moments mean;
+    for (const auto &[cell, reference] : cells)
+      {
+        const Moments in_cell = moments(cell, reference, solution);
+        mean.mx += in_cell.mx / cells.size();
+        mean.my += in_cell.my / cells.size();
+        mean.mxy += in_cell.mxy / cells.size();
+      }
+    return mean;
   }
 
   FibreStresses

@@ -147,12 +147,11 @@ namespace PlateOnHalfspace
   GoalFunctional::Evaluation
   GoalFunctional::at_point(const MindlinPlate &plate, const Point<2> &x)
   {
-    Evaluation e;
-    e.location     = plate.get_foundation_space().symmetry.to_computed_part(x);
-    e.has_location = true;
-    for (unsigned int d = 0; d < 2; ++d)
-      if (e.location[d] != x[d])
-        e.odd_field_sign = -e.odd_field_sign;
+    Evaluation            e;
+    const MirrorSymmetry &symmetry = plate.get_foundation_space().symmetry;
+    e.location                     = symmetry.to_computed_part(x);
+    e.has_location                 = true;
+    e.odd_field_sign               = symmetry.odd_field_sign(x);
     try
       {
         e.cells = plate.cells_at(e.location);

@@ -316,6 +316,18 @@ namespace PlateOnHalfspace
             const Vector<double>                               &solution) const;
 
     /**
+     * The mean of moments() of @p solution over @p cells (cells_at() of a
+     * point, with the point's reference coordinates in each): the moments
+     * at a point on a cell edge, a vertex or a joint (doc/outputs.md,
+     * "Probe and profile values").
+     */
+    Moments
+    mean_moments(
+      const std::vector<std::pair<typename DoFHandler<2>::active_cell_iterator,
+                                  Point<2>>> &cells,
+      const Vector<double>                   &solution) const;
+
+    /**
      * The moments of the rotation gradient @p grad_beta (grad_beta[c][d] =
      * d beta_c / d x_d): -D (curvatures) plus the thermal moment in Mx and
      * My (doc/formulation.md, "Conventions" and "Temperature"). What
@@ -535,6 +547,11 @@ namespace PlateOnHalfspace
      *  coordinates clamped to each and their distance from @p x. */
     std::vector<NearCell>
     cells_near(const Point<2> &x, const double tolerance) const;
+    /** The cells that hold @p x (within 1e-10 (1 + |x|)), the nearest
+     *  first (the first in the order of the cells among equals), the
+     *  others in that order; throws if none does. */
+    std::vector<NearCell>
+    cells_holding(const Point<2> &x) const;
   };
 } // namespace PlateOnHalfspace
 

@@ -70,6 +70,17 @@ namespace PlateOnHalfspace
     to_computed_part(const Point<2> &p) const;
 
     /**
+     * The sign a field odd across each mirror plane (Mxy, sxy) takes at
+     * the whole-plate point @p p against its image to_computed_part(p):
+     * -1 where @p p is reflected in one plane, 1 in none or both.
+     */
+    double
+    odd_field_sign(const Point<2> &p) const
+    {
+      return (x && p[0] < 0 ? -1. : 1.) * (y && p[1] < 0 ? -1. : 1.);
+    }
+
+    /**
      * The point of the whole plate that @p p of the computed part stands
      * for on the side of @p reference: @p p reflected in each plane in
      * which to_computed_part() reflects @p reference.

@@ -70,15 +70,7 @@ namespace PlateOnHalfspace
                  const Vector<double>             &solution,
                  const GoalFunctional::Evaluation &evaluation)
     {
-      Moments      mean;
-      const double weight = 1. / evaluation.cells.size();
-      for (const auto &[cell, reference] : evaluation.cells)
-        {
-          const Moments m = plate.moments(cell, reference, solution);
-          mean.mx += weight * m.mx;
-          mean.my += weight * m.my;
-          mean.mxy += weight * m.mxy;
-        }
+      Moments mean = plate.mean_moments(evaluation.cells, solution);
       if (evaluation.on_mirror_plane)
         mean.mxy = 0;
       return mean;
