@@ -317,11 +317,14 @@ namespace PlateOnHalfspace
     catch (...)
       {
         abandon_run();
+        // the exception in flight says why the run ended
+        Interruption::release_signals();
         throw;
       }
     if (!checks_passed)
       {
         abandon_run();
+        Interruption::release_signals();
         return false;
       }
     output->commit();
@@ -329,15 +332,22 @@ namespace PlateOnHalfspace
       timer_output.print_summary();
     // A signal during the last writes: the results are whole, but whoever
     // sent it asked the run to stop, and a script must learn that it did
-    // not end normally.
+    // not end normally. The ranks agree on it; one that comes after the
+    // agreement and before the release is this rank's alone.
+    int signal_number = 0;
     try
       {
         Interruption::check();
       }
     catch (const Interrupted &e)
       {
-        throw Interrupted(e.signal_number(), true);
+        signal_number = e.signal_number();
       }
+    const int late_signal = Interruption::release_signals();
+    if (signal_number == 0)
+      signal_number = late_signal;
+    if (signal_number != 0)
+      throw Interrupted(signal_number, true);
     return true;
   }
 

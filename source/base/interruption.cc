@@ -112,5 +112,18 @@ namespace PlateOnHalfspace
         }
       throw Interrupted(received);
     }
+
+    int
+    release_signals()
+    {
+      // Default action first: a signal after it ends the process, one
+      // before it is in the flag.
+      struct sigaction action = {};
+      action.sa_handler       = SIG_DFL;
+      sigemptyset(&action.sa_mask);
+      sigaction(SIGINT, &action, nullptr);
+      sigaction(SIGTERM, &action, nullptr);
+      return received;
+    }
   } // namespace Interruption
 } // namespace PlateOnHalfspace

@@ -12,7 +12,8 @@
  * half way. A second signal while the first is pending stops the process at
  * once (the default action), for a computation that does not reach a safe
  * point soon enough; the next run into the directory then recovers as after
- * a kill.
+ * a kill. Once the results are committed or the earlier ones restored,
+ * release_signals() gives both signals their default action back.
  *
  * Under MPI every rank gets the signal, but not at the same instant: check()
  * is collective (the largest signal number over the ranks), so that all
@@ -96,6 +97,17 @@ namespace PlateOnHalfspace
      */
     void
     check_if_alone();
+
+    /**
+     * From now on SIGINT and SIGTERM take their default action again, and
+     * the signal recorded so far (0: none) is returned. The run calls it
+     * once its results are committed or its earlier results restored:
+     * what follows (freeing the run's memory, the libraries' threads,
+     * MPI_Finalize) has no safe point, so a signal must end the process at
+     * once instead of being recorded for a check that never comes.
+     */
+    int
+    release_signals();
   } // namespace Interruption
 } // namespace PlateOnHalfspace
 
