@@ -202,8 +202,26 @@ namespace PlateOnHalfspace
     const SoilLayer &top = profile.layers.front();
     const double     C1 =
       2. * (1. - top.poissons_ratio * top.poissons_ratio) / top.youngs_modulus;
-    const double alpha  = C1 / (2. * numbers::PI);
-    const double D      = profile.depth();
+    const double alpha = C1 / (2. * numbers::PI);
+    const double D     = profile.depth();
+    // Deeper layers are, for the plate, a half-space of their material,
+    // and the tabulation's smallest wave numbers (w0 ~ 1/D) reach where
+    // the condensation of a stiff layer over them loses the compliance to
+    // rounding (doc/soil-models.md, "Limits").
+    constexpr double deepest = 1e6;
+    if (!(D <= deepest * range))
+      {
+        std::ostringstream message;
+        message << "Foundation/Layers: the layers are " << D
+                << " deep in all, more than " << deepest
+                << " times the distances on the plate (up to " << range
+                << "): for the plate a layer that deep is a half-space of "
+                   "its material, and the layered kernel loses its digits "
+                   "there. End the Layers above the deep layer and give it "
+                   "as the base (Base = half-space with Foundation/Young's "
+                   "modulus and Poisson's ratio).";
+        AssertThrow(false, ExcMessage(message.str()));
+      }
     data->top_thickness = top.thickness;
     data->span          = range;
     data->far_coefficient =
