@@ -239,7 +239,9 @@ namespace PlateOnHalfspace
       log << output->recovery_note() << std::endl;
     // A run that fails (a failed check included) or is interrupted keeps
     // the earlier run's results (results_output.h): its files go to
-    // failed-run/, and the log says where each went.
+    // failed-run/, and the log says where each went. After that only the
+    // teardown is left, which has no safe point: signals act at once
+    // (the exception in flight, if any, says why the run ended).
     const auto abandon_run = [&]() {
       std::string note;
       try
@@ -254,6 +256,7 @@ namespace PlateOnHalfspace
         }
       if (!note.empty())
         log << note << std::endl;
+      Interruption::release_signals();
     };
     bool checks_passed = true;
     try
@@ -317,14 +320,11 @@ namespace PlateOnHalfspace
     catch (...)
       {
         abandon_run();
-        // the exception in flight says why the run ended
-        Interruption::release_signals();
         throw;
       }
     if (!checks_passed)
       {
         abandon_run();
-        Interruption::release_signals();
         return false;
       }
     output->commit();

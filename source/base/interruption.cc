@@ -25,6 +25,18 @@ namespace PlateOnHalfspace
       received = signal_number;
     }
 
+    /** @p handler with @p flags for both SIGINT and SIGTERM. */
+    void
+    set_action(void (*handler)(int), const int flags)
+    {
+      struct sigaction action = {};
+      action.sa_handler       = handler;
+      sigemptyset(&action.sa_mask);
+      action.sa_flags = flags;
+      sigaction(SIGINT, &action, nullptr);
+      sigaction(SIGTERM, &action, nullptr);
+    }
+
     bool
     mpi_is_running()
     {
@@ -56,14 +68,9 @@ namespace PlateOnHalfspace
     void
     catch_signals()
     {
-      struct sigaction action = {};
-      action.sa_handler       = record_signal;
-      sigemptyset(&action.sa_mask);
       // Restart interrupted system calls: file and MPI I/O go on, and the
       // computation notices the flag at its next safe point.
-      action.sa_flags = SA_RESTART;
-      sigaction(SIGINT, &action, nullptr);
-      sigaction(SIGTERM, &action, nullptr);
+      set_action(record_signal, SA_RESTART);
     }
 
     void
@@ -118,11 +125,7 @@ namespace PlateOnHalfspace
     {
       // Default action first: a signal after it ends the process, one
       // before it is in the flag.
-      struct sigaction action = {};
-      action.sa_handler       = SIG_DFL;
-      sigemptyset(&action.sa_mask);
-      sigaction(SIGINT, &action, nullptr);
-      sigaction(SIGTERM, &action, nullptr);
+      set_action(SIG_DFL, 0);
       return received;
     }
   } // namespace Interruption
