@@ -1,5 +1,7 @@
 #include <deal.II/base/timer.h>
 
+#include <deal.II/grid/grid_tools.h>
+
 #include <deal.II/numerics/solution_transfer.h>
 
 #include <plate_on_halfspace/base/error_on_every_rank.h>
@@ -364,6 +366,10 @@ namespace PlateOnHalfspace
     make_coarse_plate_mesh(parameters.plate,
                            parameters.discretization,
                            triangulation);
+    const auto corners =
+      GridTools::compute_bounding_box(triangulation).get_boundary_points();
+    const double plate_size = std::max(corners.second[0] - corners.first[0],
+                                       corners.second[1] - corners.first[1]);
     // the plate's weight is uniform: symmetric about both planes
     symmetry = choose_mirror_symmetry(
       parameters,
@@ -391,6 +397,7 @@ namespace PlateOnHalfspace
       const double l = soil->radius_of_relative_stiffness(
         parameters.plate.flexural_rigidity());
       relative_stiffness_radius = l;
+      check_plate_against_soil(plate_size);
       if (parameters.output.verbosity > 0)
         log << "radius of relative stiffness on the " << soil->name()
             << " soil: l = " << l
@@ -405,6 +412,59 @@ namespace PlateOnHalfspace
     mindlin_plate->set_thermal_load(
       thermal_load(parameters.plate, parameters.temperature));
     goal = parameters.adaptivity.goal.functional;
+  }
+
+  void
+  PlateOnHalfspaceProblem::check_plate_against_soil(
+    const double plate_size) const
+  {
+    // The plate's bending is a small fraction, about 1/R, of its rigid-body
+    // motion, and the moments and stresses are what rounding leaves of it:
+    // one solution vector holds both, so they keep about 12 - log10(R)
+    // digits on a dense liquid and 14 - log10(R) on a half-space
+    // (doc/errors-and-limits.md, "Stiffness ratio"). A plate beyond the
+    // bound is rigid for the soil, and a softer one as rigid keeps the
+    // digits.
+    // D and the ratio are linear in E: per unit of E the ratio stays finite
+    // for a modulus that would overflow it (E = 1e308).
+    const auto  &plate             = parameters.plate;
+    const double modulus           = plate.youngs_modulus;
+    const double ratio_per_modulus = soil->relative_stiffness(
+      std::pow(plate.thickness, 3) /
+        (12. * (1. - plate.poissons_ratio * plate.poissons_ratio)),
+      plate_size);
+    const double ratio = ratio_per_modulus * modulus;
+    if (!(ratio > largest_relative_stiffness))
+      return;
+    const auto  model = parameters.foundation.model;
+    const char *soil_entries =
+      model == Parameters::Foundation::Model::dense_liquid ?
+        "Foundation/Modulus of subgrade reaction" :
+      model == Parameters::Foundation::Model::layered ?
+        "Foundation/Layers (and Foundation/Young's modulus of a half-space "
+        "under them)" :
+        "Foundation/Young's modulus";
+    std::ostringstream message;
+    message << std::setprecision(3) << "The plate is ";
+    if (std::isfinite(ratio))
+      message << ratio;
+    else
+      message << "more than 1e308";
+    message << " times stiffer than the " << soil->name()
+            << " soil at its own size (D k^4 G(k) at k = 1/L, L = "
+            << plate_size
+            << ", the larger side of its bounding box; doc/soil-models.md, "
+               "\"Radius of relative stiffness\"), above the 1e6 up to "
+               "which rounding leaves its moments and stresses 6 digits. "
+               "For the soil such a plate is rigid: one with Plate/Young's "
+               "modulus at most "
+            << largest_relative_stiffness / ratio_per_modulus << " (now "
+            << modulus
+            << ") settles and presses the soil the same to about 1e-7 and "
+               "keeps the digits. Compare Plate/Young's modulus and "
+               "Plate/Thickness with "
+            << soil_entries << ", and check their units.";
+    AssertThrow(false, ExcMessage(message.str()));
   }
 
   void

@@ -112,6 +112,19 @@ namespace PlateOnHalfspace
     void
     make_mesh();
 
+    /**
+     * Refuse a plate more than largest_relative_stiffness times stiffer
+     * than the soil at its own size @p plate_size (its bounding box's
+     * larger side), naming the entries (see the implementation).
+     */
+    void
+    check_plate_against_soil(const double plate_size) const;
+
+    /** The largest SoilModel::relative_stiffness() of the plate at its
+     *  size that a run accepts (doc/errors-and-limits.md, "Stiffness
+     *  ratio"); check_plate_against_soil()'s message spells it 1e6. */
+    static constexpr double largest_relative_stiffness = 1e6;
+
     /** Distribute DoFs and assemble the plate's stiffness, the latter
      *  only if @p stiffness_needed (asked once the DoFs are there) says so
      *  or is empty. */

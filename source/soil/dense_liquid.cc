@@ -86,4 +86,11 @@ namespace PlateOnHalfspace
   {
     return std::sqrt(std::sqrt(flexural_rigidity / modulus));
   }
+
+  double
+  DenseLiquidSoil::relative_stiffness(const double flexural_rigidity,
+                                      const double length) const
+  {
+    return flexural_rigidity / modulus / std::pow(length, 4);
+  }
 } // namespace PlateOnHalfspace

@@ -43,4 +43,11 @@ namespace PlateOnHalfspace
     // G(k) = 2 pi alpha / k.
     return std::cbrt(2. * M_PI * alpha * flexural_rigidity);
   }
+
+  double
+  HomogeneousHalfSpace::relative_stiffness(const double flexural_rigidity,
+                                           const double length) const
+  {
+    return 2. * M_PI * alpha * flexural_rigidity / std::pow(length, 3);
+  }
 } // namespace PlateOnHalfspace

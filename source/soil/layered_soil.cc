@@ -613,6 +613,14 @@ namespace PlateOnHalfspace
     return std::exp(s);
   }
 
+  double
+  LayeredSoil::relative_stiffness(const double flexural_rigidity,
+                                  const double length) const
+  {
+    const double k = 1. / length;
+    return flexural_rigidity * std::pow(k, 4) * profile.surface_compliance(k);
+  }
+
   std::string
   LayeredSoil::kernel_report() const
   {

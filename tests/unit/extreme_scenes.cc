@@ -287,7 +287,7 @@ main()
     {
       std::ostringstream extra;
       extra << std::setprecision(17)
-            << "subsection Plate\n set Young's modulus = 3e12\nend\n"
+            << "subsection Plate\n set Young's modulus = 3e10\nend\n"
             << "subsection Foundation\n set Contact = tensionless\nend\n"
             << "subsection Adaptivity\n set Cycles = 1\nend\n"
             << "subsection Loads\n set Point loads = " << e << ",0,1000\nend\n";

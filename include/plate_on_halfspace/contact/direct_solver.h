@@ -12,6 +12,7 @@
 #ifndef plate_on_halfspace_contact_direct_solver_h
 #define plate_on_halfspace_contact_direct_solver_h
 
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -83,14 +84,53 @@ namespace PlateOnHalfspace
     void
     correct_rigid_body_equilibrium(ContactState &state) const;
 
+    /** @p w as amplitudes of rigid_motions (a least-squares fit) and the
+     *  rest, the bending part. */
+    void
+    split(const Vector<double> &w,
+          Vector<double>       &amplitudes,
+          Vector<double>       &bending) const;
+
+    /**
+     * One step of iterative refinement of the solve on the current set:
+     * the correction of w = R a + @p bending from the residual
+     * P̄ - K̄ w - S w with the pressures @p q of w (see the
+     * implementation).
+     */
+    Vector<double>
+    refinement_step(const Vector<double> &bending,
+                    const Vector<double> &q) const;
+
+    /** Refine w held as @p amplitudes and @p bending, and state.w and
+     *  state.q with them, while the steps shrink (a plate much stiffer
+     *  than the soil; see the implementation). */
+    void
+    refine_bending(Vector<double> &amplitudes,
+                   Vector<double> &bending,
+                   ContactState   &state) const;
+
+    /** At most this many steps of refine_bending(). */
+    static constexpr unsigned int max_refinement_steps = 4;
+
+    /** The whole plate's solution from w = R @p amplitudes + @p bending at
+     *  the foundation nodes (see the implementation). */
+    void
+    expand(const Vector<double> &amplitudes,
+           const Vector<double> &bending,
+           Vector<double>       &solution) const;
+
     LAPACKFullMatrix<double> plate_stiffness; ///< K̄
     Vector<double>           load;            ///< P of the current solve
     Vector<double>           plate_load;      ///< P̄
     /** The rigid-body motions of the free plate at the foundation nodes. */
     std::vector<Vector<double>> rigid_motions;
-    std::vector<unsigned int>   contact_index;  ///< the nodes of C
-    LAPACKFullMatrix<double>    contact_factor; ///< factor of F_CC
-    LAPACKFullMatrix<double>    coupled;        ///< factor of K̄ + S
+    /** The same motions over all of the plate's DoFs. */
+    std::vector<Vector<double>> plate_rigid_motions;
+    /** The inverse of the motions' Gram matrix at the foundation nodes. */
+    FullMatrix<double>        rigid_gram_inverse;
+    std::vector<unsigned int> contact_index;  ///< the nodes of C
+    LAPACKFullMatrix<double>  contact_factor; ///< factor of F_CC
+    LAPACKFullMatrix<double>  coupled;        ///< factor of K̄ + S
     /** The contact set of contact_factor and coupled, and their 1/κ₁. */
     std::vector<bool> factorised_set;
     double            coupled_rcond = 1, block_rcond = 1;

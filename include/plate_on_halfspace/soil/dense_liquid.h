@@ -36,6 +36,10 @@ namespace PlateOnHalfspace
     radius_of_relative_stiffness(const double flexural_rigidity) const override;
 
     double
+    relative_stiffness(const double flexural_rigidity,
+                       const double length) const override;
+
+    double
     subgrade_modulus() const
     {
       return modulus;

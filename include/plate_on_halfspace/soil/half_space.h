@@ -31,6 +31,10 @@ namespace PlateOnHalfspace
     double
     radius_of_relative_stiffness(const double flexural_rigidity) const override;
 
+    double
+    relative_stiffness(const double flexural_rigidity,
+                       const double length) const override;
+
   private:
     const double alpha;
   };

@@ -177,6 +177,17 @@ namespace PlateOnHalfspace
     radius_of_relative_stiffness(const double flexural_rigidity) const = 0;
 
     /**
+     * D k^4 G(k) at k = 1/@p length: the bending stiffness of a plate of
+     * flexural rigidity @p flexural_rigidity at the wavelength @p length
+     * against the soil's, 1 at length = radius_of_relative_stiffness()
+     * (doc/soil-models.md, "Radius of relative stiffness"); (l/L)^4 on a
+     * dense liquid, (l/L)^3 on a half-space.
+     */
+    virtual double
+    relative_stiffness(const double flexural_rigidity,
+                       const double length) const = 0;
+
+    /**
      * How accurately the model's kernel is known, for the log: empty where
      * it is exact (the half-space, the dense liquid); a layered soil's
      * tabulation states its knots, range and error.
