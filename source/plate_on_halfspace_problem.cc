@@ -366,10 +366,22 @@ namespace PlateOnHalfspace
     make_coarse_plate_mesh(parameters.plate,
                            parameters.discretization,
                            triangulation);
-    const auto corners =
-      GridTools::compute_bounding_box(triangulation).get_boundary_points();
-    const double plate_size = std::max(corners.second[0] - corners.first[0],
-                                       corners.second[1] - corners.first[1]);
+    // The plate's narrowest extent, or its narrowest slab's: a plate
+    // rigid for the soil across it loses its moments' digits there.
+    double plate_width;
+    if (parameters.plate.shape == Parameters::Plate::Shape::slabs)
+      plate_width =
+        std::min(*std::min_element(parameters.plate.slab_lengths_x.begin(),
+                                   parameters.plate.slab_lengths_x.end()),
+                 *std::min_element(parameters.plate.slab_lengths_y.begin(),
+                                   parameters.plate.slab_lengths_y.end()));
+    else
+      {
+        const auto corners =
+          GridTools::compute_bounding_box(triangulation).get_boundary_points();
+        plate_width = std::min(corners.second[0] - corners.first[0],
+                               corners.second[1] - corners.first[1]);
+      }
     // the plate's weight is uniform: symmetric about both planes
     symmetry = choose_mirror_symmetry(
       parameters,
@@ -397,7 +409,7 @@ namespace PlateOnHalfspace
       const double l = soil->radius_of_relative_stiffness(
         parameters.plate.flexural_rigidity());
       relative_stiffness_radius = l;
-      check_plate_against_soil(plate_size);
+      check_plate_against_soil(plate_width);
       if (parameters.output.verbosity > 0)
         log << "radius of relative stiffness on the " << soil->name()
             << " soil: l = " << l
@@ -416,7 +428,7 @@ namespace PlateOnHalfspace
 
   void
   PlateOnHalfspaceProblem::check_plate_against_soil(
-    const double plate_size) const
+    const double plate_width) const
   {
     // The plate's bending is a small fraction, about 1/R, of its rigid-body
     // motion, and the moments and stresses are what rounding leaves of it:
@@ -424,18 +436,23 @@ namespace PlateOnHalfspace
     // digits on a dense liquid and 14 - log10(R) on a half-space
     // (doc/errors-and-limits.md, "Stiffness ratio"). A plate beyond the
     // bound is rigid for the soil, and a softer one as rigid keeps the
-    // digits.
-    // D and the ratio are linear in E: per unit of E the ratio stays finite
-    // for a modulus that would overflow it (E = 1e308).
+    // digits. D and the ratio are linear in E: per unit of E the ratio
+    // stays finite for a modulus that would overflow it (E = 1e308).
     const auto  &plate             = parameters.plate;
     const double modulus           = plate.youngs_modulus;
     const double ratio_per_modulus = soil->relative_stiffness(
       std::pow(plate.thickness, 3) /
         (12. * (1. - plate.poissons_ratio * plate.poissons_ratio)),
-      plate_size);
+      plate_width);
     const double ratio = ratio_per_modulus * modulus;
     if (!(ratio > largest_relative_stiffness))
       return;
+    // Three digits, the ratio rounded up and the modulus down, so that the
+    // ratio printed is above the bound and the modulus is accepted.
+    const auto three_digits = [](const double value, const bool up) {
+      const double unit = std::pow(10., std::floor(std::log10(value)) - 2);
+      return (up ? std::ceil(value / unit) : std::floor(value / unit)) * unit;
+    };
     const auto  model = parameters.foundation.model;
     const char *soil_entries =
       model == Parameters::Foundation::Model::dense_liquid ?
@@ -447,19 +464,19 @@ namespace PlateOnHalfspace
     std::ostringstream message;
     message << std::setprecision(3) << "The plate is ";
     if (std::isfinite(ratio))
-      message << ratio;
+      message << three_digits(ratio, true);
     else
       message << "more than 1e308";
     message << " times stiffer than the " << soil->name()
-            << " soil at its own size (D k^4 G(k) at k = 1/L, L = "
-            << plate_size
-            << ", the larger side of its bounding box; doc/soil-models.md, "
-               "\"Radius of relative stiffness\"), above the 1e6 up to "
-               "which rounding leaves its moments and stresses 6 digits. "
-               "For the soil such a plate is rigid: one with Plate/Young's "
-               "modulus at most "
-            << largest_relative_stiffness / ratio_per_modulus << " (now "
-            << modulus
+            << " soil across it (D k^4 G(k) at k = 1/L, L = " << plate_width
+            << ", the plate's narrowest extent or its narrowest slab's; "
+               "doc/soil-models.md, \"Radius of relative stiffness\"), "
+               "above the 1e6 up to which rounding leaves its moments and "
+               "stresses 6 digits. For the soil such a plate is rigid: one "
+               "with Plate/Young's modulus at most "
+            << three_digits(largest_relative_stiffness / ratio_per_modulus,
+                            false)
+            << " (now " << modulus
             << ") settles and presses the soil the same to about 1e-7 and "
                "keeps the digits. Compare Plate/Young's modulus and "
                "Plate/Thickness with "

@@ -114,11 +114,12 @@ namespace PlateOnHalfspace
 
     /**
      * Refuse a plate more than largest_relative_stiffness times stiffer
-     * than the soil at its own size @p plate_size (its bounding box's
-     * larger side), naming the entries (see the implementation).
+     * than the soil across its narrowest extent @p plate_width (its
+     * bounding box's, or its narrowest slab's), naming the entries (see
+     * the implementation).
      */
     void
-    check_plate_against_soil(const double plate_size) const;
+    check_plate_against_soil(const double plate_width) const;
 
     /** The largest SoilModel::relative_stiffness() of the plate at its
      *  size that a run accepts (doc/errors-and-limits.md, "Stiffness

@@ -66,7 +66,7 @@ main()
       const std::string message = one_line_message(error);
       refused = message.find("The plate is 1.58e+10 times stiffer than the "
                              "half-space soil") != std::string::npos &&
-                message.find("Plate/Young's modulus at most 6.33e+10") !=
+                message.find("Plate/Young's modulus at most 6.32e+10") !=
                   std::string::npos;
     }
   require("E = 1e15: refused as rigid for the soil, naming Plate/Young's "

@@ -174,8 +174,8 @@ main()
     {
       const std::string message = one_line_message(error);
       refused =
-        message.find("times stiffer than the half-space soil at its "
-                     "own size") != std::string::npos &&
+        message.find("times stiffer than the half-space soil across "
+                     "it") != std::string::npos &&
         message.find("Plate/Young's modulus at most") != std::string::npos;
     }
   require("disk, R = 1e7: refused as rigid for the soil, naming "
