@@ -124,9 +124,12 @@ namespace PlateOnHalfspace
           // centres reproduce linear fields; supports, mirror planes and
           // tied joints may not) and in the kernel of the stiffness (the
           // constrained rows and columns of K only hold a diagonal entry;
-          // joints' springs may hold a slab's motion).
+          // joints' springs may hold a slab's motion). A motion in the
+          // kernel leaves rounding, about 1e-16; a spring far softer than
+          // the plate may still be far stiffer than the soil and must hold
+          // its slab (doc/errors-and-limits.md, "Jointed slabs").
           Vector<double> d = defect(motion);
-          if (d.linfty_norm() <= 1e-8 * motion.linfty_norm())
+          if (d.linfty_norm() <= 1e-12 * motion.linfty_norm())
             motions.push_back(without_constrained(motion));
           else if (n_bodies > 1)
             {
